@@ -1,0 +1,54 @@
+// Encoding, decoding and describing typed requests and replies, driven by
+// the message layouts (messages.hpp) and the command catalog (catalog.hpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/protocol/frame.hpp"
+#include "sabus/protocol/messages.hpp"
+
+namespace sabus {
+
+// The data bytes (3 .. ETX-1) of a request, and the whole command frame.
+Bytes encode_request_data(const Request& request);
+Bytes encode_request(const Request& request, std::uint8_t address);
+Frame request_frame(const Request& request, std::uint8_t address);
+
+// A command frame's typed request. Errors: unknown code, a length that
+// contradicts the catalog, or the first field that does not decode.
+Expected<Request> decode_request(const Frame& frame);
+
+// The reply frame for `command` (ACK with data, NAK, or the offline reply).
+// The reply type must be the catalog's reply kind for `command`.
+Expected<Frame> reply_frame(const Reply& reply, std::uint8_t address, std::uint8_t command);
+Expected<Bytes> encode_reply(const Reply& reply, std::uint8_t address, std::uint8_t command);
+Expected<Reply> decode_reply(const Frame& frame);
+
+// One field of a frame as a person reads it:
+//   byte 36  az status  0x45  ccw automatic movement in progress
+struct FieldDescription {
+  std::size_t first = 0;  // byte offsets in the frame, inclusive
+  std::size_t last = 0;
+  std::string name;
+  std::string raw;        // "0x45" for one byte, "\"-152.5\"" for text
+  std::string meaning;
+  bool ok = true;
+  std::string line() const;
+};
+
+struct FrameDescription {
+  std::string summary;                  // "ACK 31h Device Status Poll (§3.2) reply from 0x32 (50)"
+  std::vector<FieldDescription> fields; // every byte of the frame, in order
+  std::optional<DecodeError> error;     // the first problem found, if any
+};
+
+// Describes one complete frame of 7-bit characters: header, every data field
+// of the request or reply layout, ETX and the check byte.
+FrameDescription describe_frame(ByteView frame_bytes);
+
+// The catalog form of a request ("2A", "E", "R", "preset"; "" if none).
+std::string_view form_of(const Request& request);
+
+}  // namespace sabus

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of sabus from Debian 12 packages.
+# Idempotent: apt-get runs only when a package is missing.
+set -euo pipefail
+
+packages=(
+  build-essential g++ cmake ninja-build pkg-config
+  clang-14 libclang-rt-14-dev           # libFuzzer and the sanitizer runtimes
+  libgtest-dev libgmock-dev             # unit tests
+  librapidcheck-dev                     # property tests
+  libbenchmark-dev                      # receiver throughput benchmark
+  libserialport-dev                     # serial transport (later issues)
+  libyaml-cpp-dev                       # vectors and device profiles
+  libcli11-dev                          # command-line parsing of the sabus CLI
+  libfmt-dev                            # formatting
+  nlohmann-json3-dev                    # JSON output
+  socat                                 # pty pairs for integration tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
