@@ -7,7 +7,7 @@ flavour=${1:-release}
 case "$flavour" in
   release)  dir=build;          args=(-DCMAKE_BUILD_TYPE=Release) ;;
   sanitize) dir=build-sanitize; args=(-DCMAKE_BUILD_TYPE=Debug -DSABUS_SANITIZE=ON -DSABUS_BUILD_BENCHMARKS=OFF) ;;
-  fuzz)     dir=build-fuzz;     args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSABUS_FUZZ=ON -DSABUS_BUILD_BENCHMARKS=OFF
+  fuzz)     dir=build-fuzz;     args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSABUS_FUZZ=ON -DSABUS_BUILD_BENCHMARKS=OFF -DSABUS_BUILD_TESTS=OFF
                                       -DCMAKE_CXX_COMPILER=clang++-14) ;;
   *) echo "usage: tools/build.sh [release|sanitize|fuzz]" >&2; exit 2 ;;
 esac

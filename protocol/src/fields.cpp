@@ -84,9 +84,12 @@ std::string format_scaled(std::int64_t value, int decimals) {
   std::string s = std::to_string(a / scale);
   if (decimals > 0) {
     std::string frac = std::to_string(a % scale);
-    s += "." + std::string(static_cast<std::size_t>(decimals) - frac.size(), '0') + frac;
+    s.push_back('.');
+    s.append(static_cast<std::size_t>(decimals) - frac.size(), '0');
+    s.append(frac);
   }
-  return negative ? "-" + s : s;
+  if (negative) s.insert(s.begin(), '-');
+  return s;
 }
 
 // ---- Text -----------------------------------------------------------------

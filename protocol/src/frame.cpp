@@ -86,8 +86,9 @@ bool is_offline_reply(const Frame& f) {
 namespace sabus {
 Expected<std::uint8_t> parse_address(std::string_view text) {
   auto bad = [&] {
-    return DecodeError{0, "address", "49-111 (decimal), an address character '1'-'o', or 0x31-0x6f",
-                       "\"" + std::string(text) + "\""};
+    std::string got(1, '"');
+    got.append(text).push_back('"');
+    return DecodeError{0, "address", "49-111 (decimal), an address character '1'-'o', or 0x31-0x6f", got};
   };
   if (text.empty()) return bad();
   unsigned v = 0;

@@ -1,6 +1,7 @@
 #include "sabus/protocol/receiver.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "sabus/protocol/catalog.hpp"
 
@@ -104,6 +105,10 @@ Receiver::Receiver(const ReceiverOptions& options) : options_(options) {
   // State 3 accepts a further data byte only while ETX and the check byte still fit.
   data_limit_ = options_.max_frame_length - 2;
 
+  // The word-at-a-time check is exact only when every control character
+  // leaves State 3's data run (E-6).
+  swar_ = options_.reject_control_in_body;
+
   const bool any_address = options_.addresses.none();
   for (unsigned a = 0; a < 128; ++a)
     address_ok_[a] = any_address ? is_valid_address(static_cast<std::uint8_t>(a)) : options_.addresses.test(a);
@@ -128,6 +133,21 @@ Receiver::Receiver(const ReceiverOptions& options) : options_(options) {
     }
     class_[w] = k;
   }
+}
+
+// Whether all eight bytes of `w` are data characters, for the options under
+// which swar_ is set: parity right (or bit 7 clear without parity checking)
+// and the 7-bit character not a control character (bit 5 or 6 set).
+bool Receiver::all_data(std::uint64_t w) const {
+  constexpr std::uint64_t kLow = 0x0101010101010101ULL;
+  const std::uint64_t c = w & (0x7F * kLow);
+  const std::uint64_t t = c & (0x60 * kLow);
+  if (((t | (t >> 1)) & (0x20 * kLow)) != 0x20 * kLow) return false;
+  if (options_.parity == Parity::kNone) return (w & (0x80 * kLow)) == 0;
+  std::uint64_t v = w ^ (w >> 4);  // bit 0 of each byte ends as its parity
+  v ^= v >> 2;
+  v ^= v >> 1;
+  return (v & kLow) == 0;
 }
 
 void Receiver::reset() {
@@ -275,18 +295,38 @@ void Receiver::feed(ByteView chunk, ReceiverSink& sink) {
       }
       if (i == n) break;
     } else if (state_ == ReceiverState::kSlaveData) {
-      // Fast path: a run of ordinary data characters.
-      std::size_t len = len_;
+      // Fast path: a run of ordinary data characters. Locals keep the loop
+      // free of member reloads (byte stores may alias any member).
+      const std::uint8_t* cls = class_.data();
+      std::uint8_t* out = buf_.data() + len_;
       std::uint8_t x = lrc_;
-      const std::size_t limit = data_limit_;
-      while (i < n && len < limit && class_[p[i]] == kData) {
-        const std::uint8_t c = p[i] & 0x7F;
-        buf_[len++] = c;
-        x ^= c;
-        ++i;
+      const std::size_t room = data_limit_ - len_;
+      const std::size_t run = std::min(n - i, room);
+      std::size_t k = 0;
+      if (swar_) {
+        // Eight bytes per step while all are data characters.
+        for (; k + 8 <= run; k += 8) {
+          std::uint64_t w;
+          std::memcpy(&w, p + i + k, 8);
+          if (!all_data(w)) break;
+          const std::uint64_t c = w & 0x7F7F7F7F7F7F7F7FULL;
+          std::memcpy(out + k, &c, 8);
+          std::uint64_t f = c ^ (c >> 32);
+          f ^= f >> 16;
+          f ^= f >> 8;
+          x ^= static_cast<std::uint8_t>(f);
+        }
       }
-      len_ = len;
+      for (; k < run; ++k) {
+        const std::uint8_t w = p[i + k];
+        if (cls[w] != kData) break;
+        const std::uint8_t c = w & 0x7F;
+        out[k] = c;
+        x ^= c;
+      }
+      len_ += k;
       lrc_ = x;
+      i += k;
       if (i == n) break;
     }
     step_slow(p[i], base + i, sink);

@@ -140,12 +140,14 @@ class Receiver {
   void flush_unknown(ReceiverSink& sink);
   void complete_frame(std::uint64_t at, std::uint8_t wire, ReceiverSink& sink);
   void step_slow(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink);
+  bool all_data(std::uint64_t w) const;
 
   ReceiverOptions options_;
   std::array<std::uint8_t, 256> class_{};   // ByteClass of each received byte value
   std::array<bool, 128> address_ok_{};
   std::size_t data_limit_ = 0;              // len_ at which a further data byte overruns
   std::uint8_t char_mask_ = 0x7F;
+  bool swar_ = false;                       // all_data() is valid for these options
 
   ReceiverState state_ = ReceiverState::kSlaveIdle;
   std::array<std::uint8_t, kBufferSize> buf_{};
