@@ -11,6 +11,7 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/sabus-fuzz-$name.XXXXXX")
 artifacts=${FUZZ_ARTIFACTS:-$PWD/fuzz-artifacts/$name}
 mkdir -p "$artifacts" "$regressions"
 cp -r "$seeds"/. "$work"/ 2>/dev/null || true
+before=$(ls -1 "$artifacts" 2>/dev/null)
 "$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   -artifact_prefix="$artifacts/" "$work" "$regressions" >"$work.log" 2>&1
 status=$?
@@ -18,7 +19,7 @@ grep -E "^(stat::|#[0-9]+ +DONE)" "$work.log" | head -5
 if [ $status -ne 0 ]; then
   tail -40 "$work.log"
   echo "FUZZ FAILURE in $name: reproducer(s):"
-  ls -1 "$artifacts"/* 2>/dev/null | sed 's/^/  /'
+  comm -13 <(echo "$before") <(ls -1 "$artifacts") | sed "s|^|  $artifacts/|"
   echo "  replay: $target <reproducer>; keep it as a regression seed in fuzz/regressions/$name/"
 fi
 rm -rf "$work" "$work.log"

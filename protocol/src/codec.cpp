@@ -1,5 +1,6 @@
 #include "sabus/protocol/codec.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <type_traits>
 #include <utility>
@@ -59,8 +60,10 @@ struct Decoder {
       return;
     }
     if (auto e = c.decode(in.subspan(pos, w), value)) {
-      error = DecodeError{kDataStart + pos + e->index, std::string(name), e->expected,
-                          describe_byte(in[pos + e->index])};
+      // A field may report the position just past its last byte ("a digit"
+      // after "-"): name the last byte instead.
+      const std::size_t at = pos + std::min(e->index, w - 1);
+      error = DecodeError{kDataStart + at, std::string(name), e->expected, describe_byte(in[at])};
     }
     pos += w;
   }
@@ -90,22 +93,30 @@ struct Describer {
   std::vector<FieldDescription>& out;
   std::optional<DecodeError>& error;
   std::size_t pos = 0;
+  bool truncated = false;  // the data ended inside a field: later fields are not described
   template <class C, class T, class... M>
   void operator()(std::string_view name, const C& c, T& value, M&&... meaning) {
-    const std::size_t w = width_for_decode(c, in.size() - pos);
-    if (w == 0) return;
-    if (pos + w > in.size()) {
-      pos = in.size() + 1;  // the length check reports it
+    if (truncated) return;
+    const std::size_t remaining = in.size() - pos;
+    const std::size_t w = width_for_decode(c, remaining);
+    if (w > remaining) {
+      truncated = true;
+      const std::string want = std::to_string(w) + " byte(s) for " + std::string(name);
+      if (!error) error = DecodeError{kDataStart + in.size(), std::string(name), want, "ETX"};
+      if (remaining > 0)
+        out.push_back({kDataStart + pos, kDataStart + in.size() - 1, std::string(name), raw_text(in.subspan(pos)),
+                       "invalid: the data ends here, expected " + want, false});
       return;
     }
+    if (w == 0) return;
     ByteView slice = in.subspan(pos, w);
     FieldDescription d{kDataStart + pos, kDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true};
     if (auto e = c.decode(slice, value)) {
+      const std::size_t at = std::min(e->index, w - 1);  // see Decoder
       d.ok = false;
       d.meaning = "invalid: expected " + e->expected;
-      if (w > 1) d.meaning += " at byte " + std::to_string(kDataStart + pos + e->index);
-      if (!error) error = DecodeError{kDataStart + pos + e->index, std::string(name), e->expected,
-                                      describe_byte(slice[e->index])};
+      if (w > 1) d.meaning += " at byte " + std::to_string(kDataStart + pos + at);
+      if (!error) error = DecodeError{kDataStart + pos + at, std::string(name), e->expected, describe_byte(slice[at])};
     } else if constexpr (sizeof...(M) > 0) {
       d.meaning = (meaning(value), ...);
     } else {
@@ -193,10 +204,10 @@ Expected<Request> decode_request_alt(ByteView data) {
 template <std::size_t... I>
 Expected<Request> decode_request_by_code(std::uint8_t code, ByteView data, std::index_sequence<I...>) {
   std::optional<Expected<Request>> r;
-  ((std::variant_alternative_t<I, Request>::kCode == code
-        ? (r.emplace(decode_request_alt<std::variant_alternative_t<I, Request>>(data)), true)
-        : false) ||
-   ...);
+  (void)((std::variant_alternative_t<I, Request>::kCode == code
+              ? (r.emplace(decode_request_alt<std::variant_alternative_t<I, Request>>(data)), true)
+              : false) ||
+         ...);
   if (!r) return DecodeError{2, "command", "a command code 30h-48h", describe_byte(code)};
   return *std::move(r);
 }
@@ -217,7 +228,7 @@ Expected<Reply> decode_reply_by_kind(ReplyKind kind, ByteView data, std::index_s
     }
     return false;
   };
-  (try_one(std::type_identity<std::variant_alternative_t<I, Reply>>{}) || ...);
+  (void)(try_one(std::type_identity<std::variant_alternative_t<I, Reply>>{}) || ...);
   if (!r) return DecodeError{2, "command", "a command with a reply layout", ""};
   return *std::move(r);
 }
@@ -233,7 +244,7 @@ void describe_by_kind(ReplyKind kind, Describer& d, std::index_sequence<I...>) {
     }
     return false;
   };
-  (try_one(std::type_identity<std::variant_alternative_t<I, T>>{}) || ...);
+  (void)(try_one(std::type_identity<std::variant_alternative_t<I, T>>{}) || ...);
 }
 
 template <std::size_t... I>
@@ -261,7 +272,7 @@ void describe_request_by_code(std::uint8_t code, Describer& d, std::index_sequen
     }
     return true;
   };
-  (try_one(std::type_identity<std::variant_alternative_t<I, Request>>{}) || ...);
+  (void)(try_one(std::type_identity<std::variant_alternative_t<I, Request>>{}) || ...);
 }
 
 DecodeError length_error(const CommandInfo& info, std::size_t got, std::size_t want, bool reply) {
@@ -414,7 +425,7 @@ FrameDescription describe_frame(ByteView b) {
 
   ByteView data = b.subspan(kDataStart, etx - kDataStart);
   std::optional<DecodeError> field_error;
-  Describer d{data, out.fields, field_error, 0};
+  Describer d{data, out.fields, field_error, 0, false};
   bool described = false;
   if (start == NAK) {
     out.summary += ", NAK reply";

@@ -338,7 +338,13 @@ void LeftDecimal::encode(const value_type& v, Out out) const {
     for (auto& b : out) b = ' ';
     return;
   }
-  put_justified(format_scaled(*v, decimals), out, false, ' ');
+  std::string text = format_scaled(*v, decimals);
+  // E-41: a whole value read without its decimal digit ("7655" in 5 bytes)
+  // is written back the same way when "7655.0" would not fit.
+  std::int64_t scale = 1;
+  for (int i = 0; i < decimals; ++i) scale *= 10;
+  if (text.size() > out.size() && *v % scale == 0) text = format_scaled(*v / scale, 0);
+  put_justified(text, out, false, ' ');
 }
 FieldStatus LeftDecimal::decode(ByteView in, value_type& v) const {
   std::size_t last = in.size();

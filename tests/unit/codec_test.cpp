@@ -341,3 +341,29 @@ TEST(Requests, UnknownCodeIsAnError) {
 
 }  // namespace
 }  // namespace sabus
+
+namespace sabus {
+namespace {
+TEST(Replies, FieldErrorAtTheEndOfAFieldNamesItsLastByte) {
+  // Found by fuzz_reply_decoders: longitude "-" then blanks, the error is
+  // "a digit" just past the '-' -- it must not read past the data.
+  SatelliteDataReply r;
+  Bytes bytes = encode_reply(r, '2', 0x3A).value();
+  bytes[15] = '-';
+  for (int i = 16; i < 21; ++i) bytes[i] = '-';  // "------": no digit anywhere
+  bytes[31] = lrc(ByteView(bytes).first(31));
+  auto e = decode_reply(decode_frame(bytes).value());
+  ASSERT_FALSE(e.ok());
+  EXPECT_EQ(e.error().field, "longitude");
+  EXPECT_GE(e.error().offset, 15u);
+  EXPECT_LE(e.error().offset, 20u);
+  Bytes end = encode_reply(r, '2', 0x3A).value();
+  const char lon[] = "12345-";  // a digit is expected after the final '-'? no: junk at the end
+  for (int i = 0; i < 6; ++i) end[15 + i] = static_cast<std::uint8_t>(lon[i]);
+  end[31] = lrc(ByteView(end).first(31));
+  auto e2 = decode_reply(decode_frame(end).value());
+  ASSERT_FALSE(e2.ok());
+  EXPECT_LE(e2.error().offset, 20u);
+}
+}  // namespace
+}  // namespace sabus

@@ -100,5 +100,18 @@ TEST(Describe, OfflineNakWrongLengthUnknownAndBadLrc) {
   EXPECT_FALSE(field(bad_lrc, "check byte")->ok);
 }
 
+TEST(Describe, ReplyShorterThanItsFirstFieldStopsCleanly) {
+  // Found by fuzz_reply_decoders: a 3Eh reply (length TBD) with no index.
+  Bytes bytes = encode_frame({FrameKind::kAck, '2', 0x3E, {}});
+  FrameDescription d = describe_frame(bytes);
+  ASSERT_TRUE(d.error.has_value());
+  EXPECT_EQ(d.error->field, "index");
+  expect_covers(d, 5);
+  Bytes one = encode_frame({FrameKind::kAck, '2', 0x3E, {'0'}});
+  EXPECT_TRUE(describe_frame(one).error.has_value());
+  expect_covers(describe_frame(one), 6);
+  EXPECT_FALSE(decode_reply(decode_frame(one).value()).ok());
+}
+
 }  // namespace
 }  // namespace sabus

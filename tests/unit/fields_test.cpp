@@ -124,6 +124,12 @@ TEST(Fields, LeftDecimalAcceptsAMissingDecimalDigit) {
   EXPECT_EQ(decode_ok(lon, "45    "), 450);  // ERRATA E-41
   EXPECT_EQ(decode_ok(lon, "45.0  "), 450);
   EXPECT_EQ(encode(lon, 450, 6), "45.0  ");
+  // Found by fuzz_reply_decoders: "07655" in a 5-byte pol offset is 7655.0,
+  // which is written back without its decimal digit so that it fits.
+  LeftDecimal pol{5, 1};
+  EXPECT_EQ(decode_ok(pol, "07655"), 76550);
+  EXPECT_EQ(encode(pol, 76550, 5), "7655 ");
+  EXPECT_EQ(decode_ok(pol, "7655 "), 76550);
   decode_err(lon, "  45.0");  // right-justified
   decode_err(lon, "      ");
   EXPECT_FALSE(decode_ok(LeftDecimal{5, 1, true}, "     ").has_value());
