@@ -116,8 +116,10 @@ class RatioReporter : public benchmark::ConsoleReporter {
   std::map<std::string, double> bytes_per_second;
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const auto& r : runs) {
+      // With --benchmark_repetitions, the mean stands for the run.
+      if (r.run_type == Run::RT_Aggregate && r.aggregate_name != "mean") continue;
       auto it = r.counters.find("bytes_per_second");
-      if (it != r.counters.end()) bytes_per_second[r.benchmark_name()] = it->second;
+      if (it != r.counters.end()) bytes_per_second[r.run_name.function_name] = it->second;
     }
     ConsoleReporter::ReportRuns(runs);
   }
