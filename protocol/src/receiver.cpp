@@ -180,8 +180,7 @@ void Receiver::flush_unknown(ReceiverSink& sink) {
 }
 
 void Receiver::complete_frame(std::uint64_t at, std::uint8_t wire, ReceiverSink& sink) {
-  const std::uint8_t c = wire & char_mask_;
-  buf_[len_++] = c;
+  buf_[len_++] = wire & 0x7F;
   const std::uint8_t command = buf_[2];
   if (options_.validate_command_in_receiver && buf_[0] == STX) {
     // E-9, the state diagram's reading: State 3 -> State 1 on an invalid
@@ -204,7 +203,7 @@ void Receiver::complete_frame(std::uint64_t at, std::uint8_t wire, ReceiverSink&
 // One byte in any state: every transition that leaves a frame names its reason.
 void Receiver::step_slow(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink) {
   const auto k = static_cast<ByteClass>(class_[wire]);
-  const std::uint8_t c = wire & char_mask_;
+  const std::uint8_t c = wire & 0x7F;
   switch (state_) {
     case ReceiverState::kSlaveIdle:
     case ReceiverState::kCommandExecute:

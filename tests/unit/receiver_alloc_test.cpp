@@ -2,26 +2,9 @@
 // replaced here to count allocations while a long stream is fed.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include "sabus/protocol/receiver.hpp"
+#include "alloc_counter.hpp"
 #include "test_support.hpp"
-
-namespace {
-std::atomic<std::size_t> g_allocations{0};
-}
-
-// GCC cannot see that these replacements pair malloc with free.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace sabus {
 namespace {
@@ -42,11 +25,11 @@ TEST(ReceiverAllocations, NoneWhileFeeding) {
   }
   Receiver receiver(ReceiverOptions::slave('2'));
   CountingSink sink;
-  const std::size_t before = g_allocations.load();
+  const std::size_t before = test::g_allocations.load();
   for (std::size_t i = 0; i < stream.size(); i += 7)
     receiver.feed(ByteView(stream).subspan(i, std::min<std::size_t>(7, stream.size() - i)), sink);
   receiver.finish(sink);
-  const std::size_t after = g_allocations.load();
+  const std::size_t after = test::g_allocations.load();
   EXPECT_EQ(sink.frames, 1000u);
   EXPECT_GE(sink.discards, 1000u);
   EXPECT_EQ(after - before, 0u) << "heap allocations while feeding " << stream.size() << " bytes";

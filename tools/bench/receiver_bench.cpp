@@ -11,20 +11,8 @@
 #include <string>
 
 #include "sabus/protocol/codec.hpp"
+#include "alloc_counter.hpp"
 #include "sabus/protocol/receiver.hpp"
-
-namespace {
-std::atomic<std::size_t> g_allocations{0};
-}
-// GCC cannot see that these replacements pair malloc with free.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -74,12 +62,12 @@ void BM_Receiver(benchmark::State& state) {
   const Bytes& s = stream();
   Receiver receiver(ReceiverOptions::slave('2'));
   CountingSink sink;
-  const std::size_t before = g_allocations.load();
+  const std::size_t before = test::g_allocations.load();
   for (auto _ : state) {
     receiver.feed(s, sink);
     benchmark::DoNotOptimize(sink.frames);
   }
-  g_receiver_allocations = g_allocations.load() - before;
+  g_receiver_allocations = test::g_allocations.load() - before;
   g_frames = sink.frames / state.iterations();
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * s.size()));
 }

@@ -98,9 +98,10 @@ int run_decode(const DecodeOptions& o) {
 
   // --side: which start bytes begin a frame. "auto" guesses from byte 0.
   std::string side = o.side;
-  if (side == "auto") side = bytes.empty() || bytes[0] == STX ? "slave" : (bytes[0] & 0x7F) == STX ? "slave"
-                             : ((bytes[0] & 0x7F) == ACK || (bytes[0] & 0x7F) == NAK)            ? "master"
-                                                                                                  : "both";
+  if (side == "auto") {
+    const std::uint8_t first = bytes.empty() ? STX : bytes[0] & 0x7F;  // without a parity bit
+    side = first == STX ? "slave" : (first == ACK || first == NAK) ? "master" : "both";
+  }
   ReceiverOptions ro = side == "slave" ? ReceiverOptions::slave_any_address() : ReceiverOptions::master();
   if (side == "both") ro.starts = StartBytes::kAny;
   if (!o.address.empty()) {
@@ -195,9 +196,8 @@ Command add_decode_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "even", "none"}));
   sub->add_option("--address", opts->address, "Only accept this address (49-111, the character, or 0x31-0x6f)");
   sub->add_flag("--json", opts->json, "Print JSON");
-  sub->callback([sub, opts] {
+  sub->callback([opts] {
     if (opts->hex.empty() && opts->file.empty()) throw CLI::RequiredError("--hex or a capture file");
-    (void)sub;
   });
   return {sub, [opts] { return run_decode(*opts); }};
 }

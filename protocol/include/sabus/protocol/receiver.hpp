@@ -146,7 +146,6 @@ class Receiver {
   std::array<std::uint8_t, 256> class_{};   // ByteClass of each received byte value
   std::array<bool, 128> address_ok_{};
   std::size_t data_limit_ = 0;              // len_ at which a further data byte overruns
-  std::uint8_t char_mask_ = 0x7F;
   bool swar_ = false;                       // all_data() is valid for these options
 
   ReceiverState state_ = ReceiverState::kSlaveIdle;
