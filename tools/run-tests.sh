@@ -1,21 +1,43 @@
 #!/usr/bin/env bash
 # Every test: installs what is missing, builds the release and the sanitizer
 # (ASan+UBSan) flavours, and runs the whole ctest suite in both; with clang
-# present it also builds the libFuzzer targets and runs their smoke tests.
-# Exits non-zero when any test fails.
+# present it also builds the libFuzzer targets and runs each for FUZZ_SECONDS.
+# Ends with one line "tests: N passed, N failed" over all runs, and exits
+# non-zero when any test failed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
 bash tools/build.sh release
 bash tools/build.sh sanitize
-status=0
-echo "== release build: ctest"
-ctest --test-dir build --output-on-failure -j "$(nproc)" || status=1
-echo "== sanitizer build (ASan+UBSan): ctest"
-ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" || status=1
+
+passed=0 failed=0 status=0
+# run_ctest TITLE ARGS...: runs ctest, adds its counts to the totals.
+run_ctest() {
+  local title=$1 log
+  shift
+  log=$(mktemp)
+  echo "== $title"
+  if ! ctest "$@" --output-on-failure -j "$(nproc)" 2>&1 | tee "$log"; then status=1; fi
+  local line total bad
+  line=$(grep -E "tests passed, [0-9]+ tests failed out of [0-9]+" "$log" | tail -1 || true)
+  if [[ -z $line ]]; then
+    echo "== $title: ctest printed no summary"
+    status=1
+  else
+    bad=$(sed -E 's/.* ([0-9]+) tests failed out of ([0-9]+).*/\1/' <<<"$line")
+    total=$(sed -E 's/.* ([0-9]+) tests failed out of ([0-9]+).*/\2/' <<<"$line")
+    passed=$((passed + total - bad))
+    failed=$((failed + bad))
+  fi
+  rm -f "$log"
+}
+
+run_ctest "release build" --test-dir build
+run_ctest "sanitizer build (ASan+UBSan)" --test-dir build-sanitize
 if command -v clang++-14 >/dev/null; then
   bash tools/build.sh fuzz
-  echo "== libFuzzer build: ctest -L fuzz"
-  ctest --test-dir build-fuzz --output-on-failure -L fuzz -j "$(nproc)" || status=1
+  run_ctest "libFuzzer build, ${FUZZ_SECONDS:-10} s per target" --test-dir build-fuzz -L fuzz
 fi
+echo "tests: $passed passed, $failed failed"
+if ((failed > 0)); then status=1; fi
 exit $status
