@@ -1,0 +1,128 @@
+// A device profile: the controller under test as the reference controller and
+// the runner see it (vectors/profiles/*.yaml). Every *profile* point of
+// protocol/ERRATA.md is a field here, with the errata's decision as default.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/protocol/bytes.hpp"
+#include "sabus/protocol/messages.hpp"
+
+namespace sabus::harness {
+
+// §3.2 byte 35 XX; §3.3/§3.4/§3.5 "Polarization Type".
+enum class PolType : std::uint8_t { kCircular, kSinglePort, kDualPort };
+// The primary azimuth sensor (§3.2 NOTE on the fluxgate compass; §3.3 form 2B).
+enum class AzSensor : std::uint8_t { kPot, kPulse, kResolver, kFluxgate };
+// E-10: what a disabled controller answers to an unknown command code.
+enum class OfflineUnknown : std::uint8_t { kNak, kOffline };
+
+struct AxisProfile {
+  double fast_dps = 2.0;     // degrees per second at fast speed
+  double slow_dps = 0.5;     // degrees per second at slow speed
+  double min_deg = -180.0;   // limit positions: reaching one asserts its limit bit
+  double max_deg = 180.0;
+  double initial_deg = 0.0;
+  bool has_stow_limit = false;
+  double stow_deg = 0.0;
+};
+
+// An entry of the STORE list (§3.6: up to 50, read by 35h, recalled by 32h form 1).
+struct StoredSatellite {
+  std::string name;          // up to 10 characters
+  double az_deg = 0, el_deg = 0;
+  double h_pol_deg = 0, v_pol_deg = 0;
+  bool operator==(const StoredSatellite&) const = default;
+};
+
+struct PresetSatellite {     // §3.10 preset list, index 1-20
+  std::uint8_t index = 1;
+  SatelliteData data;
+  bool dual_band = false;    // §3.7 'T' band change needs a dual band satellite
+  bool operator==(const PresetSatellite&) const = default;
+};
+
+struct TleSet {              // §3.12, index 1-10
+  std::uint8_t index = 1;
+  std::string line1, line2;
+  bool operator==(const TleSet&) const = default;
+};
+
+struct Signpost {            // §3.20, index 1-20, DVB option only
+  std::uint8_t index = 1;
+  SignpostData data;
+  bool operator==(const Signpost&) const = default;
+};
+
+struct Navigation {          // §3.22 / §3.23
+  std::uint8_t latlon_source = 1;             // 001: no lat/lon data
+  std::optional<std::int32_t> latitude_min;   // signed minutes, south negative
+  std::optional<std::int32_t> longitude_min;  // signed minutes, west negative
+  std::uint8_t heading_source = 1;            // 001: no true heading data
+  std::optional<std::int32_t> heading_tenths;
+  std::optional<std::int32_t> magvar_tenths;  // nullopt: magvar not ready
+  bool operator==(const Navigation&) const = default;
+};
+
+// TRACK mode at power-on, for profiles that test the TRACK rules (§3.4, §3.5, §3.7 'T').
+enum class TrackActivity : std::uint8_t { kIdle, kPeaking, kSearching, kError };
+struct TrackProfile {
+  bool active = false;
+  TrackActivity activity = TrackActivity::kIdle;
+  char band = 'C';            // 'C' or 'K'
+  bool dual_band = false;
+};
+
+struct Profile {
+  std::string name = "rc3000-1.59";
+  std::string source;                       // the file it was read from, if any
+
+  // CONFIG-REMOTE (§2 Communications Parameters).
+  std::uint8_t address = '2';               // 49-111 (0x31-0x6f)
+  bool remote_enabled = true;
+  int baud = 9600;                          // 300 ... 9600 (READING-NOTES 2)
+
+  // The mount and its options.
+  std::string firmware = "1.59";            // §3.1 "A.BC"
+  PolType pol_type = PolType::kSinglePort;
+  AzSensor az_sensor = AzSensor::kPot;
+  bool hundredths = false;                  // 0.01 deg feedback (§3.3 form 2C, §3.17 bytes 49-50)
+  bool stow = true;                         // §3.7 'S'
+  bool deploy = true;                       // §3.7 'D'
+  bool dvb_receiver = false;                // §3.20 / §3.21 (E-23)
+  double counts_per_degree = 100.0;         // pulse/resolver sensors (§3.16)
+  std::int32_t count_offset = 10000;        // counts at 0 deg
+  AxisProfile az{2.0, 0.5, -180.0, 180.0, 0.0, false, 0.0};
+  AxisProfile el{1.0, 0.25, -5.0, 90.0, 45.0, true, -5.0};
+  AxisProfile pol{5.0, 1.0, -90.0, 90.0, 0.0, false, 0.0};
+  double turnaround_ms = 2.0;               // reply latency on a line (sabus sim --emulate-line)
+  std::uint16_t agc = 512;                  // §3.2 bytes 41-43
+
+  // Stored data at power-on.
+  std::vector<StoredSatellite> store;       // STORE list, <= 50
+  std::vector<PresetSatellite> presets;     // 1-20
+  std::vector<TleSet> tles;                 // 1-10
+  std::vector<Signpost> signposts;          // 1-20
+  Navigation navigation;
+  TrackProfile track;
+
+  // Errata switches (protocol/ERRATA.md), defaults = the errata's decisions.
+  bool stx_restarts_in_data = true;                        // E-7
+  OfflineUnknown unknown_command_while_offline = OfflineUnknown::kNak;  // E-10
+  bool implements_signal_strength = false;                 // E-16 (38h)
+  bool implements_iess = false;                            // E-16 (3Dh, 3Eh)
+  bool nak_bad_tle_checksum = false;                       // E-19
+  std::uint8_t locate_index_min = 1;                       // E-22
+  std::uint8_t locate_index_max = 20;
+  bool restore_lost_locate_exit = true;                    // E-28
+};
+
+// Controllers on one RS-422 bus (sabus sim --address 50,51,60): one profile
+// per address, the rest shared.
+std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint8_t>& addresses);
+
+}  // namespace sabus::harness
