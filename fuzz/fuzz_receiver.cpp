@@ -42,7 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t knobs = data[0];
   const std::size_t chunk = 1 + data[1] % 16;
   sabus::ReceiverOptions o = sabus::ReceiverOptions::slave('2');
-  o.parity = (knobs & 1) ? sabus::Parity::kEvenBit7 : sabus::Parity::kNone;
+  o.parity = (knobs & 1) ? sabus::Parity::kEvenBit7 : (knobs & 64) ? sabus::Parity::kUnchecked : sabus::Parity::kNone;
+  o.stx_restarts_in_address = !(knobs & 128);
   o.stx_restarts_in_data = knobs & 2;
   o.reject_control_in_body = knobs & 4;
   o.check_byte_restarts_on_stx = knobs & 8;

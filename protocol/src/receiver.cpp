@@ -144,6 +144,7 @@ bool Receiver::all_data(std::uint64_t w) const {
   const std::uint64_t t = c & (0x60 * kLow);
   if (((t | (t >> 1)) & (0x20 * kLow)) != 0x20 * kLow) return false;
   if (options_.parity == Parity::kNone) return (w & (0x80 * kLow)) == 0;
+  if (options_.parity == Parity::kUnchecked) return true;
   std::uint64_t v = w ^ (w >> 4);  // bit 0 of each byte ends as its parity
   v ^= v >> 2;
   v ^= v >> 1;
@@ -223,6 +224,8 @@ void Receiver::step_slow(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink
       if (k == kBadParity) return discard_frame(DiscardReason::kParityError, at + 1, at, wire, sink);
       if (k == kNotAscii) return discard_frame(DiscardReason::kNotAscii, at + 1, at, wire, sink);
       if (k == kStart) {
+        if (!options_.stx_restarts_in_address)
+          return discard_frame(DiscardReason::kOtherAddress, at + 1, at, wire, sink);
         // State 2 c: "remain in current state if STX byte is received".
         discard_frame(DiscardReason::kIncomplete, at, at, wire, sink);
         return begin_frame(c, at);

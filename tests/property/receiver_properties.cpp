@@ -37,7 +37,8 @@ Bytes line_noise(std::uint8_t address) {
 
 ReceiverOptions random_options(std::uint8_t address) {
   ReceiverOptions o = ReceiverOptions::slave(address);
-  o.parity = *rc::gen::element(Parity::kNone, Parity::kEvenBit7);
+  o.parity = *rc::gen::element(Parity::kNone, Parity::kEvenBit7, Parity::kUnchecked);
+  o.stx_restarts_in_address = *rc::gen::arbitrary<bool>();
   o.stx_restarts_in_data = *rc::gen::arbitrary<bool>();
   o.reject_control_in_body = *rc::gen::arbitrary<bool>();
   o.check_byte_restarts_on_stx = *rc::gen::arbitrary<bool>();
@@ -46,7 +47,7 @@ ReceiverOptions random_options(std::uint8_t address) {
 }
 
 Bytes on_wire(const ReceiverOptions& o, Bytes chars) {
-  return o.parity == Parity::kEvenBit7 ? add_even_parity(chars) : chars;
+  return o.parity == Parity::kNone ? chars : add_even_parity(chars);
 }
 
 RC_GTEST_PROP(ReceiverProperties, NeverEmitsAWrongLrcOrAForeignAddress, ()) {

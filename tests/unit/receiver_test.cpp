@@ -185,6 +185,24 @@ TEST(Receiver, ParityErrorOnEachPartOfTheFrame) {
   EXPECT_EQ(receive(wire, good).frames()[0], command('2', 0x36, "RA"));
 }
 
+TEST(Receiver, UncheckedParityStripsBit7) {
+  ReceiverOptions lenient = ReceiverOptions::slave('2');
+  lenient.parity = Parity::kUnchecked;
+  Bytes wire = add_even_parity(command('2', 0x36, "RA"));
+  wire[3] ^= 0x80;  // a parity error on a data byte
+  auto log = receive(lenient, wire);
+  ASSERT_EQ(log.frames().size(), 1u);
+  EXPECT_EQ(log.frames()[0], command('2', 0x36, "RA"));
+}
+
+TEST(Receiver, StxInTheAddressPositionCanBeAnOtherAddress) {
+  ReceiverOptions o = kSlave50;
+  o.stx_restarts_in_address = false;  // not the spec: State 2 c says remain in State 2
+  auto log = receive(o, concat({hex("02"), command('2', 0x31)}));
+  EXPECT_TRUE(log.frames().empty());
+  EXPECT_EQ(log.discards()[0].reason, R::kOtherAddress);
+}
+
 TEST(Receiver, EightBitCharacterWithoutParity) {
   auto log = receive(kSlave50, hex("02 32 b1 03 00"));
   EXPECT_EQ(log.discards()[0].reason, R::kNotAscii);

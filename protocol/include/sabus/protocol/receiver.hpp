@@ -85,6 +85,7 @@ class ReceiverSink {
 enum class Parity : std::uint8_t {
   kEvenBit7,  // default (E-1): bit 7 of each byte carries even parity; checked and stripped
   kNone,      // 7-bit characters, as a true 7E1 UART delivers them
+  kUnchecked, // lenient: bit 7 is stripped and never checked (a device that ignores parity)
 };
 
 enum class StartBytes : std::uint8_t {
@@ -104,6 +105,7 @@ struct ReceiverOptions {
   bool check_byte_restarts_on_stx = false;          // E-5, E-7: in State 4 an STX is the check byte
   bool reject_control_in_body = true;               // E-6 (master side: false, E-35)
   bool stx_restarts_in_data = true;                 // E-7: a start byte in State 3 restarts reception
+  bool stx_restarts_in_address = true;              // §1 State 2 c (must); false: State 2 -> State 1
   std::size_t max_frame_length = 0;                 // E-8: 0 = the catalog's longest frame for `starts`
   bool validate_command_in_receiver = false;        // E-9: true = state-diagram reading (silence)
 

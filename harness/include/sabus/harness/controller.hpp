@@ -1,0 +1,140 @@
+// The reference controller: an in-process RC3000 that implements the whole
+// spec (§1 framing, §3.1-§3.25) with the readings of protocol/ERRATA.md. It is
+// given a clock (virtual in tests and the in-process runner, steady in `sabus
+// sim`), a device profile, and optionally injected faults.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/clock.hpp"
+#include "sabus/harness/faults.hpp"
+#include "sabus/harness/line_device.hpp"
+#include "sabus/harness/nak_rules.hpp"
+#include "sabus/harness/profile.hpp"
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/receiver.hpp"
+
+namespace sabus::harness {
+
+enum class AxisId : std::uint8_t { kAz, kEl, kPol };
+
+// One axis: position, motion and alarm (§3.2 bytes 32-38).
+struct AxisState {
+  double position = 0;        // degrees
+  enum class Motion : std::uint8_t { kIdle, kJog, kAutoMove, kRemoteAutoMove } motion = Motion::kIdle;
+  int direction = 0;          // -1: ccw/down, +1: cw/up
+  double target = 0;          // auto moves
+  bool fast = true;           // §3.2 'S': configured for fast speed
+  TimePoint jog_end{};
+  std::uint8_t alarm = 0;     // §3.2 XXXX alarm code 8-C, 0 for none
+  bool operator==(const AxisState&) const = default;
+};
+
+struct ModeState {            // §3.17 bytes 45-48
+  std::uint8_t mode = 0x20, state = 0x20, last_mode = 0x20, exit_status = 0x20;
+  bool operator==(const ModeState&) const = default;
+};
+
+struct TrackState {           // §3.2 byte 40, §3.7 'T'
+  bool active = false;
+  TrackActivity activity = TrackActivity::kIdle;
+  char band = 'C';
+  bool dual_band = false;
+};
+
+struct ControllerState {
+  AxisState az, el, pol;
+  std::uint8_t alarm_code = 0;            // §3.2 byte 39
+  ModeState mode;
+  TrackState track;
+  std::string displayed_sat;              // §3.2 bytes 3-12
+  char pol_code = 0;                      // §3.2 byte 35 ZZZ: 'H', 'h', 'V', 'v' or 0 (none)
+  std::optional<StoredSatellite> last_target;   // §3.5: the last target of an auto move
+  std::optional<SatelliteData> last_located;    // §3.19 'C': a LOCATE performed before
+  std::vector<StoredSatellite> store;     // §3.6, <= 50
+  std::array<std::optional<PresetSatellite>, 20> presets;
+  std::array<std::optional<TleSet>, 10> tles;
+  std::array<std::optional<Signpost>, 20> signposts;
+  Navigation navigation;
+  char last_key = 0;
+};
+
+// What one command frame produced.
+struct Outcome {
+  std::optional<Frame> reply;             // nullopt: silence
+  std::optional<NakRule> nak;             // the rule behind a NAK
+  std::string note;                       // what happened, for transcripts
+};
+
+class Controller {
+ public:
+  Controller(const Profile& profile, const Clock& clock, FaultSet faults = {});
+
+  // Executes one complete command frame that passed the receiver, at the
+  // clock's time (§1 State 5). Frames for other addresses are not passed here.
+  Outcome execute(const Frame& command);
+  // Brings motion up to the clock's time.
+  void update();
+
+  const ControllerState& state() const { return state_; }
+  ControllerState& mutable_state() { return state_; }
+  const Profile& profile() const { return profile_; }
+  const FaultSet& faults() const { return faults_; }
+
+  // Replies as the codecs build them from the state (also used by tests).
+  StatusBlock status_block() const;
+  DisplayReply display() const;
+  std::uint32_t counts(AxisId axis) const;
+  bool limit(AxisId axis, int direction) const;
+
+  // The model's invariants (positions within limits, STORE <= 50, ...): empty
+  // when they hold, else what is broken.
+  std::string check_invariants() const;
+
+ private:
+  friend struct Handlers;
+  const AxisProfile& axis_profile(AxisId a) const;
+  AxisState& axis(AxisId a);
+  const AxisState& axis(AxisId a) const;
+  void enter_mode(std::string_view mode, std::string_view state);
+  void set_state(std::string_view state);
+  Outcome dispatch(const Frame& command, const Request& request);
+  Frame finish_reply(Frame reply) const;
+
+  Profile profile_;
+  const Clock& clock_;
+  FaultSet faults_;
+  ControllerState state_;
+  TimePoint last_update_;
+};
+
+// Controllers on one line: each with its own receiver (§1: "A remote station
+// only sends a response following a command containing its unique address").
+// Bytes in, bytes out, with parity in bit 7 unless `parity` is kNone.
+class Bus : public LineDevice {
+ public:
+  Bus(std::vector<Profile> profiles, const Clock& clock, FaultSet faults = {}, Parity parity = Parity::kEvenBit7);
+  void receive(ByteView wire, Bytes& out) override;
+  void tick() override;
+  std::string take_log() override;
+
+  std::size_t size() const { return units_.size(); }
+  Controller& controller(std::size_t i) { return units_[i]->controller; }
+  // Called after a command changed stored data (for --state-file).
+  void on_stored_data_change(std::function<void(const Controller&)> f) { on_change_ = std::move(f); }
+
+ private:
+  struct Unit;
+  std::vector<std::unique_ptr<Unit>> units_;
+  Parity parity_;
+  std::string log_;
+  std::function<void(const Controller&)> on_change_;
+};
+
+// The receiver options of a controller with this profile and these faults.
+ReceiverOptions receiver_options(const Profile& profile, const FaultSet& faults, Parity parity);
+
+}  // namespace sabus::harness

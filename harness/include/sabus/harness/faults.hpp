@@ -1,0 +1,79 @@
+// Injected faults: each a realistic firmware bug that a conformance suite must
+// catch (after libmodbus's test server that misbehaves on purpose). One
+// table: id, name (for --fault), description.
+#pragma once
+
+#include <bitset>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace sabus::harness {
+
+#define SABUS_FAULTS(X)                                                                                              \
+  X(kLrcSkipsByte0, "lrc-skips-byte0", "reply check bytes XOR from byte 1, leaving out the ACK/NAK")                \
+  X(kNakBadCheckByte, "nak-bad-check-byte", "a frame with a bad check byte is NAKed instead of ignored")            \
+  X(kAnswersForeignAddress, "answers-foreign-address", "frames for other addresses are executed and answered")      \
+  X(kNakWithoutCommand, "nak-without-command", "the NAK reply leaves out the command byte: NAK A ETX LRC")          \
+  X(kShortStatus, "short-status", "status replies are 51 bytes: the last reserved byte is missing")                 \
+  X(kSilentUnknownCommand, "silent-unknown-command", "unknown command codes are ignored instead of NAKed")          \
+  X(kExecutesOverlong, "executes-overlong", "a command with extra data bytes is executed instead of NAKed")        \
+  X(kOfflineWithoutF, "offline-without-f", "the offline reply leaves out the 'F': ACK A CC ETX LRC")                \
+  X(kWrongNibbleBase, "wrong-nibble-base", "binary status bytes use 0x30 instead of 0x40 as their high bits")       \
+  X(kLeftJustifiedPosition, "left-justified-position", "positions in replies are left-justified")                  \
+  X(kStoreCountOffByOne, "store-count-off-by-one", "query name reports one satellite more than the STORE list has")  \
+  X(kCheckByteStxRestarts, "check-byte-stx-restarts", "a check byte of 02h is taken as a new STX")                  \
+  X(kModeEnumOffByOne, "mode-enum-off-by-one", "extended status mode values start at 0x21 instead of 0x20")         \
+  X(kIgnoresParity, "ignores-parity", "characters with a parity error are accepted")                                \
+  X(kAcceptsControlInBody, "accepts-control-in-body", "control characters inside a frame are accepted as data")     \
+  X(kNoStxStxRestart, "no-stx-stx-restart", "an STX where the address belongs does not restart reception")          \
+  X(kReplyAddressZero, "reply-address-0x30", "replies carry address 0x30 instead of the controller's")              \
+  X(kExtendedStatus52, "extended-status-52", "the extended status reply is 52 bytes, as the text's count says")    \
+  X(kQueryNameZeroBased, "query-name-zero-based", "query name counts indexes from 0")                               \
+  X(kWriteNavKeepsStore, "write-nav-keeps-store", "a valid Write Navigation Data keeps the STORE list")            \
+  X(kCircularPolAcked, "circular-pol-acked", "polarization movement is ACKed with a circular feed")                \
+  X(kJogIntoLimitAcked, "jog-into-limit-acked", "a jog into an asserted limit is ACKed")                            \
+  X(kEmptySlotZeros, "empty-slot-zeros", "an empty preset slot is read back with index \"00\" instead of 7Fh 7Fh")  \
+  X(kJogIgnoresDuration, "jog-ignores-duration", "jogs run until stopped, whatever their duration")                \
+  X(kSecondAxisJogKeepsFirst, "second-axis-jog-keeps-first", "a jog about a second axis does not end the first")   \
+  X(kStatusForcesRemote, "status-forces-remote", "device type and status polls force REMOTE mode (RC2000 behaviour)") \
+  X(kUnimplementedAcked, "unimplemented-acked", "38h, 3Dh and 3Eh are ACKed although not implemented")             \
+  X(kTleIndexTo20, "tle-index-to-20", "TLE indexes 11-20 are accepted")                                             \
+  X(kSignpostsWithoutDvb, "signposts-without-dvb", "signposts are accepted without the DVB receiver option")       \
+  X(kStowWithoutCapability, "stow-without-capability", "stow and deploy are ACKed on mounts without them")          \
+  X(kDropsReplyByte, "drops-reply-byte", "every reply loses its last data byte")                                  \
+  X(kDeviceTypeNoDot, "device-type-no-dot", "the device type reply writes the version as \"159 \"")                \
+  X(kRemoteDisabledAnswers, "remote-disabled-answers", "with remote control disabled, commands are executed")
+
+enum class Fault : std::uint8_t {
+#define SABUS_X(id, name, description) id,
+  SABUS_FAULTS(SABUS_X)
+#undef SABUS_X
+  kCount
+};
+
+struct FaultInfo {
+  Fault fault;
+  std::string_view name;
+  std::string_view description;
+};
+
+std::span<const FaultInfo> all_faults();
+std::optional<Fault> find_fault(std::string_view name);
+
+class FaultSet {
+ public:
+  FaultSet() = default;
+  FaultSet(std::initializer_list<Fault> faults) {
+    for (auto f : faults) set(f);
+  }
+  void set(Fault f) { bits_.set(static_cast<std::size_t>(f)); }
+  bool has(Fault f) const { return bits_.test(static_cast<std::size_t>(f)); }
+  bool any() const { return bits_.any(); }
+
+ private:
+  std::bitset<static_cast<std::size_t>(Fault::kCount)> bits_;
+};
+
+}  // namespace sabus::harness
