@@ -18,5 +18,6 @@ struct Command {
 };
 
 Command add_decode_command(CLI::App& app);
+Command add_sim_command(CLI::App& app);
 
 }  // namespace sabus::cli

@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<sabus::cli::Command> commands = {
       sabus::cli::add_decode_command(app),
+      sabus::cli::add_sim_command(app),
   };
   try {
     app.parse(argc, argv);

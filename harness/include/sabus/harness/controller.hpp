@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/enumerations.hpp"
 #include "sabus/protocol/receiver.hpp"
 
 namespace sabus::harness {
@@ -64,9 +67,10 @@ struct ControllerState {
 
 // What one command frame produced.
 struct Outcome {
-  std::optional<Frame> reply;             // nullopt: silence
+  std::optional<Bytes> reply;             // 7-bit characters; nullopt: silence
   std::optional<NakRule> nak;             // the rule behind a NAK
   std::string note;                       // what happened, for transcripts
+  bool stored_data_changed = false;       // for --state-file
 };
 
 class Controller {
@@ -96,19 +100,45 @@ class Controller {
 
  private:
   friend struct Handlers;
+  static constexpr std::size_t kMaxStored = 50;             // §3.6
+  static constexpr std::size_t kExtendedStatus52DataBytes = 47;  // fault extended-status-52
+
   const AxisProfile& axis_profile(AxisId a) const;
   AxisState& axis(AxisId a);
   const AxisState& axis(AxisId a) const;
-  void enter_mode(std::string_view mode, std::string_view state);
+  enums::EnumReading enum_reading() const;
+  // §3.17: enter `mode` in `state`; the old mode becomes the last exited mode
+  // with `exit_of_old` (default: its normal exit) as its exit status.
+  void enter_mode(std::string_view mode, std::string_view state, std::string_view exit_of_old = {});
   void set_state(std::string_view state);
+  bool in_mode(std::string_view mode) const;
+
+  bool stow_limit(AxisId a) const;
+  bool moving() const;
+  void stop_all();
+  void start_jog(AxisId a, int direction, bool fast, Duration duration);
+  void start_move(AxisId a, double target, bool remote);
+  void step_axis(AxisId a, TimePoint from, TimePoint to);
+  void on_motion_done();
+
+  std::int32_t tenths(AxisId a) const;
+  std::uint32_t hundredths_digit(AxisId a) const;
+  double position_of_counts(std::uint32_t count) const;
+  std::uint8_t axis_status_bits(AxisId a) const;
+  bool pol_moves_allowed() const;
+  std::uint8_t track_byte() const;
+
   Outcome dispatch(const Frame& command, const Request& request);
-  Frame finish_reply(Frame reply) const;
+  Bytes finish_reply(Frame reply) const;
 
   Profile profile_;
   const Clock& clock_;
   FaultSet faults_;
   ControllerState state_;
   TimePoint last_update_;
+  TimePoint search_end_{};  // §3.7 'A': when the spiral search gives up
+  int signal_strength_ = 0;  // §3.9, when a profile implements 38h
+  std::array<std::optional<std::string>, 10> iess_;  // §3.14, when a profile implements 3Dh/3Eh
 };
 
 // Controllers on one line: each with its own receiver (§1: "A remote station
@@ -117,12 +147,13 @@ class Controller {
 class Bus : public LineDevice {
  public:
   Bus(std::vector<Profile> profiles, const Clock& clock, FaultSet faults = {}, Parity parity = Parity::kEvenBit7);
+  ~Bus() override;
   void receive(ByteView wire, Bytes& out) override;
   void tick() override;
   std::string take_log() override;
 
   std::size_t size() const { return units_.size(); }
-  Controller& controller(std::size_t i) { return units_[i]->controller; }
+  Controller& controller(std::size_t i);
   // Called after a command changed stored data (for --state-file).
   void on_stored_data_change(std::function<void(const Controller&)> f) { on_change_ = std::move(f); }
 

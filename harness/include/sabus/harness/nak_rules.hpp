@@ -39,6 +39,7 @@ namespace sabus::harness {
   X(kEphemerisIndex, "3.10", "ephemeris data only for the first 10 satellite data sets (ERRATA E-51)")              \
   X(kTleIndex, "3.12", "TLE index outside 1-10")                                                                     \
   X(kTleChecksum, "3.12", "a TLE line whose mod-10 checksum is wrong (ERRATA E-19)")                                \
+  X(kIessIndex, "3.14", "IESS-412 data index outside 1-10")                                                        \
   X(kLocateIndex, "3.18", "preset index outside the locate range (ERRATA E-22)")                                    \
   X(kLocateEmptyPreset, "3.18", "the indexed preset satellite is not stored")                                       \
   X(kLocateField, "3.18", "an error in the supplied satellite data")                                                \

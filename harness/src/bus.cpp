@@ -1,0 +1,104 @@
+// Controllers on one line (§1: RS-422 multi-drop): every controller has its
+// own receiver; only the addressed one answers.
+#include <algorithm>
+
+#include "sabus/harness/controller.hpp"
+
+namespace sabus::harness {
+
+ReceiverOptions receiver_options(const Profile& profile, const FaultSet& faults, Parity parity) {
+  ReceiverOptions o = faults.has(Fault::kAnswersForeignAddress) ? ReceiverOptions::slave_any_address()
+                                                                : ReceiverOptions::slave(profile.address);
+  o.parity = faults.has(Fault::kIgnoresParity) ? Parity::kUnchecked : parity;
+  o.stx_restarts_in_data = profile.stx_restarts_in_data;                      // E-7
+  o.check_byte_restarts_on_stx = faults.has(Fault::kCheckByteStxRestarts);
+  o.reject_control_in_body = !faults.has(Fault::kAcceptsControlInBody);
+  o.stx_restarts_in_address = !faults.has(Fault::kNoStxStxRestart);
+  return o;
+}
+
+struct Bus::Unit : ReceiverSink {
+  Unit(const Profile& p, const Clock& clock, FaultSet faults, Parity parity)
+      : controller(p, clock, faults), receiver(receiver_options(p, faults, parity)) {}
+  Controller controller;
+  Receiver receiver;
+  std::vector<Frame> frames;
+  std::vector<Discard> discards;
+  // The recent bytes of the stream, to read back a discarded frame (fault
+  // nak-bad-check-byte answers one).
+  Bytes recent;
+  std::uint64_t recent_base = 0;
+
+  void on_frame(const FrameView& f) override { frames.push_back(f.to_frame()); }
+  void on_discard(const Discard& d) override { discards.push_back(d); }
+
+  Bytes discarded_bytes(const Discard& d) const {
+    if (d.offset < recent_base) return {};
+    const std::size_t first = d.offset - recent_base;
+    const std::size_t n = std::min<std::size_t>(d.length, recent.size() - first);
+    Bytes b(recent.begin() + static_cast<std::ptrdiff_t>(first),
+            recent.begin() + static_cast<std::ptrdiff_t>(first + n));
+    for (auto& c : b) c &= 0x7F;
+    return b;
+  }
+};
+
+Bus::Bus(std::vector<Profile> profiles, const Clock& clock, FaultSet faults, Parity parity) : parity_(parity) {
+  for (const auto& p : profiles) units_.push_back(std::make_unique<Unit>(p, clock, faults, parity));
+}
+
+Bus::~Bus() = default;
+
+Controller& Bus::controller(std::size_t i) { return units_[i]->controller; }
+
+void Bus::receive(ByteView wire, Bytes& out) {
+  constexpr std::size_t kRecent = 512;
+  for (auto& u : units_) {
+    u->recent.insert(u->recent.end(), wire.begin(), wire.end());
+    u->receiver.feed(wire, *u);
+    for (const Discard& d : u->discards) {
+      log_ += "ignored " + d.message() + "\n";
+      if (d.reason == DiscardReason::kBadLrc && u->controller.faults().has(Fault::kNakBadCheckByte)) {
+        const Bytes b = u->discarded_bytes(d);
+        if (b.size() >= 3 && b[1] == u->controller.profile().address) {
+          Bytes nak = encode_frame(nak_reply(b[1], b[2]));
+          Bytes w = parity_ == Parity::kNone ? nak : add_even_parity(nak);
+          out.insert(out.end(), w.begin(), w.end());
+          log_ += "reply " + to_hex(nak) + " (NAK for a bad check byte)\n";
+        }
+      }
+    }
+    u->discards.clear();
+    for (const Frame& f : u->frames) {
+      const Bytes in = encode_frame(f);
+      log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
+      Outcome o = u->controller.execute(f);
+      if (o.reply) {
+        Bytes w = parity_ == Parity::kNone ? *o.reply : add_even_parity(*o.reply);
+        out.insert(out.end(), w.begin(), w.end());
+        log_ += "reply " + to_hex(*o.reply) + "  " + o.note + "\n";
+      } else {
+        log_ += "no reply: " + o.note + "\n";
+      }
+      if (o.stored_data_changed && on_change_) on_change_(u->controller);
+    }
+    u->frames.clear();
+    if (u->recent.size() > 2 * kRecent) {
+      const std::size_t drop = u->recent.size() - kRecent;
+      u->recent.erase(u->recent.begin(), u->recent.begin() + static_cast<std::ptrdiff_t>(drop));
+      u->recent_base += drop;
+    }
+  }
+}
+
+void Bus::tick() {
+  for (auto& u : units_) u->controller.update();
+}
+
+std::string Bus::take_log() {
+  std::string s;
+  s.swap(log_);
+  return s;
+}
+
+}  // namespace sabus::harness

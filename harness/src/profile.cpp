@@ -1,0 +1,24 @@
+// Profiles for several controllers on one bus.
+#include "sabus/harness/profile.hpp"
+
+#include <string>
+
+namespace sabus::harness {
+
+// §1 Address Character: every controller on a multi-drop RS-422 line has its
+// own address; everything else is shared. The name gets the decimal address
+// (the controller's own notation, ERRATA E-4) so reports tell them apart.
+// The addresses are taken as given: the caller has parsed and checked them.
+std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint8_t>& addresses) {
+  std::vector<Profile> out;
+  out.reserve(addresses.size());
+  for (std::uint8_t address : addresses) {
+    Profile& p = out.emplace_back(base);
+    p.address = address;
+    p.name.push_back('-');
+    p.name.append(std::to_string(address));
+  }
+  return out;
+}
+
+}  // namespace sabus::harness

@@ -1,0 +1,42 @@
+// The fault and NAK-rule tables (faults.hpp, nak_rules.hpp).
+#include "sabus/harness/faults.hpp"
+#include "sabus/harness/nak_rules.hpp"
+
+namespace sabus::harness {
+namespace {
+constexpr FaultInfo kFaults[] = {
+#define SABUS_X(id, name, description) {Fault::id, name, description},
+    SABUS_FAULTS(SABUS_X)
+#undef SABUS_X
+};
+}  // namespace
+
+std::span<const FaultInfo> all_faults() { return kFaults; }
+
+std::optional<Fault> find_fault(std::string_view name) {
+  for (const auto& f : kFaults)
+    if (f.name == name) return f.fault;
+  return std::nullopt;
+}
+
+std::string_view paragraph(NakRule rule) {
+  switch (rule) {
+#define SABUS_X(id, paragraph, text) \
+  case NakRule::id: return paragraph;
+    SABUS_NAK_RULES(SABUS_X)
+#undef SABUS_X
+  }
+  return "";
+}
+
+std::string_view description(NakRule rule) {
+  switch (rule) {
+#define SABUS_X(id, paragraph, text) \
+  case NakRule::id: return text;
+    SABUS_NAK_RULES(SABUS_X)
+#undef SABUS_X
+  }
+  return "";
+}
+
+}  // namespace sabus::harness

@@ -1,0 +1,725 @@
+// The reference controller: every command handler, every NAK rule, motion on
+// a virtual clock, and the faults' effect on the wire.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <set>
+
+#include "sabus/harness/controller.hpp"
+
+namespace sabus::harness {
+namespace {
+
+using namespace std::chrono_literals;
+
+Profile test_profile() {
+  Profile p;
+  p.store = {{"SBS 6", -74.0, 40.0, 10.0, -80.0}, {"GALAXY 19", -97.0, 35.0, 20.0, -70.0}};
+  PresetSatellite g19;
+  g19.index = 1;
+  g19.data = {"GALAXY 19", -971, 0, '1', '0', -125};
+  p.presets = {g19};
+  p.navigation.latlon_source = 7;
+  p.navigation.latitude_min = 40 * 60;
+  p.navigation.longitude_min = -75 * 60;
+  return p;
+}
+
+struct Rig {
+  explicit Rig(Profile p = test_profile(), FaultSet f = {}) : profile(std::move(p)), c(profile, clock, f) {}
+  VirtualClock clock;
+  Profile profile;
+  Controller c;
+
+  Outcome send(const Request& r) { return c.execute(request_frame(r, profile.address)); }
+  Outcome send_raw(std::uint8_t code, std::string_view data) {
+    return c.execute(Frame{FrameKind::kCommand, profile.address, code, Bytes(data.begin(), data.end())});
+  }
+  template <class T>
+  T reply(const Request& r) {
+    Outcome o = send(r);
+    EXPECT_TRUE(o.reply.has_value()) << o.note;
+    auto f = decode_frame(*o.reply);
+    EXPECT_TRUE(f.ok()) << f.error().message();
+    auto d = decode_reply(f.value());
+    EXPECT_TRUE(d.ok()) << d.error().message() << " in " << to_hex(*o.reply);
+    EXPECT_TRUE(std::holds_alternative<T>(d.value())) << o.note;
+    return std::get<T>(d.value());
+  }
+  void wait(Duration d) {
+    clock.advance(d);
+    c.update();
+  }
+  StatusBlock status() { return reply<StatusReply>(StatusPoll{}).status; }
+  ExtendedStatusReply extended() { return reply<ExtendedStatusReply>(ExtendedStatusPoll{}); }
+};
+
+bool is_nak(const Outcome& o) { return o.reply && !o.reply->empty() && (*o.reply)[0] == NAK; }
+
+// ---- §3.1 / §3.2 ------------------------------------------------------------------
+
+TEST(Controller, DeviceTypeIs3KAndTheFirmware) {
+  Rig r;
+  auto d = r.reply<DeviceTypeReply>(DeviceTypeQuery{});
+  EXPECT_EQ(d.controller, "3K");
+  EXPECT_EQ(d.version, "1.59");
+}
+
+TEST(Controller, StatusReflectsThePositions) {
+  Rig r;
+  auto s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 0);
+  EXPECT_EQ(s.elevation, 450);
+  EXPECT_EQ(s.polarization, 0);
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+  EXPECT_EQ(s.pol_equipment >> 4, 1) << "single-port feed";
+  EXPECT_NE(s.track >> 4, 0) << "BBB is never 000";
+}
+
+TEST(Controller, StatusPollDoesNotForceRemoteMode) {
+  Rig r;
+  r.status();
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "MANUAL_MODE");
+  Rig faulty(test_profile(), {Fault::kStatusForcesRemote});
+  faulty.status();
+  EXPECT_EQ(meanings::mode_name(faulty.extended().mode), "REMOTE_MODE");
+}
+
+// ---- §3.3 auto move ------------------------------------------------------------------
+
+TEST(Controller, AutoMoveForm2AMovesAndReportsRemoteAutoMove) {
+  Rig r;
+  auto s = r.reply<StatusReply>(AutoMove{AutoMoveAzEl{-1525, 456}}).status;
+  EXPECT_EQ(s.az_status & 0x0F, 0x7) << "remotely commanded auto move in progress";
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "REMOTE_MODE");
+  r.wait(200s);
+  s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, -1525);
+  EXPECT_EQ(s.elevation, 456);
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+}
+
+TEST(Controller, AutoMoveForm1ToAStoredSatelliteWithPolarization) {
+  Rig r;
+  auto s = r.reply<StatusReply>(AutoMove{AutoMoveStored{'V', "SBS 6"}}).status;
+  EXPECT_EQ(s.sat_name, "SBS 6");
+  r.wait(200s);
+  s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, -740);
+  EXPECT_EQ(s.elevation, 400);
+  EXPECT_EQ(s.polarization, -800);
+  EXPECT_EQ(s.pol_equipment & 7, 2) << "'V' displayed";
+}
+
+TEST(Controller, AutoMoveNameThatParsesAsNumbersIsForm1WhenStored) {
+  Profile p = test_profile();
+  p.store.push_back({"0100000200", 12.0, 34.0, 0, 0});
+  Rig r(p);
+  r.send_raw(0x32, " 0100000200");
+  r.wait(200s);
+  EXPECT_EQ(r.status().azimuth.tenths, 120) << "READING-NOTES 31: the stored name wins";
+}
+
+TEST(Controller, AutoMoveForm2BAnd2CNeedTheirSensors) {
+  Profile p = test_profile();
+  p.az_sensor = AzSensor::kPulse;
+  p.hundredths = true;
+  Rig r(p);
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveCounts{11050, 12152}})));
+  r.wait(300s);
+  auto pulses = r.reply<PulseCountReply>(PulseCountQuery{});
+  EXPECT_EQ(pulses.az, 11050u);
+  EXPECT_EQ(pulses.el, 12152u);
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveAxis{'A', -12345}})));
+  r.wait(300s);
+  auto x = r.extended();
+  EXPECT_EQ(x.status.azimuth.tenths, -1234);
+  EXPECT_EQ(x.az_hundredths, 5u) << "READING-NOTES 30";
+}
+
+TEST(Controller, AutoMoveForm3MovesPolarization) {
+  Rig r;
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMovePol{500}})));
+  r.wait(60s);
+  EXPECT_EQ(r.status().polarization, 500);
+}
+
+// ---- §3.4 / §3.24 jog ------------------------------------------------------------------
+
+TEST(Controller, JogLastsItsDurationInFiftyMillisecondSteps) {
+  Rig r;  // az slow speed 0.5 deg/s
+  ASSERT_FALSE(is_nak(r.send(Jog{{'W', 'S', 1000}})));
+  EXPECT_EQ(r.status().az_status & 0x0F, 0x5);
+  r.wait(5s);
+  EXPECT_EQ(r.status().azimuth.tenths, 5) << "1 s at 0.5 deg/s";
+  EXPECT_EQ(r.status().az_status & 0x0F, 0);
+  ASSERT_FALSE(is_nak(r.send(Jog{{'W', 'F', 1}})));  // 1 ms rounds up to 50 ms
+  r.wait(1s);
+  EXPECT_EQ(r.status().azimuth.tenths, 6) << "0.05 s at 2 deg/s";
+  ASSERT_FALSE(is_nak(r.send(Jog{{'W', 'F', 0}})));
+  r.wait(1s);
+  EXPECT_EQ(r.status().azimuth.tenths, 6) << "0000 does not move";
+}
+
+TEST(Controller, SecondAxisJogEndsTheFirst) {
+  Rig r;
+  r.send(Jog{{'W', 'S', 9999}});
+  r.wait(1s);
+  r.send(Jog{{'U', 'S', 9999}});
+  auto s = r.status();
+  EXPECT_EQ(s.az_status & 0x0F, 0) << "the azimuth jog terminated";
+  EXPECT_EQ(s.el_status & 0x0F, 0x5);
+  Rig faulty(test_profile(), {Fault::kSecondAxisJogKeepsFirst});
+  faulty.send(Jog{{'W', 'S', 9999}});
+  faulty.send(Jog{{'U', 'S', 9999}});
+  EXPECT_EQ(faulty.status().az_status & 0x0F, 0x5);
+}
+
+TEST(Controller, XStopsEverything) {
+  Rig r;
+  r.send(AutoMove{AutoMoveAzEl{-1525, 456}});
+  r.wait(1s);
+  ASSERT_FALSE(is_nak(r.send(Jog{{'X', 'S', 0}})));
+  const auto s = r.status();
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+  EXPECT_EQ(s.el_status & 0x0F, 0);
+  const auto az = s.azimuth.tenths;
+  r.wait(10s);
+  EXPECT_EQ(r.status().azimuth.tenths, az);
+}
+
+TEST(Controller, JogMinimalRepliesWithThePositionOfTheJoggedAxis) {
+  Rig r;
+  auto j = r.reply<JogPositionReply>(JogMinimal{{'D', 'F', 500}});
+  EXPECT_EQ(j.axis, 'E');
+  EXPECT_EQ(j.position, 450) << "position when the command was received";
+  EXPECT_EQ(r.reply<JogPositionReply>(JogMinimal{{'O', 'F', 500}}).axis, 'P');
+  EXPECT_EQ(r.reply<JogPositionReply>(JogMinimal{{'X', 'F', 0}}).axis, 'A');  // ERRATA E-46
+}
+
+TEST(Controller, JogStopsAtTheLimitAndThenNaks) {
+  Rig r;  // el max 90, fast 1 deg/s, from 45: five 10 s jogs reach the limit
+  for (int i = 0; i < 5; ++i) {
+    r.send(Jog{{'U', 'F', 9999}});
+    r.wait(10s);
+  }
+  auto s = r.status();
+  EXPECT_EQ(s.elevation, 900);
+  EXPECT_EQ(s.el_limits & 4, 4) << "elevation up limit";
+  auto o = r.send(Jog{{'U', 'F', 100}});
+  ASSERT_TRUE(is_nak(o));
+  EXPECT_EQ(o.nak, NakRule::kJogIntoLimit);
+  EXPECT_FALSE(is_nak(r.send(Jog{{'D', 'F', 100}}))) << "away from the limit is fine";
+}
+
+// ---- §3.5 - §3.7 ------------------------------------------------------------------------
+
+TEST(Controller, PolPresetUsesTheLastAutoMoveTarget) {
+  Rig r;
+  r.send(AutoMove{AutoMoveStored{' ', "GALAXY 19"}});
+  r.send(PolPreset{'V'});
+  r.wait(100s);
+  EXPECT_EQ(r.status().polarization, -700);
+  Profile dual = test_profile();
+  dual.pol_type = PolType::kDualPort;
+  Rig d(dual);
+  d.send(AutoMove{AutoMoveStored{' ', "GALAXY 19"}});
+  d.send(PolPreset{'V'});
+  d.wait(100s);
+  EXPECT_EQ(d.status().polarization, 200) << "§3.5: a dual-port feed has one position";
+}
+
+TEST(Controller, QueryNameFirstLastAndOnePastLast) {
+  Rig r;
+  auto first = r.reply<QueryNameReply>(QueryName{{1}});
+  EXPECT_EQ(first.index, 1u);
+  EXPECT_EQ(first.total, 2u);
+  EXPECT_EQ(first.name, "SBS 6");
+  EXPECT_EQ(r.reply<QueryNameReply>(QueryName{{2}}).name, "GALAXY 19");
+  EXPECT_EQ(r.send(QueryName{{3}}).nak, NakRule::kQueryNameIndex);
+  EXPECT_EQ(r.send(QueryName{{0}}).nak, NakRule::kQueryNameIndex);
+}
+
+TEST(Controller, DriveResetClearsTheAlarm) {
+  Rig r;
+  r.c.mutable_state().az.alarm = 0xB;
+  r.c.mutable_state().alarm_code = 2;  // azimuth jammed
+  EXPECT_EQ(r.status().az_status & 0x0F, 0xB);
+  ASSERT_FALSE(is_nak(r.send(Misc{'R', 'A'})));
+  auto s = r.status();
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+  EXPECT_EQ(s.alarm_code, 0);
+}
+
+TEST(Controller, StowDeployAndSearchChangeTheMode) {
+  Rig r;
+  r.send(Misc{'S', ' '});
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "STOW_MODE");
+  r.wait(300s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "MANUAL_MODE");
+  EXPECT_EQ(meanings::mode_name(x.last_mode), "STOW_MODE");
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "STOW_FINISHED_NORMALLY");
+  EXPECT_EQ(x.status.el_limits & 1, 1) << "elevation stow";
+  r.send(Misc{'D', ' '});
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "DEPLOY_MODE");
+  r.send(Misc{'A', 'E'});
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "SPIRAL_REMOTE_MODE");
+}
+
+TEST(Controller, TrackBandChangeAndErrorReset) {
+  Profile p = test_profile();
+  p.track = {true, TrackActivity::kIdle, 'C', true};
+  Rig r(p);
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "TRACK_MODE");
+  ASSERT_FALSE(is_nak(r.send(Misc{'T', 'K'})));
+  EXPECT_EQ(r.status().track >> 4, 0b101) << "Ku band";
+  ASSERT_FALSE(is_nak(r.send(Misc{'T', 'R'})));
+}
+
+TEST(Controller, KeypressJogsForTheHoldTime) {
+  Rig r;
+  auto o = r.send(RemoteKeypress{'6'});  // W/AZ CW
+  ASSERT_FALSE(is_nak(o));
+  EXPECT_EQ(o.reply->size(), 5u) << "§3.25 minimal reply";
+  r.wait(5s);
+  EXPECT_EQ(r.status().azimuth.tenths, 10) << "0.5 s at 2 deg/s";
+  EXPECT_FALSE(is_nak(r.send(Misc{'K', 'G'}))) << "Mode Group Change";
+}
+
+TEST(Controller, DisplayShowsTheModeAndPositions) {
+  Rig r;
+  auto d = r.reply<DisplayReply>(ReflectDisplayQuery{});
+  EXPECT_EQ(d.rows[0].substr(0, 6), "MANUAL");
+  EXPECT_NE(d.rows[1].find("EL   45.0"), std::string::npos) << d.rows[1];
+  EXPECT_NE(d.rows[2].find("STORED  2"), std::string::npos) << d.rows[2];
+  EXPECT_EQ(d.cursor_row, 1u);
+}
+
+// ---- §3.10 - §3.23 stored data ---------------------------------------------------------
+
+TEST(Controller, PresetSatelliteRoundTripAndEmptySlot) {
+  Rig r;
+  WriteSatellite w;
+  w.index = 20;
+  w.sat = {"AMC 21", 1250, 19, '6', '0', -900};
+  ASSERT_FALSE(is_nak(r.send(w)));
+  auto back = r.reply<SatelliteDataReply>(ReadSatellite{{20}});
+  EXPECT_EQ(back.index, 20);
+  EXPECT_EQ(back.sat, w.sat);
+  auto empty = r.reply<SatelliteDataReply>(ReadSatellite{{7}});
+  EXPECT_FALSE(empty.index.has_value()) << "7Fh 7Fh";
+}
+
+TEST(Controller, TleRoundTrip) {
+  Rig r;
+  WriteTle t;
+  t.index = 10;
+  t.line1 = "1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927";
+  t.line2 = "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537";
+  ASSERT_FALSE(is_nak(r.send(t)));
+  auto back = r.reply<TleDataReply>(ReadTle{{10}});
+  EXPECT_EQ(back.line1, t.line1);
+  EXPECT_EQ(back.line2, t.line2);
+  EXPECT_FALSE(r.reply<TleDataReply>(ReadTle{{1}}).index.has_value());
+}
+
+TEST(Controller, SignpostsRoundTripWithTheDvbOption) {
+  Profile p = test_profile();
+  p.dvb_receiver = true;
+  Rig r(p);
+  WriteSignpost w;
+  w.index = 1;
+  w.signpost = {-1000, 11700, 27500, '3', 'V', "ABC123", 9, ""};
+  ASSERT_FALSE(is_nak(r.send(w)));
+  EXPECT_EQ(r.reply<SignpostDataReply>(ReadSignpost{{1}}).signpost, w.signpost);
+}
+
+TEST(Controller, WriteNavigationDeletesTheStoreListThenQueryNameNaks) {
+  Rig r;
+  ASSERT_FALSE(is_nak(r.send(WriteNavigation{1234, -7530, 1234, ""})));
+  auto nav = r.reply<NavigationDataReply>(NavigationQuery{});
+  EXPECT_EQ(nav.latitude, 12 * 60 + 34);
+  EXPECT_EQ(nav.longitude, -(75 * 60 + 30));
+  EXPECT_EQ(nav.heading, 1234);
+  EXPECT_EQ(nav.latlon_source, 7) << "remotely entered";
+  EXPECT_EQ(r.send(QueryName{{1}}).nak, NakRule::kQueryNameIndex) << "§3.23: STORE list deleted";
+}
+
+TEST(Controller, RemoteLocateThenStoreWithCalculatedPolarization) {
+  Rig r;
+  RemoteLocate l;
+  l.preset = {true, 1};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "LOCATE_MODE");
+  r.wait(300s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FUNCTION_COMPLETED");
+  RemoteStore s;
+  s.preset = {true, 1};
+  s.pol_selection = 'C';
+  ASSERT_FALSE(is_nak(r.send(s)));
+  auto count = r.reply<QueryNameReply>(QueryName{{1}}).total;
+  EXPECT_EQ(count, 2u) << "GALAXY 19 overwritten, not added";
+}
+
+// ---- offline, unknown, length --------------------------------------------------------------
+
+TEST(Controller, OfflineReplyForEveryValidCommandWhileDisabled) {
+  Profile p = test_profile();
+  p.remote_enabled = false;
+  Rig r(p);
+  for (const auto& info : catalog()) {
+    if (!info.request_length) continue;
+    Frame f{FrameKind::kCommand, p.address, info.code, Bytes(*info.request_length - kFrameOverhead, '0')};
+    Outcome o = r.c.execute(f);
+    ASSERT_TRUE(o.reply) << info.name;
+    EXPECT_EQ(*o.reply, encode_frame(offline_reply(p.address, info.code))) << info.name;
+  }
+  EXPECT_EQ(r.send_raw(0x5A, "").nak, NakRule::kUnknownCommand) << "E-10 default";
+}
+
+TEST(Controller, UnknownCodeAndWrongLengthAreNaked) {
+  Rig r;
+  EXPECT_EQ(r.send_raw(0x5A, "").nak, NakRule::kUnknownCommand);
+  EXPECT_EQ(r.send_raw(0x31, "X").nak, NakRule::kWrongLength);
+  auto o = r.send_raw(0x5A, "");
+  EXPECT_EQ(*o.reply, encode_frame(nak_reply(r.profile.address, 0x5A))) << "§3: NAK A CC ETX LRC";
+}
+
+// ---- one case per NAK rule -------------------------------------------------------------------
+
+struct NakCase {
+  const char* name;
+  NakRule rule;
+  std::function<void(Profile&)> profile;
+  std::function<void(Rig&)> setup;
+  std::function<Outcome(Rig&)> send;
+};
+
+std::vector<NakCase> nak_cases() {
+  auto none = [](Profile&) {};
+  auto nothing = [](Rig&) {};
+  auto circular = [](Profile& p) { p.pol_type = PolType::kCircular; };
+  auto peaking = [](Profile& p) { p.track = {true, TrackActivity::kPeaking, 'C', true}; };
+  return {
+      {"unknown code", NakRule::kUnknownCommand, none, nothing, [](Rig& r) { return r.send_raw(0x29, ""); }},
+      {"wrong length", NakRule::kWrongLength, none, nothing, [](Rig& r) { return r.send_raw(0x30, "1"); }},
+      {"38h", NakRule::kNotImplemented, none, nothing, [](Rig& r) { return r.send(SignalStrength{}); }},
+      {"malformed", NakRule::kMalformedData, none, nothing, [](Rig& r) { return r.send_raw(0x33, "QF0050"); }},
+      {"unknown satellite", NakRule::kUnknownSatellite, none, nothing,
+       [](Rig& r) { return r.send(AutoMove{AutoMoveStored{'H', "NOSUCHSAT"}}); }},
+      {"target range", NakRule::kTargetOutOfRange, none, nothing,
+       [](Rig& r) { return r.send(AutoMove{AutoMoveAzEl{0, 999}}); }},
+      {"2B without counts", NakRule::kNoCountSensors, none, nothing,
+       [](Rig& r) { return r.send(AutoMove{AutoMoveCounts{1, 1}}); }},
+      {"2C without 0.01", NakRule::kNoHundredths, none, nothing,
+       [](Rig& r) { return r.send(AutoMove{AutoMoveAxis{'A', 0}}); }},
+      {"form 3 circular", NakRule::kPolWithCircularFeed, circular, nothing,
+       [](Rig& r) { return r.send(AutoMove{AutoMovePol{100}}); }},
+      {"jog into limit", NakRule::kJogIntoLimit, [](Profile& p) { p.az.initial_deg = 180; }, nothing,
+       [](Rig& r) { return r.send(Jog{{'W', 'F', 100}}); }},
+      {"pol jog circular", NakRule::kJogPolCircular, circular, nothing,
+       [](Rig& r) { return r.send(Jog{{'L', 'F', 100}}); }},
+      {"jog while peaking", NakRule::kTrackPeaking, peaking, nothing,
+       [](Rig& r) { return r.send(Jog{{'E', 'F', 100}}); }},
+      {"pol preset no satellites", NakRule::kPolPresetNoSatellites, [](Profile& p) { p.store.clear(); }, nothing,
+       [](Rig& r) { return r.send(PolPreset{'H'}); }},
+      {"pol preset circular", NakRule::kPolPresetCircular, circular, nothing,
+       [](Rig& r) { return r.send(PolPreset{'H'}); }},
+      {"query name", NakRule::kQueryNameIndex, none, nothing, [](Rig& r) { return r.send(QueryName{{51}}); }},
+      {"reset axis", NakRule::kMiscResetAxis, none, nothing, [](Rig& r) { return r.send(Misc{'R', 'X'}); }},
+      {"reset pol circular", NakRule::kMiscResetPolNoFeed, circular, nothing,
+       [](Rig& r) { return r.send(Misc{'R', 'P'}); }},
+      {"track parameter", NakRule::kMiscTrackParameter, peaking, nothing, [](Rig& r) { return r.send(Misc{'T', 'Z'}); }},
+      {"track inactive", NakRule::kMiscTrackNotActive, none, nothing, [](Rig& r) { return r.send(Misc{'T', 'C'}); }},
+      {"track single band", NakRule::kMiscTrackNotDualBand,
+       [](Profile& p) { p.track = {true, TrackActivity::kIdle, 'C', false}; }, nothing,
+       [](Rig& r) { return r.send(Misc{'T', 'K'}); }},
+      {"band change peaking", NakRule::kMiscTrackPolNotAllowed, peaking, nothing,
+       [](Rig& r) { return r.send(Misc{'T', 'K'}); }},
+      {"no stow", NakRule::kMiscNoStow, [](Profile& p) { p.stow = false; }, nothing,
+       [](Rig& r) { return r.send(Misc{'S', ' '}); }},
+      {"no deploy", NakRule::kMiscNoDeploy, [](Profile& p) { p.deploy = false; }, nothing,
+       [](Rig& r) { return r.send(Misc{'D', ' '}); }},
+      {"search parameter", NakRule::kMiscSearchParameter, none, nothing, [](Rig& r) { return r.send(Misc{'A', 'X'}); }},
+      {"key code", NakRule::kKeyCode, none, nothing, [](Rig& r) { return r.send(RemoteKeypress{':'}); }},
+      {"satellite index", NakRule::kSatelliteIndex, none, nothing, [](Rig& r) { return r.send(ReadSatellite{{21}}); }},
+      {"satellite field", NakRule::kSatelliteField, none, nothing,
+       [](Rig& r) {
+         WriteSatellite w;
+         w.sat.inclination = 20;
+         return r.send(w);
+       }},
+      {"ephemeris index", NakRule::kEphemerisIndex, none, nothing,
+       [](Rig& r) {
+         WriteSatellite w;
+         w.index = 11;
+         w.sat.ephemeris = '1';
+         return r.send(w);
+       }},
+      {"tle index", NakRule::kTleIndex, none, nothing, [](Rig& r) { return r.send(ReadTle{{11}}); }},
+      {"tle checksum", NakRule::kTleChecksum, [](Profile& p) { p.nak_bad_tle_checksum = true; }, nothing,
+       [](Rig& r) {
+         WriteTle t;
+         t.line1 = std::string(69, '1');
+         t.line2 = std::string(69, '2');
+         return r.send(t);
+       }},
+      {"iess index", NakRule::kIessIndex, [](Profile& p) { p.implements_iess = true; }, nothing,
+       [](Rig& r) { return r.send(ReadIess{{11}}); }},
+      {"locate index", NakRule::kLocateIndex, none, nothing,
+       [](Rig& r) {
+         RemoteLocate l;
+         l.preset = {true, 0};
+         return r.send(l);
+       }},
+      {"locate empty preset", NakRule::kLocateEmptyPreset, none, nothing,
+       [](Rig& r) {
+         RemoteLocate l;
+         l.preset = {true, 5};
+         return r.send(l);
+       }},
+      {"locate field", NakRule::kLocateField, none, nothing,
+       [](Rig& r) {
+         RemoteLocate l;
+         l.sat = {"X", 1800, 0, '0', '0', 0};
+         return r.send(l);
+       }},
+      {"store index", NakRule::kStoreIndex, none, nothing,
+       [](Rig& r) {
+         RemoteStore s;
+         s.preset = {true, 21};
+         return r.send(s);
+       }},
+      {"store empty preset", NakRule::kStoreEmptyPreset, none, nothing,
+       [](Rig& r) {
+         RemoteStore s;
+         s.preset = {true, 2};
+         return r.send(s);
+       }},
+      {"store field", NakRule::kStoreField, none, nothing,
+       [](Rig& r) {
+         RemoteStore s;
+         s.sat = {"X", 0, 25, '0', '0', 0};
+         return r.send(s);
+       }},
+      {"store list full", NakRule::kStoreListFull,
+       [](Profile& p) {
+         p.store.clear();
+         for (int i = 0; i < 50; ++i) p.store.push_back({"SAT " + std::to_string(i), 0, 0, 0, 0});
+       },
+       nothing,
+       [](Rig& r) {
+         RemoteStore s;
+         s.sat = {"NEW ONE", 0, 0, '0', '0', 0};
+         s.pol_selection = 'H';
+         return r.send(s);
+       }},
+      {"store needs locate", NakRule::kStoreNeedsLocate, none, nothing,
+       [](Rig& r) {
+         RemoteStore s;
+         s.sat = {"NEW ONE", 0, 0, '0', '0', 0};
+         s.pol_selection = 'C';
+         return r.send(s);
+       }},
+      {"no dvb", NakRule::kNoDvbOption, none, nothing, [](Rig& r) { return r.send(ReadSignpost{{1}}); }},
+      {"signpost index", NakRule::kSignpostIndex, [](Profile& p) { p.dvb_receiver = true; }, nothing,
+       [](Rig& r) { return r.send(ReadSignpost{{0}}); }},
+      {"signpost field", NakRule::kSignpostField, [](Profile& p) { p.dvb_receiver = true; }, nothing,
+       [](Rig& r) {
+         WriteSignpost w;
+         w.signpost.frequency = 9000;
+         return r.send(w);
+       }},
+      {"navigation field", NakRule::kNavigationField, none, nothing,
+       [](Rig& r) { return r.send(WriteNavigation{9100, 0, 0, ""}); }},
+  };
+}
+
+TEST(Controller, EveryNakRuleFiresForItsCase) {
+  std::set<NakRule> covered;
+  for (const auto& c : nak_cases()) {
+    Profile p = test_profile();
+    c.profile(p);
+    Rig r(p);
+    c.setup(r);
+    Outcome o = c.send(r);
+    ASSERT_TRUE(is_nak(o)) << c.name << ": " << o.note;
+    EXPECT_EQ(o.nak, c.rule) << c.name << ": " << o.note;
+    EXPECT_NE(o.note.find("§"), std::string::npos) << c.name << ": the note names the paragraph";
+    covered.insert(c.rule);
+  }
+  std::set<NakRule> all;
+#define SABUS_X(id, paragraph, text) all.insert(NakRule::id);
+  SABUS_NAK_RULES(SABUS_X)
+#undef SABUS_X
+  EXPECT_EQ(covered, all) << "every rule of nak_rules.hpp has a case";
+}
+
+// ---- the bus: framing, addresses, parity ------------------------------------------------------
+
+Bytes wire(const Request& r, std::uint8_t address) { return add_even_parity(encode_request(r, address)); }
+
+TEST(Bus, AnswersOnlyItsAddress) {
+  VirtualClock clock;
+  Profile p = test_profile();
+  Bus bus(multi_drop(p, {'2', '3', 'o'}), clock);
+  Bytes out;
+  bus.receive(wire(StatusPoll{}, '3'), out);
+  ASSERT_EQ(out.size(), 52u);
+  EXPECT_EQ(out[1] & 0x7F, '3');
+  out.clear();
+  bus.receive(wire(StatusPoll{}, '4'), out);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(Bus, BadLrcParityAndForeignAddressAreIgnored) {
+  VirtualClock clock;
+  Bus bus({test_profile()}, clock);
+  Bytes out;
+  Bytes bad = encode_request(StatusPoll{}, '2');
+  bad.back() ^= 1;
+  bus.receive(add_even_parity(bad), out);
+  Bytes parity = wire(StatusPoll{}, '2');
+  parity[2] ^= 0x80;
+  bus.receive(parity, out);
+  bus.receive(wire(StatusPoll{}, '3'), out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_NE(bus.take_log().find("ignored"), std::string::npos);
+  bus.receive(wire(StatusPoll{}, '2'), out);
+  EXPECT_EQ(out.size(), 52u) << "still alive";
+  for (auto b : out) EXPECT_TRUE(has_even_parity(b));
+}
+
+// ---- faults ------------------------------------------------------------------------------------
+
+TEST(Faults, EveryFaultHasAUniqueName) {
+  std::set<std::string_view> names;
+  for (const auto& f : all_faults()) {
+    EXPECT_TRUE(names.insert(f.name).second) << f.name;
+    EXPECT_EQ(find_fault(f.name), f.fault);
+    EXPECT_FALSE(f.description.empty());
+  }
+  EXPECT_GE(all_faults().size(), 25u);
+}
+
+// Each fault changes what a controller puts on the wire for some probe.
+TEST(Faults, EveryFaultChangesTheWire) {
+  struct Probe {
+    Fault fault;
+    std::function<void(Profile&)> profile;
+    Bytes input;  // on the wire, even parity
+  };
+  const Bytes poll = wire(StatusPoll{}, '2');
+  Bytes bad_lrc = encode_request(StatusPoll{}, '2');
+  bad_lrc.back() ^= 1;
+  Bytes parity_error = poll;
+  parity_error[2] ^= 0x80;
+  auto none = [](Profile&) {};
+  auto circular = [](Profile& p) { p.pol_type = PolType::kCircular; };
+  auto disabled = [](Profile& p) { p.remote_enabled = false; };
+  auto cat = [](std::initializer_list<Bytes> parts) {
+    Bytes out;
+    for (const auto& b : parts) out.insert(out.end(), b.begin(), b.end());
+    return out;
+  };
+  auto raw = [](std::uint8_t code, std::string_view data) {
+    return add_even_parity(encode_frame({FrameKind::kCommand, '2', code, Bytes(data.begin(), data.end())}));
+  };
+  const std::vector<Probe> probes = {
+      {Fault::kLrcSkipsByte0, none, poll},
+      {Fault::kNakBadCheckByte, none, add_even_parity(bad_lrc)},
+      {Fault::kAnswersForeignAddress, none, wire(StatusPoll{}, '3')},
+      {Fault::kNakWithoutCommand, none, raw(0x5A, "")},
+      {Fault::kShortStatus, none, poll},
+      {Fault::kSilentUnknownCommand, none, raw(0x5A, "")},
+      {Fault::kExecutesOverlong, none, raw(0x31, "X")},
+      {Fault::kOfflineWithoutF, disabled, poll},
+      {Fault::kWrongNibbleBase, none, poll},
+      {Fault::kLeftJustifiedPosition, none, poll},
+      {Fault::kStoreCountOffByOne, none, wire(QueryName{{1}}, '2')},
+      {Fault::kCheckByteStxRestarts, none, poll},
+      {Fault::kModeEnumOffByOne, none, wire(ExtendedStatusPoll{}, '2')},
+      {Fault::kIgnoresParity, none, parity_error},
+      {Fault::kAcceptsControlInBody, none, raw(0x35, std::string("0\x01", 2))},
+      {Fault::kNoStxStxRestart, none, cat({Bytes{with_even_parity(STX)}, poll})},
+      {Fault::kReplyAddressZero, none, poll},
+      {Fault::kExtendedStatus52, none, wire(ExtendedStatusPoll{}, '2')},
+      {Fault::kQueryNameZeroBased, none, wire(QueryName{{1}}, '2')},
+      {Fault::kWriteNavKeepsStore, none, cat({wire(WriteNavigation{1234, 1234, 0, ""}, '2'), wire(QueryName{{1}}, '2')})},
+      {Fault::kCircularPolAcked, circular, wire(PolPreset{'H'}, '2')},
+      {Fault::kJogIntoLimitAcked, [](Profile& p) { p.az.initial_deg = 180; }, wire(Jog{{'W', 'F', 100}}, '2')},
+      {Fault::kEmptySlotZeros, none, wire(ReadSatellite{{9}}, '2')},
+      {Fault::kJogIgnoresDuration, none, cat({wire(Jog{{'W', 'F', 50}}, '2'), wire(Jog{{'W', 'F', 50}}, '2')})},
+      {Fault::kSecondAxisJogKeepsFirst, none, cat({wire(Jog{{'W', 'F', 9999}}, '2'), wire(Jog{{'U', 'F', 9999}}, '2')})},
+      {Fault::kStatusForcesRemote, none, cat({poll, wire(ExtendedStatusPoll{}, '2')})},
+      {Fault::kUnimplementedAcked, none, wire(SignalStrength{}, '2')},
+      {Fault::kTleIndexTo20, none, raw(0x3B, "15" + std::string(138, '1'))},
+      {Fault::kSignpostsWithoutDvb, none, wire(ReadSignpost{{1}}, '2')},
+      {Fault::kStowWithoutCapability, [](Profile& p) { p.stow = false; }, wire(Misc{'S', ' '}, '2')},
+      {Fault::kDropsReplyByte, none, poll},
+      {Fault::kDeviceTypeNoDot, none, wire(DeviceTypeQuery{}, '2')},
+      {Fault::kRemoteDisabledAnswers, disabled, poll},
+  };
+  std::set<Fault> probed;
+  for (const auto& probe : probes) {
+    Profile p = test_profile();
+    probe.profile(p);
+    auto run = [&](FaultSet faults) {
+      VirtualClock clock;
+      Bus bus({p}, clock, faults);
+      Bytes out;
+      // Feed the probe, letting 1 s pass after each frame (jogs end).
+      bus.receive(probe.input, out);
+      clock.advance(std::chrono::seconds(1));
+      bus.tick();
+      bus.receive(wire(StatusPoll{}, '2'), out);
+      return out;
+    };
+    EXPECT_NE(run({}), run({probe.fault})) << all_faults()[static_cast<std::size_t>(probe.fault)].name;
+    probed.insert(probe.fault);
+  }
+  EXPECT_EQ(probed.size(), all_faults().size()) << "every fault has a probe";
+}
+
+TEST(Controller, InvariantsHoldAfterTheTests) {
+  Rig r;
+  r.send(Jog{{'W', 'F', 9999}});
+  r.wait(1000s);
+  EXPECT_EQ(r.c.check_invariants(), "");
+}
+
+}  // namespace
+}  // namespace sabus::harness
+
+#include "sabus/harness/state_file.hpp"
+
+namespace sabus::harness {
+namespace {
+
+TEST(StateFile, ARestartedControllerKeepsItsStoredData) {
+  Rig first;
+  WriteSatellite w;
+  w.index = 3;
+  w.sat = {"AMC 21", 1250, 3, '1', '1', 125};
+  ASSERT_FALSE(is_nak(first.send(w)));
+  first.send(WriteNavigation{1234, -7530, 1234, ""});  // deletes the STORE list
+  first.send(Jog{{'W', 'F', 1000}});
+  first.wait(2s);
+  const std::string saved = save_state({&first.c});
+
+  Rig second;
+  std::string error;
+  ASSERT_TRUE(load_state(saved, {&second.c}, error)) << error;
+  EXPECT_EQ(second.reply<SatelliteDataReply>(ReadSatellite{{3}}).sat, w.sat);
+  EXPECT_EQ(second.send(QueryName{{1}}).nak, NakRule::kQueryNameIndex) << "the deleted STORE list stays deleted";
+  EXPECT_EQ(second.status().azimuth.tenths, 20);
+  EXPECT_EQ(second.reply<NavigationDataReply>(NavigationQuery{}).latitude, 12 * 60 + 34);
+  EXPECT_FALSE(load_state("{\"format\": \"other\"}", {&second.c}, error));
+  EXPECT_FALSE(load_state("not json", {&second.c}, error));
+  EXPECT_FALSE(error.empty());
+}
+
+}  // namespace
+}  // namespace sabus::harness

@@ -1,0 +1,533 @@
+// Device profiles: the shipped files, the loader's errors (line, column and
+// key path of the offending key), the writer's round trip, multi_drop, and
+// that no input makes the loader throw. One suite, `profile`, so that
+// `ctest -R profile` selects these tests.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <tuple>
+
+#include "sabus/harness/profile.hpp"
+#include "sabus/harness/profile_loader.hpp"
+
+namespace sabus::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path profiles_dir() { return fs::path(default_profile_path()).parent_path(); }
+
+std::vector<fs::path> shipped_profiles() {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(profiles_dir()))
+    if (e.path().extension() == ".yaml") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Profile load_ok(std::string_view yaml) {
+  auto r = load_profile_text(yaml, "test.yaml");
+  if (!r) ADD_FAILURE() << r.error->text() << "\n--- input:\n" << yaml;
+  return r.profile.value_or(Profile{});
+}
+
+ProfileError load_bad(std::string_view yaml) {
+  auto r = load_profile_text(yaml, "test.yaml");
+  EXPECT_FALSE(r) << "loaded although it should not:\n" << yaml;
+  EXPECT_TRUE(r.error.has_value());
+  return r.error.value_or(ProfileError{});
+}
+
+// line, column, key path, and a part of the message.
+void expect_error(std::string_view yaml, int line, int column, std::string_view key, std::string_view message_part) {
+  ProfileError e = load_bad(yaml);
+  EXPECT_EQ(e.file, "test.yaml");
+  EXPECT_EQ(e.line, line) << e.text();
+  EXPECT_EQ(e.column, column) << e.text();
+  EXPECT_EQ(e.key, key) << e.text();
+  EXPECT_NE(e.message.find(message_part), std::string::npos) << e.text() << "\n  expected to contain: " << message_part;
+}
+
+auto axis_tuple(const AxisProfile& a) {
+  return std::tie(a.fast_dps, a.slow_dps, a.min_deg, a.max_deg, a.initial_deg, a.has_stow_limit, a.stow_deg);
+}
+auto track_tuple(const TrackProfile& t) { return std::tie(t.active, t.activity, t.band, t.dual_band); }
+
+// Every field of Profile except `source` (where it was read from).
+void expect_same(const Profile& a, const Profile& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.address, b.address);
+  EXPECT_EQ(a.remote_enabled, b.remote_enabled);
+  EXPECT_EQ(a.baud, b.baud);
+  EXPECT_EQ(a.firmware, b.firmware);
+  EXPECT_EQ(a.pol_type, b.pol_type);
+  EXPECT_EQ(a.az_sensor, b.az_sensor);
+  EXPECT_EQ(a.hundredths, b.hundredths);
+  EXPECT_EQ(a.stow, b.stow);
+  EXPECT_EQ(a.deploy, b.deploy);
+  EXPECT_EQ(a.dvb_receiver, b.dvb_receiver);
+  EXPECT_EQ(a.counts_per_degree, b.counts_per_degree);
+  EXPECT_EQ(a.count_offset, b.count_offset);
+  EXPECT_TRUE(axis_tuple(a.az) == axis_tuple(b.az));
+  EXPECT_TRUE(axis_tuple(a.el) == axis_tuple(b.el));
+  EXPECT_TRUE(axis_tuple(a.pol) == axis_tuple(b.pol));
+  EXPECT_EQ(a.turnaround_ms, b.turnaround_ms);
+  EXPECT_EQ(a.agc, b.agc);
+  EXPECT_EQ(a.store, b.store);
+  EXPECT_EQ(a.presets, b.presets);
+  EXPECT_EQ(a.tles, b.tles);
+  EXPECT_EQ(a.signposts, b.signposts);
+  EXPECT_EQ(a.navigation, b.navigation);
+  EXPECT_TRUE(track_tuple(a.track) == track_tuple(b.track));
+  EXPECT_EQ(a.stx_restarts_in_data, b.stx_restarts_in_data);
+  EXPECT_EQ(a.unknown_command_while_offline, b.unknown_command_while_offline);
+  EXPECT_EQ(a.implements_signal_strength, b.implements_signal_strength);
+  EXPECT_EQ(a.implements_iess, b.implements_iess);
+  EXPECT_EQ(a.nak_bad_tle_checksum, b.nak_bad_tle_checksum);
+  EXPECT_EQ(a.locate_index_min, b.locate_index_min);
+  EXPECT_EQ(a.locate_index_max, b.locate_index_max);
+  EXPECT_EQ(a.restore_lost_locate_exit, b.restore_lost_locate_exit);
+}
+
+// The TLE's own mod-10 checksum: digits count their value, '-' counts 1.
+int tle_checksum(std::string_view line) {
+  int sum = 0;
+  for (char c : line.substr(0, 68)) sum += (c >= '0' && c <= '9') ? c - '0' : (c == '-' ? 1 : 0);
+  return sum % 10;
+}
+
+// ---------------------------------------------------------------------------
+// Shipped profiles
+// ---------------------------------------------------------------------------
+
+TEST(profile, ShippedFilesLoadAndAreNamedAfterTheirFiles) {
+  auto files = shipped_profiles();
+  EXPECT_GE(files.size(), 6u);
+  for (const auto& f : files) {
+    auto r = load_profile_file(f.string());
+    ASSERT_TRUE(r) << r.error->text();
+    EXPECT_EQ(r.profile->name, f.stem().string());
+    EXPECT_EQ(r.profile->source, f.string());
+  }
+}
+
+TEST(profile, DefaultFileValues) {
+  auto r = load_profile_file(default_profile_path());
+  ASSERT_TRUE(r) << r.error->text();
+  const Profile& p = *r.profile;
+  EXPECT_EQ(p.name, "rc3000-1.59");
+  EXPECT_EQ(p.address, '2');  // decimal 50
+  EXPECT_TRUE(p.remote_enabled);
+  EXPECT_EQ(p.baud, 9600);
+  EXPECT_EQ(p.firmware, "1.59");
+  EXPECT_EQ(p.pol_type, PolType::kSinglePort);
+  EXPECT_EQ(p.az_sensor, AzSensor::kPot);
+  EXPECT_FALSE(p.hundredths);
+  EXPECT_TRUE(p.stow);
+  EXPECT_TRUE(p.deploy);
+  EXPECT_FALSE(p.dvb_receiver);
+  EXPECT_EQ(p.el.min_deg, -5.0);
+  EXPECT_TRUE(p.el.has_stow_limit);
+
+  ASSERT_EQ(p.store.size(), 3u);
+  EXPECT_EQ(p.store[0], (StoredSatellite{"SBS 6", -152.5, 45.6, 50.0, -40.0}));
+  EXPECT_EQ(p.store[1].name, "GALAXY 19");
+  EXPECT_EQ(p.store[2].name, "AMC 21");
+
+  ASSERT_EQ(p.presets.size(), 3u);
+  EXPECT_EQ(p.presets[0].index, 1);
+  EXPECT_EQ(p.presets[1].index, 2);
+  EXPECT_EQ(p.presets[2].index, 20);
+  EXPECT_EQ(p.presets[0].data.longitude, -740);  // tenths
+  EXPECT_EQ(p.presets[0].data.band, '1');        // Ku
+  EXPECT_EQ(p.presets[0].data.ephemeris, '1');   // TLE
+  EXPECT_EQ(p.presets[1].data.band, '2');        // C/Ku
+  EXPECT_TRUE(p.presets[1].dual_band);
+
+  ASSERT_EQ(p.tles.size(), 1u);
+  EXPECT_EQ(p.tles[0].index, 1);
+  for (const auto& line : {p.tles[0].line1, p.tles[0].line2}) {
+    ASSERT_EQ(line.size(), 69u);
+    EXPECT_EQ(tle_checksum(line), line[68] - '0') << line;  // ERRATA E-19
+  }
+  EXPECT_TRUE(p.signposts.empty());
+
+  EXPECT_EQ(p.navigation.latlon_source, 7);  // remotely entered
+  EXPECT_EQ(p.navigation.latitude_min, 38 * 60 + 58);
+  EXPECT_EQ(p.navigation.longitude_min, -(94 * 60 + 44));
+  EXPECT_EQ(p.navigation.heading_source, 7);
+  EXPECT_EQ(p.navigation.heading_tenths, 1800);
+  EXPECT_EQ(p.navigation.magvar_tenths, 25);
+  EXPECT_FALSE(p.track.active);
+
+  // Errata switches at the errata's decisions = the struct's defaults.
+  const Profile d;
+  EXPECT_EQ(p.stx_restarts_in_data, d.stx_restarts_in_data);
+  EXPECT_EQ(p.unknown_command_while_offline, d.unknown_command_while_offline);
+  EXPECT_EQ(p.implements_signal_strength, d.implements_signal_strength);
+  EXPECT_EQ(p.implements_iess, d.implements_iess);
+  EXPECT_EQ(p.nak_bad_tle_checksum, d.nak_bad_tle_checksum);
+  EXPECT_EQ(p.locate_index_min, d.locate_index_min);
+  EXPECT_EQ(p.locate_index_max, d.locate_index_max);
+  EXPECT_EQ(p.restore_lost_locate_exit, d.restore_lost_locate_exit);
+}
+
+// The default profile writes every key: with its stored data taken out it is
+// the struct's defaults, so the files that rely on defaults mean what they say.
+TEST(profile, DefaultFileIsTheStructDefaultsPlusStoredData) {
+  auto r = load_profile_file(default_profile_path());
+  ASSERT_TRUE(r);
+  Profile p = *r.profile;
+  p.store.clear();
+  p.presets.clear();
+  p.tles.clear();
+  p.navigation = Navigation{};
+  expect_same(p, Profile{});
+}
+
+Profile load_shipped(const std::string& name) {
+  auto r = load_profile_file((profiles_dir() / (name + ".yaml")).string());
+  EXPECT_TRUE(r) << r.error->text();
+  return r.profile.value_or(Profile{});
+}
+
+TEST(profile, VariantFilesChangeWhatTheySay) {
+  Profile circular = load_shipped("circular-no-stow");
+  EXPECT_EQ(circular.pol_type, PolType::kCircular);
+  EXPECT_FALSE(circular.stow);
+  EXPECT_FALSE(circular.deploy);
+
+  Profile dvb = load_shipped("dual-port-dvb-fluxgate");
+  EXPECT_EQ(dvb.pol_type, PolType::kDualPort);
+  EXPECT_EQ(dvb.az_sensor, AzSensor::kFluxgate);
+  EXPECT_TRUE(dvb.hundredths);
+  EXPECT_TRUE(dvb.dvb_receiver);
+  ASSERT_EQ(dvb.signposts.size(), 2u);
+  EXPECT_EQ(dvb.signposts[0].data.fec, '3');           // 3/4
+  EXPECT_EQ(dvb.signposts[1].data.fec, '9');           // AUTO
+  EXPECT_EQ(dvb.signposts[1].data.polarization, 'L');  // LHCP
+  EXPECT_EQ(dvb.az.max_deg, 359.9);
+  EXPECT_EQ(dvb.el.max_deg, 90.0);  // an axis not written keeps its own defaults
+
+  EXPECT_FALSE(load_shipped("remote-disabled").remote_enabled);
+
+  Profile track = load_shipped("track-peaking");
+  EXPECT_TRUE(track.track.active);
+  EXPECT_EQ(track.track.activity, TrackActivity::kPeaking);
+  EXPECT_EQ(track.track.band, 'C');
+  EXPECT_TRUE(track.track.dual_band);
+
+  Profile iess = load_shipped("iess-implemented");
+  EXPECT_TRUE(iess.implements_signal_strength);
+  EXPECT_TRUE(iess.implements_iess);
+  EXPECT_FALSE(iess.nak_bad_tle_checksum);  // the other switches keep their defaults
+}
+
+// ---------------------------------------------------------------------------
+// Values
+// ---------------------------------------------------------------------------
+
+TEST(profile, EmptyDocumentIsTheDefaultProfile) {
+  expect_same(load_ok(""), Profile{});
+  expect_same(load_ok("# only a comment\n"), Profile{});
+}
+
+// READING-NOTES 4 / ERRATA E-4.
+TEST(profile, AddressAsDecimalSettingOrCharacter) {
+  EXPECT_EQ(load_ok("address: 50").address, '2');
+  EXPECT_EQ(load_ok("address: \"2\"").address, '2');
+  EXPECT_EQ(load_ok("address: '2'").address, '2');
+  EXPECT_EQ(load_ok("address: 49").address, 0x31);
+  EXPECT_EQ(load_ok("address: 111").address, 0x6F);
+  EXPECT_EQ(load_ok("address: \"o\"").address, 0x6F);
+  EXPECT_EQ(load_ok("address: 0x32").address, '2');
+}
+
+TEST(profile, TenthsMinutesAndNulls) {
+  Profile p = load_ok(
+      "presets:\n"
+      "  - {index: 3, name: X, longitude: -0.5, pol_offset: ~, inclination: 19}\n"
+      "navigation: {latitude: \"00.30 S\", longitude: \"180.00 E\", heading: 359.9, magvar: -99.9}\n");
+  EXPECT_EQ(p.presets[0].data.longitude, -5);
+  EXPECT_EQ(p.presets[0].data.pol_offset, std::nullopt);
+  EXPECT_EQ(p.navigation.latitude_min, -30);
+  EXPECT_EQ(p.navigation.longitude_min, 180 * 60);
+  EXPECT_EQ(p.navigation.heading_tenths, 3599);
+  EXPECT_EQ(p.navigation.magvar_tenths, -999);
+}
+
+// ---------------------------------------------------------------------------
+// Errors: line and column of the offending key (1-based), its path, a message
+// ---------------------------------------------------------------------------
+
+TEST(profile, ErrorUnknownKey) {
+  expect_error("name: x\nbaudrate: 9600\n", 2, 1, "baudrate", "unknown key \"baudrate\"; allowed keys: name, address");
+  expect_error("axes:\n  el:\n    fast: 1\n", 3, 5, "axes.el.fast", "allowed keys: fast_dps, slow_dps");
+  expect_error("errata:\n  locate_index_range: 5\n", 2, 3, "errata.locate_index_range", "unknown key");
+  expect_error("store:\n  - {name: A, az: 1}\n", 2, 15, "store[0].az", "unknown key \"az\"");
+}
+
+TEST(profile, ErrorWrongType) {
+  expect_error("baud: fast\n", 1, 1, "baud", "expected a whole number, got \"fast\"");
+  expect_error("name: x\nbaud: \"9600\"\n", 2, 1, "baud", "got the quoted string \"9600\"");
+  expect_error("remote_enabled: yes\n", 1, 1, "remote_enabled", "expected true or false");
+  expect_error("axes: [1, 2]\n", 1, 1, "axes", "expected a map, got a list");
+  expect_error("store: {name: A}\n", 1, 1, "store", "expected a list, got a map");
+  expect_error("store:\n  - [A]\n", 2, 5, "store[0]", "expected a map, got a list");
+  expect_error("presets:\n  - index: 1\n    name: [A]\n", 3, 5, "presets[0].name", "expected text, got a list");
+  expect_error("polarization: linear\n", 1, 1, "polarization", "is not one of circular, single_port, dual_port");
+  expect_error("agc:\n", 1, 1, "agc", "got no value");
+  expect_error("navigation:\n  latitude: 38.58\n", 2, 3, "navigation.latitude", "expected \"dd.mm N\"");
+}
+
+TEST(profile, ErrorOutOfRange) {
+  expect_error("baud: 1000\n", 1, 1, "baud", "not one of 300, 600, 1200, 2400, 4800, 9600");
+  expect_error("axes:\n  az: {fast_dps: 0}\n", 2, 8, "axes.az.fast_dps", "greater than 0");
+  expect_error("axes:\n  el: {min_deg: 10, max_deg: 5}\n", 2, 21, "axes.el.max_deg", "must be below max_deg");
+  expect_error("agc: 1000\n", 1, 1, "agc", "out of range 0 to 999");
+  expect_error("store:\n  - name: ABCDEFGHIJK\n", 2, 5, "store[0].name", "11 characters, expected 1 to 10");
+  expect_error("store:\n  - {name: A}\n  - {name: A}\n", 3, 6, "store[1].name", "stored twice");
+  expect_error("presets:\n  - {index: 21}\n", 2, 6, "presets[0].index", "out of range 1 to 20");
+  expect_error("presets:\n  - {index: 2}\n  - {index: 2}\n", 3, 6, "presets[1].index", "index 2 is used twice");
+  expect_error("presets:\n  - {index: 1, longitude: 12.34}\n", 2, 16, "presets[0].longitude", "more than one decimal");
+  expect_error("tles:\n  - {index: 1, line1: \"1 2\", line2: \"2\"}\n", 2, 16, "tles[0].line1", "expected 69");
+  expect_error("tles:\n  - {index: 11}\n", 2, 6, "tles[0].index", "out of range 1 to 10");
+  expect_error("tles:\n  - {index: 1, line1: \"\"}\n", 2, 5, "tles[0]", "a TLE set needs line2");
+  expect_error("navigation:\n  heading: 360\n", 2, 3, "navigation.heading", "out of range 0 to 359.9");
+  expect_error("navigation:\n  latitude: \"91.00 N\"\n", 2, 3, "navigation.latitude", "beyond 90 degrees");
+  expect_error("navigation:\n  longitude: \"010.60 E\"\n", 2, 3, "navigation.longitude", "minutes 60");
+  expect_error("errata:\n  locate_index_min: 5\n  locate_index_max: 4\n", 3, 3, "errata.locate_index_max",
+               "locate_index_min 5 is above locate_index_max 4");
+  expect_error("firmware: \"1.5\"\n", 1, 1, "firmware", "\"A.BC\"");
+}
+
+TEST(profile, ErrorInitialPositionOutsideLimits) {
+  // The key is absent, so the error points at the axis map.
+  ProfileError e = load_bad("axes:\n  el: {min_deg: 50}\n");
+  EXPECT_EQ(e.key, "axes.el");
+  EXPECT_NE(e.message.find("initial_deg 45 is outside"), std::string::npos) << e.text();
+}
+
+TEST(profile, ErrorTooManyStoreEntries) {
+  std::string yaml = "store:\n";
+  for (int i = 0; i < 51; ++i) yaml += "  - {name: S" + std::to_string(i) + "}\n";
+  expect_error(yaml, 1, 1, "store", "51 entries, at most 50");
+}
+
+TEST(profile, ErrorDuplicateKeys) {
+  expect_error("address: 50\nbaud: 9600\naddress: 51\n", 3, 1, "address",
+               "duplicate key \"address\" (first at line 1, column 1)");
+  expect_error("errata:\n  implements_iess: true\n  implements_iess: false\n", 3, 3, "errata.implements_iess",
+               "duplicate key");
+  expect_error("axes:\n  az: {min_deg: 0, min_deg: 1}\n", 2, 20, "axes.az.min_deg", "first at line 2, column 8");
+  expect_error("presets:\n  - index: 1\n    index: 2\n", 3, 5, "presets[0].index", "duplicate key");
+  expect_error("track: {active: true}\ntrack: {active: false}\n", 2, 1, "track", "duplicate key \"track\"");
+}
+
+TEST(profile, ErrorYamlSyntax) {
+  ProfileError e = load_bad("name: x\naxes: {az: {fast_dps: 1}\n");
+  EXPECT_EQ(e.line, 3) << e.text();
+  EXPECT_EQ(e.column, 1) << e.text();
+  EXPECT_EQ(e.key, "");
+  EXPECT_NE(e.message.find("YAML syntax"), std::string::npos) << e.text();
+
+  e = load_bad("name: x\n  baud: 9600\n");
+  EXPECT_EQ(e.line, 2) << e.text();
+  EXPECT_NE(e.message.find("YAML syntax"), std::string::npos) << e.text();
+
+  expect_error("name: a\n---\nname: b\n", 2, 1, "", "more than one YAML document");
+  // yaml-cpp 0.7 would read this as an empty profile (Load) or never stop (LoadAll).
+  expect_error(", x\n", 1, 1, "", "unexpected \",\" after the end of the document");
+  expect_error("- name: x\n,\n", 2, 1, "", "unexpected \",\"");
+  expect_error("name: x\nbaud: 9600\n,\n", 3, 1, "", "YAML syntax: end of map not found");
+  expect_error("- name: a\n", 1, 1, "", "expected a map, got a list");
+}
+
+// §3.20 NOTE / ERRATA E-23.
+TEST(profile, ErrorSignpostsWithoutDvb) {
+  expect_error("name: x\nsignposts:\n  - {index: 1}\n", 2, 1, "signposts", "dvb_receiver: true");
+  EXPECT_TRUE(load_profile_text("signposts: []\n"));
+  EXPECT_TRUE(load_profile_text("dvb_receiver: true\nsignposts:\n  - {index: 1}\n"));
+  // Order in the file does not matter.
+  EXPECT_TRUE(load_profile_text("signposts:\n  - {index: 1}\ndvb_receiver: true\n"));
+}
+
+TEST(profile, ErrorBadAddress) {
+  expect_error("address: 200\n", 1, 1, "address", "bad address \"200\": expected 49-111");
+  expect_error("address: 48\n", 1, 1, "address", "bad address");
+  expect_error("address: 5\n", 1, 1, "address", "quote it (\"5\") for the address character");
+  expect_error("address: \"~\"\n", 1, 1, "address", "bad address");
+  expect_error("address: [50]\n", 1, 1, "address", "expected an address");
+}
+
+TEST(profile, ErrorTextAndMissingFile) {
+  ProfileError e{"p.yaml", 3, 5, "axes.az.fast_dps", "must be greater than 0, got 0"};
+  EXPECT_EQ(e.text(), "p.yaml:3:5: axes.az.fast_dps: must be greater than 0, got 0");
+  auto r = load_profile_file("/nonexistent/profile.yaml");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error->file, "/nonexistent/profile.yaml");
+  EXPECT_EQ(r.error->line, 0);
+  EXPECT_NE(r.error->message.find("cannot open"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------
+// Writing
+// ---------------------------------------------------------------------------
+
+TEST(profile, ToYamlRoundTripOfEveryShippedFile) {
+  for (const auto& f : shipped_profiles()) {
+    SCOPED_TRACE(f.string());
+    auto r = load_profile_file(f.string());
+    ASSERT_TRUE(r) << r.error->text();
+    std::string yaml = to_yaml(*r.profile);
+    auto back = load_profile_text(yaml);
+    ASSERT_TRUE(back) << back.error->text() << "\n" << yaml;
+    expect_same(*back.profile, *r.profile);
+    EXPECT_EQ(to_yaml(*back.profile), yaml);
+  }
+}
+
+// Every field away from its default, and the awkward values: negative tenths
+// below one, null optionals, quotes in names, a raw source code.
+Profile every_field_set() {
+  Profile p;
+  p.name = "bench \"A\" \\ #1";
+  p.address = 'o';
+  p.remote_enabled = false;
+  p.baud = 300;
+  p.firmware = "2.07";
+  p.pol_type = PolType::kDualPort;
+  p.az_sensor = AzSensor::kResolver;
+  p.hundredths = true;
+  p.stow = false;
+  p.deploy = false;
+  p.dvb_receiver = true;
+  p.counts_per_degree = 123.456;
+  p.count_offset = 99999;
+  p.az = {3.3, 0.1, -170.5, 350.25, 12.125, true, 0.1};
+  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0};
+  p.pol = {9, 3, -45, 45, -44.9, true, 44.9};
+  p.turnaround_ms = 0.25;
+  p.agc = 0;
+  p.store = {{"A: #b", 1.5, -2.25, 0.1, -0.1}, {"'Q'", -180, 360, 0, 0}};
+  p.presets = {{20, {"P20", -5, 19, '6', '2', std::nullopt}, true}, {7, {"", std::nullopt, std::nullopt, '3', '0', -900}, false}};
+  p.tles = {{10, std::string(69, 'x'), std::string(68, ' ') + "9"}};
+  SignpostData sp;
+  sp.longitude = 1800;
+  sp.frequency = std::nullopt;
+  sp.symbol_rate = 30000;
+  sp.fec = '7';
+  sp.polarization = 'R';
+  sp.id = "ID 6";
+  sp.priority = 9;
+  p.signposts = {{20, sp}, {1, SignpostData{}}};
+  p.navigation = {6, -(90 * 60), 179 * 60 + 59, 6, 0, -1};
+  p.track = {true, TrackActivity::kError, 'K', true};
+  p.stx_restarts_in_data = false;
+  p.unknown_command_while_offline = OfflineUnknown::kOffline;
+  p.implements_signal_strength = true;
+  p.implements_iess = true;
+  p.nak_bad_tle_checksum = true;
+  p.locate_index_min = 0;
+  p.locate_index_max = 19;
+  p.restore_lost_locate_exit = false;
+  return p;
+}
+
+TEST(profile, ToYamlRoundTripWithEveryFieldSet) {
+  const Profile p = every_field_set();
+  std::string yaml = to_yaml(p);
+  auto back = load_profile_text(yaml);
+  ASSERT_TRUE(back) << back.error->text() << "\n" << yaml;
+  expect_same(*back.profile, p);
+  EXPECT_EQ(to_yaml(*back.profile), yaml);
+}
+
+// ---------------------------------------------------------------------------
+// multi_drop
+// ---------------------------------------------------------------------------
+
+TEST(profile, MultiDropOneProfilePerAddressRestShared) {
+  Profile base = every_field_set();
+  auto bus = multi_drop(base, {50, 51, 60});
+  ASSERT_EQ(bus.size(), 3u);
+  const std::uint8_t addresses[] = {50, 51, 60};
+  for (std::size_t i = 0; i < bus.size(); ++i) {
+    EXPECT_EQ(bus[i].address, addresses[i]);
+    EXPECT_EQ(bus[i].name, base.name + "-" + std::to_string(addresses[i]));
+    Profile same = bus[i];
+    same.address = base.address;
+    same.name = base.name;
+    expect_same(same, base);
+  }
+  EXPECT_TRUE(multi_drop(base, {}).empty());
+}
+
+// ---------------------------------------------------------------------------
+// Robustness: no input makes the loader throw
+// ---------------------------------------------------------------------------
+
+TEST(profile, NeverThrowsOnTruncatedShippedFiles) {
+  std::size_t loads = 0, errors = 0;
+  for (const auto& f : shipped_profiles()) {
+    const std::string text = read_text(f);
+    for (std::size_t n = 0; n <= text.size(); ++n) {
+      ProfileResult r;
+      ASSERT_NO_THROW(r = load_profile_text(std::string_view(text).substr(0, n), f.string())) << "prefix " << n;
+      ASSERT_NE(r.profile.has_value(), r.error.has_value()) << "prefix " << n;
+      if (r.error) {
+        ++errors;
+        EXPECT_FALSE(r.error->message.empty());
+      }
+      ++loads;
+    }
+  }
+  EXPECT_GT(errors, 0u);
+  EXPECT_GT(loads, errors);
+}
+
+TEST(profile, NeverThrowsOnMutatedFiles) {
+  const std::string text = read_text(default_profile_path());
+  std::mt19937 rng(12345);
+  const std::string alphabet = "-:{}[],#&*!|>'\"%@`? \n\t.0123456789aZ\x7f\x80\xff";
+  for (int i = 0; i < 2000; ++i) {
+    std::string s = text;
+    for (int k = 0; k < 3; ++k) {
+      std::size_t at = rng() % s.size();
+      switch (rng() % 3) {
+        case 0: s[at] = alphabet[rng() % alphabet.size()]; break;
+        case 1: s.erase(at, 1 + rng() % 8); break;
+        default: s.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+      }
+    }
+    ProfileResult r;
+    ASSERT_NO_THROW(r = load_profile_text(s)) << s;
+    ASSERT_NE(r.profile.has_value(), r.error.has_value());
+  }
+}
+
+TEST(profile, NeverThrowsOnHostileInputs) {
+  // Deep nesting: yaml-cpp's depth guard, reported as a syntax error.
+  EXPECT_FALSE(load_profile_text(std::string(100000, '[')));
+  // Aliases: a list is bounded before it is walked.
+  std::string laughs = "store: [&a {name: A}";
+  for (int i = 0; i < 60; ++i) laughs += ", *a";
+  laughs += "]\n";
+  expect_error(laughs, 1, 1, "store", "61 entries, at most 50");
+  EXPECT_FALSE(load_profile_text(std::string(2 << 20, ' ')));  // over the size cap
+  EXPECT_NO_THROW(load_profile_text(std::string("name: \0x", 8)));
+}
+
+}  // namespace
+}  // namespace sabus::harness
