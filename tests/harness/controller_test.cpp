@@ -723,3 +723,82 @@ TEST(StateFile, ARestartedControllerKeepsItsStoredData) {
 
 }  // namespace
 }  // namespace sabus::harness
+
+namespace sabus::harness {
+namespace {
+
+// Every command code 30h-48h in every catalog form gets an ACK of the
+// catalog's reply length from a controller that has what the form needs.
+TEST(Controller, EveryCommandAndFormIsServedWithTheCatalogLength) {
+  Profile p = test_profile();
+  p.az_sensor = AzSensor::kPulse;
+  p.hundredths = true;
+  p.dvb_receiver = true;
+  p.implements_iess = true;
+  p.implements_signal_strength = true;
+  p.track = {true, TrackActivity::kIdle, 'C', true};
+  WriteTle tle;
+  tle.line1 = std::string(69, '1');
+  tle.line2 = std::string(69, '2');
+  RemoteStore store;
+  store.preset = {true, 1};
+  store.pol_selection = 'H';
+  RemoteLocate locate_data;
+  locate_data.sat = {"AMC 21", -1250, 0, '1', '0', 0};
+  const std::vector<std::pair<std::string, Request>> cases = {
+      {"", DeviceTypeQuery{}},
+      {"", StatusPoll{}},
+      {"1", AutoMove{AutoMoveStored{'H', "SBS 6"}}},
+      {"2A", AutoMove{AutoMoveAzEl{-1525, 456}}},
+      {"2B", AutoMove{AutoMoveCounts{11050, 12152}}},
+      {"2C", AutoMove{AutoMoveAxis{'E', 4512}}},
+      {"3", AutoMove{AutoMovePol{500}}},
+      {"E", Jog{{'E', 'F', 50}}}, {"W", Jog{{'W', 'S', 50}}}, {"D", Jog{{'D', 'F', 50}}},
+      {"U", Jog{{'U', 'S', 50}}}, {"O", Jog{{'O', 'F', 50}}}, {"L", Jog{{'L', 'S', 50}}},
+      {"X", Jog{{'X', 'S', 0}}},
+      {"H", PolPreset{'H'}}, {"V", PolPreset{'V'}},
+      {"", QueryName{{1}}},
+      {"R", Misc{'R', 'A'}}, {"T", Misc{'T', 'K'}}, {"S", Misc{'S', ' '}}, {"D", Misc{'D', ' '}},
+      {"A", Misc{'A', 'F'}}, {"K", Misc{'K', '5'}},
+      {"", ReflectDisplayQuery{}},
+      {"", SignalStrength{0x21, 0x01}},
+      {"", WriteSatellite{}},
+      {"", ReadSatellite{{1}}},
+      {"", tle},
+      {"", ReadTle{{1}}},
+      {"", WriteIess{1, "EPHEMERIS"}},
+      {"", ReadIess{{1}}},
+      {"", PulseCountQuery{}},
+      {"", ExtendedStatusPoll{}},
+      {"preset", RemoteLocate{{true, 1}, {}, "", 'N', 'A', ""}},
+      {"data", locate_data},
+      {"preset", store},
+      {"data", RemoteStore{{false, 0}, {"NEW SAT", 0, 0, '0', '0', 0}, "", 'H', std::nullopt, std::nullopt, 'H', ""}},
+      {"", WriteSignpost{}},
+      {"", ReadSignpost{{1}}},
+      {"", NavigationQuery{}},
+      {"", WriteNavigation{1234, -7530, 1234, ""}},
+      {"E", JogMinimal{{'E', 'F', 50}}}, {"W", JogMinimal{{'W', 'S', 50}}}, {"D", JogMinimal{{'D', 'F', 50}}},
+      {"U", JogMinimal{{'U', 'S', 50}}}, {"O", JogMinimal{{'O', 'F', 50}}}, {"L", JogMinimal{{'L', 'S', 50}}},
+      {"X", JogMinimal{{'X', 'S', 0}}},
+      {"", RemoteKeypress{'G'}},
+  };
+  std::set<std::pair<std::uint8_t, std::string>> served;
+  for (const auto& [form, request] : cases) {
+    Rig r(p);
+    const std::uint8_t code = command_code(request);
+    EXPECT_EQ(form_of(request), form) << describe_byte(code);
+    Outcome o = r.send(request);
+    ASSERT_TRUE(o.reply.has_value()) << describe_byte(code) << " " << form;
+    EXPECT_EQ((*o.reply)[0], ACK) << describe_byte(code) << " form " << form << ": " << o.note;
+    const CommandInfo* info = find_command(code);
+    if (info->reply_length) EXPECT_EQ(o.reply->size(), *info->reply_length) << info->name << " form " << form;
+    served.insert({code, form});
+  }
+  for (const auto& info : catalog())
+    for (const auto& f : info.forms)
+      EXPECT_TRUE(served.count({info.code, std::string(f.id)})) << info.name << " form " << f.id << " has no case";
+}
+
+}  // namespace
+}  // namespace sabus::harness
