@@ -1,0 +1,141 @@
+// Conformance vectors as loaded from vectors/*.yaml (schema: vectors/README.md).
+// One file per spec paragraph or cross-cutting path; groups share `requires`
+// and setup; each vector has a stable id, the spec quote it checks, a level,
+// flags, tags, requirements on the device profile, and steps.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/protocol/bytes.hpp"
+
+namespace sabus::harness {
+
+struct SourceLocation {
+  std::string file;
+  int line = 0;    // 1-based
+  int column = 0;  // 1-based
+  std::string text() const;  // "file:line:column"
+};
+
+// READING-NOTES "Result levels": must fails the run, should warns, informative records.
+enum class Level : std::uint8_t { kMust, kShould, kInformative };
+std::string_view to_string(Level level);
+
+// A command built by the codecs from its name (or code), form and named fields:
+//   send: {command: auto_move, form: 2A, fields: {azimuth: -152.5, elevation: 45.6}}
+struct StructuredCommand {
+  std::string command;                       // catalog key, name, or code text ("32h")
+  std::string form;                          // catalog form id, "" when the command has one form
+  std::map<std::string, std::string> fields; // field name (as describe_frame names it) -> value text
+  std::optional<std::uint8_t> address;       // default: the device's address
+  SourceLocation where;
+};
+
+// Raw bytes of 7-bit characters, hex with placeholders: "02 {addr} 31 03 {lrc}".
+// {addr} is the device's address, {lrc} the XOR of byte 0 through the byte
+// before it; "{$name}" a captured value.
+struct RawBytes {
+  std::string hex;
+  SourceLocation where;
+};
+
+// Changes made to an encoded frame before it is put on the wire.
+struct Modifiers {
+  std::optional<std::uint8_t> lrc_xor;          // XOR the check byte with this mask (a bad LRC)
+  std::optional<std::uint8_t> address;          // put another address in byte 1 (LRC recomputed)
+  std::vector<std::size_t> parity_flip;         // byte indexes sent with the wrong parity bit
+  std::size_t extra_data_bytes = 0;             // extra data bytes before ETX (LRC recomputed)
+  std::size_t truncate = 0;                     // drop this many bytes from the end
+  std::vector<std::pair<std::size_t, std::uint8_t>> replace;  // (index, byte), LRC not recomputed
+  std::vector<std::size_t> chunks;              // chunk sizes; the rest goes in one last chunk
+  std::chrono::milliseconds pause{0};           // pause between chunks
+  bool operator==(const Modifiers&) const = default;
+};
+
+// How a reply field is checked. The field is named as describe_frame names it
+// ("az status", "azimuth", "sat name"); a matcher compares the field's raw
+// text ("0x47", "-152.5", "SBS 6" with trailing blanks removed) or, for
+// `range`, its number (degrees, counts, the byte's data bits).
+struct FieldMatcher {
+  enum class Kind : std::uint8_t { kEq, kOneOf, kRegex, kRange, kAny };
+  std::string field;
+  Kind kind = Kind::kAny;
+  std::vector<std::string> values;  // eq: one value; one_of: several; regex: the pattern
+  double low = 0, high = 0;         // range, inclusive
+  std::string capture;              // "$name": keep the field's text for later steps
+  SourceLocation where;
+};
+
+struct Expectation {
+  enum class Kind : std::uint8_t { kAck, kNak, kOffline, kSilence, kAny };
+  Kind kind = Kind::kAck;
+  std::optional<RawBytes> bytes;    // the whole reply, exactly
+  std::vector<FieldMatcher> fields;
+  SourceLocation where;
+};
+
+struct Step {
+  enum class Kind : std::uint8_t { kSend, kPoll, kWait };
+  Kind kind = Kind::kSend;
+  std::optional<StructuredCommand> command;  // send / poll: one of command or raw
+  std::optional<RawBytes> raw;
+  Modifiers modifiers;
+  Expectation expect;                         // send: what must come back; poll: the reply each time
+  std::vector<FieldMatcher> until;            // poll: repeat until these hold
+  std::chrono::milliseconds timeout{0};       // poll: give up after; wait: how long
+  std::chrono::milliseconds interval{1000};   // poll: between polls (§4 pacing)
+  SourceLocation where;
+};
+
+// A predicate on the device profile: `key` is a profile key path
+// ("polarization", "dvb_receiver", "errata.implements_iess"), `values` the
+// accepted values as text (any of them).
+struct Requirement {
+  std::string key;
+  std::vector<std::string> values;
+  SourceLocation where;
+};
+
+struct Vector {
+  std::string id;                    // "3.3-form2A-basic", unique across the suite
+  std::string comment;               // what and why
+  std::string paragraph;             // "3.3"
+  std::string quote;                 // the short spec quote it checks
+  Level level = Level::kMust;
+  std::vector<std::string> flags;    // defined in the file's notes
+  std::vector<std::string> tags;     // motion, destructive, option:dvb, pol:circular, parity, ...
+  std::vector<Requirement> requires_;  // the file's, the group's and the vector's
+  std::vector<Step> setup;           // the group's, then the vector's
+  std::vector<Step> steps;
+  std::vector<Step> teardown;
+  SourceLocation where;
+  bool has_tag(std::string_view tag) const;
+};
+
+struct Note {                        // a flag, after Wycheproof's notes
+  std::string description;
+  std::string errata;                // "E-7" or "" when the flag rests on no errata entry
+};
+
+struct VectorFile {
+  std::string path;
+  std::string paragraph;
+  std::string title;
+  std::map<std::string, Note> notes;
+  std::vector<Vector> vectors;
+};
+
+struct LoadError {
+  SourceLocation where;
+  std::string vector_id;  // "" when the error is outside a vector
+  std::string key;        // the offending key path
+  std::string message;
+  std::string text() const;  // "file:line:column: [id] key: message"
+};
+
+}  // namespace sabus::harness

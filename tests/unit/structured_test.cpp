@@ -1,0 +1,74 @@
+// Requests from named fields, as vectors write them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/structured.hpp"
+
+namespace sabus {
+namespace {
+
+std::string data_of(const Expected<Request>& r) {
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message());
+  if (!r.ok()) return "";
+  Bytes d = encode_request_data(r.value());
+  return std::string(d.begin(), d.end());
+}
+
+const CommandInfo& cmd(std::string_view key) { return *find_command(key); }
+
+TEST(BuildRequest, AutoMoveForms) {
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2A", {{"azimuth", "-152.5"}, {"elevation", "45.6"}})),
+            " -152500456");
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "1", {{"polarization", "H"}, {"sat name", "SBS 6"}})),
+            "HSBS 6     ");
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2C", {{"axis", "A"}, {"target", "-123.45"}})), "A-12345    ");
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "3", {{"pol target", "50.0"}})), "P0050000000");
+}
+
+TEST(BuildRequest, TheFormSetsTheSelector) {
+  EXPECT_EQ(data_of(build_request(cmd("jog"), "E", {{"speed", "F"}, {"duration", "50"}})), "EF0050");
+  EXPECT_EQ(data_of(build_request(cmd("misc"), "K", {{"parameter", "0x3A"}})), "K:");
+  EXPECT_EQ(data_of(build_request(cmd("pol_preset"), "V", {})), "V");
+  auto locate = build_request(cmd("remote_locate"), "preset", {{"preset flag/index", "preset 5"}});
+  ASSERT_TRUE(locate.ok());
+  EXPECT_TRUE(std::get<RemoteLocate>(locate.value()).preset.preset);
+  EXPECT_EQ(std::get<RemoteLocate>(locate.value()).preset.index, 5);
+}
+
+TEST(BuildRequest, DataCommands) {
+  EXPECT_EQ(data_of(build_request(cmd("write_satellite"), "",
+                                  {{"index", "20"}, {"sat name", "GALAXY 19"}, {"longitude", "-97.1"},
+                                   {"inclination", "0"}, {"band", "1"}, {"pol offset", "-12.5"}})),
+            "20GALAXY 19 -97.1 0 10-12.5");
+  EXPECT_EQ(data_of(build_request(cmd("write_navigation"), "", {{"latitude", "1234"}, {"longitude", "-1234"},
+                                                               {"true heading", "123.4"}})),
+            "01234-01234123.4            ");
+}
+
+TEST(BuildRequest, ErrorsNameTheField) {
+  auto unknown = build_request(cmd("jog"), "E", {{"speeed", "F"}});
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.error().message().find("speeed"), std::string::npos);
+  EXPECT_NE(unknown.error().message().find("duration"), std::string::npos) << "lists the known fields";
+  auto bad = build_request(cmd("jog"), "E", {{"duration", "fifty"}});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message().find("duration"), std::string::npos);
+  EXPECT_FALSE(build_request(cmd("auto_move"), "2Z", {}).ok());
+  EXPECT_FALSE(build_request(cmd("query_name"), "", {{"index", "100"}}).ok());
+}
+
+TEST(FieldNames, RequestsAndReplies) {
+  EXPECT_EQ(request_field_names(cmd("auto_move"), "2A"),
+            (std::vector<std::string>{"polarization", "azimuth", "elevation"}));
+  auto status = reply_field_names(cmd("status"));
+  for (const char* f : {"start", "az status", "azimuth", "track", "agc channel", "check byte"})
+    EXPECT_NE(std::find(status.begin(), status.end(), f), status.end()) << f;
+  auto sat = reply_field_names(cmd("read_satellite"));
+  EXPECT_NE(std::find(sat.begin(), sat.end(), "no data"), sat.end()) << "the empty-slot form";
+  EXPECT_NE(std::find(sat.begin(), sat.end(), "longitude"), sat.end());
+}
+
+}  // namespace
+}  // namespace sabus
