@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and decodes the manual's
-# example frames with `sabus decode`.
+# The main job: installs what is missing, builds, and runs the conformance
+# suite (vectors/) against the built-in reference controller, writing
+# build/report/run.json and build/report/junit.xml.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
 bash tools/build.sh release
-build/tools/sabus decode --side both vectors/examples/manual-examples.hex
+build/tools/sabus run --sim --allow-motion --allow-destructive --report-dir build/report

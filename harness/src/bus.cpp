@@ -83,12 +83,20 @@ void Bus::receive(ByteView wire, Bytes& out) {
       if (o.stored_data_changed && on_change_) on_change_(u->controller);
     }
     u->frames.clear();
+    trim_log();
     if (u->recent.size() > 2 * kRecent) {
       const std::size_t drop = u->recent.size() - kRecent;
       u->recent.erase(u->recent.begin(), u->recent.begin() + static_cast<std::ptrdiff_t>(drop));
       u->recent_base += drop;
     }
   }
+}
+
+void Bus::trim_log() {
+  // Nobody may ever take the log (an in-process run keeps its own
+  // transcript): keep the newest part only.
+  constexpr std::size_t kMaxLog = 1 << 16;
+  if (log_.size() > kMaxLog) log_.erase(0, log_.find('\n', log_.size() - kMaxLog / 2) + 1);
 }
 
 void Bus::tick() {

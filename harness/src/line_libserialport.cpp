@@ -61,7 +61,7 @@ std::string str(const char* s) { return s != nullptr ? s : ""; }
 
 }  // namespace
 
-std::unique_ptr<LibSerialPortLine> LibSerialPortLine::open(const std::string& path, int baud) {
+std::unique_ptr<LibSerialPortLine> LibSerialPortLine::open(const std::string& path, int baud, CharFormat format) {
   // libserialport (Linux) looks "/dev/<name>" up as /sys/class/tty/<name>
   // verbatim, so /dev/serial/by-id/... or a pty server's link would be
   // "not found": hand it the device's real name.
@@ -69,6 +69,7 @@ std::unique_ptr<LibSerialPortLine> LibSerialPortLine::open(const std::string& pa
   if (::realpath(path.c_str(), buf) == nullptr)
     throw LineError(path + ": " + (errno == ENOENT ? std::string("no such device") : posix::error_text(errno)));
   const std::string resolved = buf;
+  check_char_format(path, format);
 
   // The lock first, on a fd of our own, so that a port in use by another
   // process is refused before sp_open() touches its settings.
@@ -100,7 +101,7 @@ std::unique_ptr<LibSerialPortLine> LibSerialPortLine::open(const std::string& pa
     throw LineError(msg);
   }
   guard.opened = true;
-  std::unique_ptr<LibSerialPortLine> line(new LibSerialPortLine(std::move(lock), guard.port, path, resolved, baud));
+  std::unique_ptr<LibSerialPortLine> line(new LibSerialPortLine(std::move(lock), guard.port, path, resolved, baud, format));
   guard.port = nullptr;  // owned by line now
   r = sp_get_port_handle(line->port_, &line->fd_);
   if (r != SP_OK || line->fd_ < 0) throw LineError(sp_error(path + ": no file descriptor for the port", r));
@@ -108,24 +109,37 @@ std::unique_ptr<LibSerialPortLine> LibSerialPortLine::open(const std::string& pa
 
   ConfigGuard config;
   if (sp_new_config(&config.config) != SP_OK) throw LineError(path + ": out of memory");
-  // 8N1, no flow control; DTR and RTS on, as a terminal program leaves them.
+  // 8N1 (or 7E1), no flow control; DTR and RTS on, as a terminal program
+  // leaves them.
+  const bool is_7e1 = format == CharFormat::k7E1;
+  const std::string settings = std::to_string(baud) + " " + std::string(to_string(format));
   if ((r = sp_set_config_baudrate(config.config, baud)) != SP_OK ||
-      (r = sp_set_config_bits(config.config, 8)) != SP_OK ||
-      (r = sp_set_config_parity(config.config, SP_PARITY_NONE)) != SP_OK ||
+      (r = sp_set_config_bits(config.config, is_7e1 ? 7 : 8)) != SP_OK ||
+      (r = sp_set_config_parity(config.config, is_7e1 ? SP_PARITY_EVEN : SP_PARITY_NONE)) != SP_OK ||
       (r = sp_set_config_stopbits(config.config, 1)) != SP_OK ||
       (r = sp_set_config_flowcontrol(config.config, SP_FLOWCONTROL_NONE)) != SP_OK ||
       (r = sp_set_config_dtr(config.config, SP_DTR_ON)) != SP_OK ||
       (r = sp_set_config_rts(config.config, SP_RTS_ON)) != SP_OK)
-    throw LineError(sp_error(path + ": bad settings " + std::to_string(baud) + " 8N1", r));
+    throw LineError(sp_error(path + ": bad settings " + settings, r));
   if ((r = sp_set_config(line->port_, config.config)) != SP_OK)
-    throw LineError(sp_error(path + ": cannot set " + std::to_string(baud) + " 8N1", r));
+    throw LineError(sp_error(path + ": cannot set " + settings, r));
+  // libserialport sets CS7 and PARENB but leaves the input flags: mark the
+  // characters the UART received with a parity error (CharFormat::k7E1), and
+  // check that the port really took 7E1.
+  if (is_7e1) posix::set_7e1(line->fd_, "serial " + path);
   // As with termios: what an earlier user left in the buffers is not ours.
   (void)sp_flush(line->port_, SP_BUF_BOTH);
   return line;
 }
 
-LibSerialPortLine::LibSerialPortLine(UniqueFd lock, sp_port* port, std::string path, std::string resolved, int baud)
-    : lock_(std::move(lock)), port_(port), path_(std::move(path)), resolved_(std::move(resolved)), baud_(baud) {}
+LibSerialPortLine::LibSerialPortLine(UniqueFd lock, sp_port* port, std::string path, std::string resolved, int baud,
+                                     CharFormat format)
+    : lock_(std::move(lock)),
+      port_(port),
+      path_(std::move(path)),
+      resolved_(std::move(resolved)),
+      baud_(baud),
+      format_(format) {}
 
 LibSerialPortLine::~LibSerialPortLine() {
   posix::clear_exclusive(fd_);
@@ -189,7 +203,7 @@ void LibSerialPortLine::drain() {
 std::string LibSerialPortLine::describe() const {
   std::string where = path_;
   if (resolved_ != path_) where += " (" + resolved_ + ")";
-  return "serial " + where + " " + std::to_string(baud_) + " 8N1 (libserialport)";
+  return "serial " + where + " " + std::to_string(baud_) + " " + std::string(to_string(format_)) + " (libserialport)";
 }
 
 std::string_view to_string(SerialPortInfo::Transport transport) {

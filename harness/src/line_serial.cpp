@@ -26,6 +26,8 @@ std::optional<SerialBackend> parse_serial_backend(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view to_string(CharFormat format) { return format == CharFormat::k7E1 ? "7E1" : "8N1"; }
+
 bool is_pseudo_terminal(const std::string& path) {
   char resolved[PATH_MAX];
   if (::realpath(path.c_str(), resolved) != nullptr && std::string_view(resolved).starts_with("/dev/pts/"))
@@ -39,7 +41,19 @@ bool is_pseudo_terminal(const std::string& path) {
   return (maj >= 136 && maj <= 143) || (maj == 5 && minor(st.st_rdev) == 2) || maj == 2 || maj == 3;
 }
 
+void check_char_format(const std::string& path, CharFormat format) {
+  if (format == CharFormat::k7E1 && is_pseudo_terminal(path))
+    throw LineError(path +
+                    " is a pseudo-terminal, which carries 8 data bits and no parity: it cannot be opened 7E1 "
+                    "(use software parity, 8N1 with the parity bit in bit 7, the default)");
+}
+
 std::unique_ptr<Line> open_serial_line(const std::string& path, int baud, SerialBackend backend, std::string* note) {
+  return open_serial_line(path, baud, backend, CharFormat::k8N1, note);
+}
+
+std::unique_ptr<Line> open_serial_line(const std::string& path, int baud, SerialBackend backend, CharFormat format,
+                                       std::string* note) {
   std::string why;
   if (backend == SerialBackend::automatic) {
     if (is_pseudo_terminal(path)) {
@@ -54,8 +68,8 @@ std::unique_ptr<Line> open_serial_line(const std::string& path, int baud, Serial
     why = "serial backend " + std::string(to_string(backend)) + ", as asked";
   }
   if (note != nullptr) *note = why + ".";
-  if (backend == SerialBackend::termios) return TermiosSerialLine::open(path, baud);
-  return LibSerialPortLine::open(path, baud);
+  if (backend == SerialBackend::termios) return TermiosSerialLine::open(path, baud, format);
+  return LibSerialPortLine::open(path, baud, format);
 }
 
 }  // namespace sabus::harness

@@ -25,7 +25,38 @@ std::string open_error(const std::string& path, int err) {
 
 }  // namespace
 
-std::unique_ptr<TermiosSerialLine> TermiosSerialLine::open(const std::string& path, int baud) {
+namespace posix {
+
+void set_7e1(int fd, const std::string& what) {
+  termios t{};
+  if (::tcgetattr(fd, &t) != 0) throw LineError(what + ": not a terminal device: " + error_text(errno));
+  t.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARODD | CMSPAR);
+  t.c_cflag |= CS7 | PARENB;
+  // INPCK: the UART's parity verdict reaches us. PARMRK: as FF 00 c, so the
+  // runner can report the character instead of losing it (IGNPAR would drop
+  // it, plain INPCK would turn it into 00). ISTRIP: bit 7 of a correct
+  // character is 0 whatever the adapter leaves there, so FF is only ever a
+  // mark (with ISTRIP off a real FF would arrive doubled).
+  t.c_iflag |= INPCK | PARMRK | ISTRIP;
+  t.c_iflag &= ~static_cast<tcflag_t>(IGNPAR);
+  int r;
+  do r = ::tcsetattr(fd, TCSANOW, &t);
+  while (r != 0 && errno == EINTR);
+  if (r != 0) throw LineError(what + ": cannot set 7E1: " + error_text(errno));
+  // tcsetattr() succeeds when any one setting took (a pty keeps CS8 and
+  // drops PARENB but takes the input flags): read them back.
+  termios back{};
+  if (::tcgetattr(fd, &back) != 0) throw LineError(what + ": tcgetattr failed: " + error_text(errno));
+  const tcflag_t marks = INPCK | PARMRK | ISTRIP;
+  if ((back.c_cflag & CSIZE) != CS7 || (back.c_cflag & (PARENB | PARODD)) != PARENB ||
+      (back.c_iflag & marks) != marks || (back.c_iflag & IGNPAR) != 0)
+    throw LineError(what + ": the port did not accept 7E1 (7 data bits, even parity)");
+}
+
+}  // namespace posix
+
+std::unique_ptr<TermiosSerialLine> TermiosSerialLine::open(const std::string& path, int baud, CharFormat format) {
+  check_char_format(path, format);
   // O_NONBLOCK: open() must not wait for carrier detect, and reads wait in
   // poll() with a timeout instead of blocking.
   int fd;
@@ -37,13 +68,14 @@ std::unique_ptr<TermiosSerialLine> TermiosSerialLine::open(const std::string& pa
   // flock first: it is what tells a second sabus apart (TIOCEXCL does not
   // stop root), and nothing about the port has been changed yet.
   posix::lock_port(fd, path);
-  std::unique_ptr<TermiosSerialLine> line(new TermiosSerialLine(std::move(owned), path, baud));
+  std::unique_ptr<TermiosSerialLine> line(new TermiosSerialLine(std::move(owned), path, baud, format));
   // Not on a pty: a PtyLine server keeps the slave open, so TIOCEXCL would
   // outlive a client that dies without clearing it and lock out every later
   // (non-root) client with EBUSY until the server restarts. The flock is
   // released by the kernel when the process dies.
   if (!is_pseudo_terminal(path)) posix::set_exclusive(fd, path);
   posix::set_raw_8n1(fd, baud, "serial " + path);
+  if (format == CharFormat::k7E1) posix::set_7e1(fd, "serial " + path);
   // Bytes left over from an earlier user of the port (or replies a pty server
   // wrote to a client that went away) are not ours.
   while (::tcflush(fd, TCIOFLUSH) != 0 && errno == EINTR) {
@@ -51,11 +83,12 @@ std::unique_ptr<TermiosSerialLine> TermiosSerialLine::open(const std::string& pa
   return line;
 }
 
-TermiosSerialLine::TermiosSerialLine(UniqueFd fd, const std::string& path, int baud)
+TermiosSerialLine::TermiosSerialLine(UniqueFd fd, const std::string& path, int baud, CharFormat format)
     : FdLine(std::move(fd), Kind::tty), description_("serial " + path) {
   char resolved[PATH_MAX];
   if (::realpath(path.c_str(), resolved) != nullptr && path != resolved) description_ += std::string(" (") + resolved + ")";
-  description_ += " " + std::to_string(baud) + " 8N1 (termios)";
+  // Appended piece by piece: GCC 12 warns (-Wrestrict) on "literal" + std::string here.
+  description_.append(" ").append(std::to_string(baud)).append(" ").append(to_string(format)).append(" (termios)");
 }
 
 TermiosSerialLine::~TermiosSerialLine() { posix::clear_exclusive(fd()); }

@@ -2,30 +2,26 @@
 // loader, which rejects a bad file with the key's line and column, and the
 // writer, whose output the loader reads back to an equal profile.
 //
-// yaml-cpp 0.7 (TOOLCHAIN-NOTES): marks are 0-based; a key's position is
-// it->first.Mark(); duplicate keys are kept as separate map entries and a
-// lookup returns the first, so this file checks keys itself; as<T>() throws,
-// so scalars are converted here with std::from_chars instead.
+// The strict reading itself (marks, duplicate keys, scalars without as<T>(),
+// the stray-',' guard) is yaml_reader.hpp, shared with the vector loader.
 #include "sabus/harness/profile_loader.hpp"
 
-#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <initializer_list>
 #include <span>
-#include <sstream>
 
 #include "sabus/protocol/frame.hpp"
+#include "yaml_reader.hpp"
 
 namespace sabus::harness {
 namespace {
+
+using namespace yaml_reader;
 
 // ---------------------------------------------------------------------------
 // Limits and name tables (one table per fact: the writer uses them too)
@@ -81,93 +77,8 @@ std::string names_of(const Named<T> (&table)[N]) {
 }
 
 // ---------------------------------------------------------------------------
-// Errors: thrown inside this file only, returned as a ProfileError
-// ---------------------------------------------------------------------------
-
-// Where a value sits: the dotted path of its key and the key's mark.
-struct At {
-  std::string path;
-  YAML::Mark mark;
-  At key(std::string_view k, const YAML::Mark& m) const {
-    return {path.empty() ? std::string(k) : path + "." + std::string(k), m};
-  }
-  At element(std::size_t i, const YAML::Mark& m) const { return {path + "[" + std::to_string(i) + "]", m}; }
-};
-
-struct Failure {
-  At at;
-  std::string message;
-};
-
-[[noreturn]] void fail(const At& at, std::string message) { throw Failure{at, std::move(message)}; }
-
-// User text in a message, cut short so a message stays one line.
-std::string quoted_clip(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  return "\"" + std::string(s.substr(0, kMax)) + (s.size() > kMax ? "...\"" : "\"");
-}
-
-std::string number_text(double d) {
-  std::array<char, 32> buf{};
-  auto r = std::to_chars(buf.data(), buf.data() + buf.size(), d);  // shortest form that reads back exactly
-  return std::string(buf.data(), r.ptr);
-}
-
-int one_based(int mark_value) { return mark_value >= 0 ? mark_value + 1 : 0; }
-
-// ---------------------------------------------------------------------------
 // Scalars
 // ---------------------------------------------------------------------------
-
-std::string kind_of(const YAML::Node& v) {
-  switch (v.Type()) {
-    case YAML::NodeType::Null: return "no value";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Scalar: return quoted_clip(v.Scalar());
-    default: return "nothing";
-  }
-}
-
-const std::string& scalar(const YAML::Node& v, const At& at, std::string_view what) {
-  if (!v.IsScalar()) fail(at, "expected " + std::string(what) + ", got " + kind_of(v));
-  return v.Scalar();
-}
-
-// Numbers and booleans must be plain scalars: quoting makes a YAML string.
-// yaml-cpp tags every non-plain scalar "!".
-const std::string& plain(const YAML::Node& v, const At& at, std::string_view what) {
-  if (v.IsScalar() && v.Tag() == "!")
-    fail(at, "expected " + std::string(what) + ", got the quoted string " + quoted_clip(v.Scalar()));
-  return scalar(v, at, what);
-}
-
-// YAML 1.2 core schema booleans only (yaml-cpp's as<bool> also takes yes/no/on/off).
-bool to_bool(const YAML::Node& v, const At& at) {
-  const std::string& s = plain(v, at, "true or false");
-  if (s == "true" || s == "True" || s == "TRUE") return true;
-  if (s == "false" || s == "False" || s == "FALSE") return false;
-  fail(at, "expected true or false, got " + quoted_clip(s));
-}
-
-// from_chars takes no leading '+'; YAML numbers may have one.
-std::string_view without_plus(std::string_view s) {
-  return s.size() > 1 && s[0] == '+' && s[1] != '-' ? s.substr(1) : s;
-}
-
-template <class T>
-bool parse_whole(std::string_view s, T& out) {
-  s = without_plus(s);
-  auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-  return r.ec == std::errc{} && r.ptr == s.data() + s.size();
-}
-
-double to_number(const YAML::Node& v, const At& at) {
-  const std::string& s = plain(v, at, "a number");
-  double d = 0;
-  if (!parse_whole(s, d) || !std::isfinite(d)) fail(at, "expected a number, got " + quoted_clip(s));
-  return d;
-}
 
 double to_number_in(const YAML::Node& v, const At& at, double lo, double hi) {
   double d = to_number(v, at);
@@ -180,14 +91,6 @@ double to_positive(const YAML::Node& v, const At& at, double hi) {
   if (d <= 0) fail(at, "must be greater than 0, got " + number_text(d));
   if (d > hi) fail(at, number_text(d) + " is out of range: at most " + number_text(hi));
   return d;
-}
-
-long long to_integer_in(const YAML::Node& v, const At& at, long long lo, long long hi) {
-  const std::string& s = plain(v, at, "a whole number");
-  long long n = 0;
-  if (!parse_whole(s, n)) fail(at, "expected a whole number, got " + quoted_clip(s));
-  if (n < lo || n > hi) fail(at, s + " is out of range " + std::to_string(lo) + " to " + std::to_string(hi));
-  return n;
 }
 
 // Fields carried in tenths on the wire (§3.10 "-179.9", §3.22 "ddd.d"): a
@@ -247,19 +150,6 @@ char to_item(const YAML::Node& v, const At& at, std::span<const fields::ChoiceIt
   fail(at, quoted_clip(s) + " is not one of " + meanings_of(items, by_char));
 }
 
-// READING-NOTES 4 / ERRATA E-4: the controller's decimal setting 49-111, or
-// the address character itself, quoted ("2"); parse_address reads both (and
-// 0x32). An unquoted single digit is a decimal setting, hence out of range.
-std::uint8_t to_address(const YAML::Node& v, const At& at) {
-  const std::string& s = scalar(v, at, "an address");
-  bool quoted = v.Tag() == "!";
-  if (!quoted && s.size() == 1 && s[0] >= '0' && s[0] <= '9')
-    fail(at, "address " + s + " is out of range 49-111; quote it (\"" + s + "\") for the address character");
-  auto a = parse_address(s);
-  if (!a) fail(at, "bad address " + quoted_clip(s) + ": expected " + a.error().expected);
-  return *a;
-}
-
 int to_baud(const YAML::Node& v, const At& at) {
   auto n = to_integer_in(v, at, 0, 1'000'000);
   if (std::find(std::begin(kBauds), std::end(kBauds), n) == std::end(kBauds))
@@ -308,78 +198,6 @@ std::uint8_t to_source(const YAML::Node& v, const At& at, const Named<std::uint8
 // ---------------------------------------------------------------------------
 // Maps and lists
 // ---------------------------------------------------------------------------
-
-// A YAML map with its location. The constructor checks every key once: a
-// scalar, one of `allowed`, and not seen before. So at most allowed.size()
-// entries are kept, whatever the input.
-class MapReader {
- public:
-  MapReader(const YAML::Node& node, const At& at, std::initializer_list<std::string_view> allowed) : at_(at) {
-    if (!node.IsMap()) fail(at, "expected a map, got " + kind_of(node));
-    for (auto it = node.begin(); it != node.end(); ++it) {
-      const YAML::Mark mark = it->first.Mark();
-      if (!it->first.IsScalar()) fail(at.key("?", mark), "a key must be a plain name, got " + kind_of(it->first));
-      const std::string& k = it->first.Scalar();
-      if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
-        fail(at.key(k, mark), "unknown key " + quoted_clip(k) + "; allowed keys: " + join(allowed));
-      if (const Entry* first = find(k))
-        fail(at.key(k, mark), "duplicate key " + quoted_clip(k) + " (first at line " +
-                                  std::to_string(one_based(first->mark.line)) + ", column " +
-                                  std::to_string(one_based(first->mark.column)) + ")");
-      entries_.push_back({k, mark, it->second});
-    }
-  }
-
-  // Calls read(value, at) when the key is present.
-  template <class F>
-  void with(std::string_view key, F&& read) const {
-    if (const Entry* e = find(key)) read(e->value, at_.key(key, e->mark));
-  }
-  // out = parse(value, at) when the key is present.
-  template <class T, class F>
-  void read(std::string_view key, T& out, F&& parse) const {
-    with(key, [&](const YAML::Node& v, const At& at) { out = parse(v, at); });
-  }
-  bool has(std::string_view key) const { return find(key) != nullptr; }
-  // Where to report a rule that involves `key`: the key, or the map when absent.
-  At at(std::string_view key) const {
-    const Entry* e = find(key);
-    return e ? at_.key(key, e->mark) : at_;
-  }
-
- private:
-  struct Entry {
-    std::string key;
-    YAML::Mark mark;
-    YAML::Node value;
-  };
-  const Entry* find(std::string_view key) const {
-    for (const auto& e : entries_)
-      if (e.key == key) return &e;
-    return nullptr;
-  }
-  static std::string join(std::initializer_list<std::string_view> keys) {
-    std::string out;
-    for (auto k : keys) out += (out.empty() ? "" : ", ") + std::string(k);
-    return out;
-  }
-  At at_;
-  std::vector<Entry> entries_;
-};
-
-// Calls read(element, at) for each element of a list of at most `max` entries
-// (checked before anything is read).
-template <class F>
-void for_each_element(const YAML::Node& v, const At& at, std::size_t max, F&& read) {
-  if (!v.IsSequence()) fail(at, "expected a list, got " + kind_of(v));
-  if (v.size() > max)
-    fail(at, "has " + std::to_string(v.size()) + " entries, at most " + std::to_string(max) + " are allowed");
-  std::size_t i = 0;
-  for (const auto& element : v) {
-    read(element, at.element(i, element.Mark()));
-    ++i;
-  }
-}
 
 // Index keys of the indexed lists: in range and unique within the list.
 class IndexSet {
@@ -596,37 +414,6 @@ Profile read_profile(const YAML::Node& root) {
   return p;
 }
 
-// Records where a document starts.
-struct DocumentStart : YAML::EventHandler {
-  std::optional<YAML::Mark> mark;
-  void OnDocumentStart(const YAML::Mark& m) override { mark = m; }
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
-  void OnMapEnd() override {}
-};
-
-// A profile is one YAML document. yaml-cpp 0.7 never consumes a stray ','
-// outside [ ] or { }: YAML::Load silently returns what came before it, and
-// YAML::LoadAll returns empty documents without end until memory runs out
-// (found by the test profile.NeverThrowsOnMutatedFiles). So the parser is
-// asked for at most two documents, and a second one is an error.
-void require_single_document(const std::string& text) {
-  std::istringstream in(text);
-  YAML::Parser parser(in);
-  DocumentStart first, second;
-  if (!parser.HandleNextDocument(first) || !parser.HandleNextDocument(second) || !second.mark) return;
-  const YAML::Mark& m = *second.mark;
-  auto pos = static_cast<std::size_t>(std::max(0, m.pos));
-  if (text.compare(pos, 3, "---") == 0) fail(At{"", m}, "more than one YAML document; a profile is a single document");
-  fail(At{"", m}, "YAML syntax: unexpected " + quoted_clip(std::string_view(text).substr(pos, 1)) +
-                      " after the end of the document (a ',' belongs inside [ ] or { })");
-}
-
 ProfileError make_error(const std::string& file, int line, int column, std::string key, std::string message) {
   return ProfileError{file, line, column, std::move(key), std::move(message)};
 }
@@ -649,7 +436,7 @@ ProfileResult load_profile_text(std::string_view yaml, const std::string& name) 
   }
   try {
     const std::string text(yaml);
-    require_single_document(text);
+    require_single_document(text, "a profile");
     result.profile = read_profile(YAML::Load(text));
     result.profile->source = name;
   } catch (const Failure& f) {
@@ -664,21 +451,13 @@ ProfileResult load_profile_text(std::string_view yaml, const std::string& name) 
 
 ProfileResult load_profile_file(const std::string& path) {
   ProfileResult result;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    result.error = make_error(path, 0, 0, "", std::string("cannot open: ") + std::strerror(errno));
+  std::string error;
+  auto text = read_capped(path, kMaxProfileBytes, error);
+  if (!text) {
+    result.error = make_error(path, 0, 0, "", error);
     return result;
   }
-  // Read at most one byte past the cap, so an oversized file is rejected
-  // without reading it whole.
-  std::string text(kMaxProfileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (in.bad()) {
-    result.error = make_error(path, 0, 0, "", "read error");
-    return result;
-  }
-  return load_profile_text(text, path);
+  return load_profile_text(*text, path);
 }
 
 std::string default_profile_path() { return SABUS_SOURCE_DIR "/vectors/profiles/rc3000-1.59.yaml"; }

@@ -745,6 +745,11 @@ TEST(Controller, EveryCommandAndFormIsServedWithTheCatalogLength) {
   store.pol_selection = 'H';
   RemoteLocate locate_data;
   locate_data.sat = {"AMC 21", -1250, 0, '1', '0', 0};
+  RemoteLocate locate_preset;
+  locate_preset.preset = {true, 1};
+  RemoteStore store_data;
+  store_data.sat.name = "NEW SAT";
+  store_data.pol_selection = 'H';
   const std::vector<std::pair<std::string, Request>> cases = {
       {"", DeviceTypeQuery{}},
       {"", StatusPoll{}},
@@ -770,10 +775,10 @@ TEST(Controller, EveryCommandAndFormIsServedWithTheCatalogLength) {
       {"", ReadIess{{1}}},
       {"", PulseCountQuery{}},
       {"", ExtendedStatusPoll{}},
-      {"preset", RemoteLocate{{true, 1}, {}, "", 'N', 'A', ""}},
+      {"preset", locate_preset},
       {"data", locate_data},
       {"preset", store},
-      {"data", RemoteStore{{false, 0}, {"NEW SAT", 0, 0, '0', '0', 0}, "", 'H', std::nullopt, std::nullopt, 'H', ""}},
+      {"data", store_data},
       {"", WriteSignpost{}},
       {"", ReadSignpost{{1}}},
       {"", NavigationQuery{}},
@@ -792,7 +797,9 @@ TEST(Controller, EveryCommandAndFormIsServedWithTheCatalogLength) {
     ASSERT_TRUE(o.reply.has_value()) << describe_byte(code) << " " << form;
     EXPECT_EQ((*o.reply)[0], ACK) << describe_byte(code) << " form " << form << ": " << o.note;
     const CommandInfo* info = find_command(code);
-    if (info->reply_length) EXPECT_EQ(o.reply->size(), *info->reply_length) << info->name << " form " << form;
+    if (info->reply_length) {
+      EXPECT_EQ(o.reply->size(), *info->reply_length) << info->name << " form " << form;
+    }
     served.insert({code, form});
   }
   for (const auto& info : catalog())

@@ -12,84 +12,17 @@
 #include <thread>
 
 #include "sabus/harness/line.hpp"
+#include "support/process.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/receiver.hpp"
-
-extern char** environ;
 
 namespace sabus::harness {
 namespace {
 
+using test::Process;
+
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
-
-// A child process with its stdout on a pipe.
-class Process {
- public:
-  explicit Process(std::vector<std::string> args) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe");
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
-    posix_spawn_file_actions_addclose(&actions, fds[0]);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn");
-    posix_spawn_file_actions_destroy(&actions);
-    close(fds[1]);
-    out_ = fds[0];
-  }
-  ~Process() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-    if (out_ >= 0) close(out_);
-  }
-  // The first line of stdout, waiting up to `timeout`.
-  std::string line(std::chrono::milliseconds timeout) {
-    std::string s;
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    char c;
-    while (std::chrono::steady_clock::now() < end) {
-      fd_set set;
-      FD_ZERO(&set);
-      FD_SET(out_, &set);
-      timeval tv{0, 20000};
-      if (select(out_ + 1, &set, nullptr, nullptr, &tv) > 0) {
-        if (read(out_, &c, 1) != 1) break;
-        if (c == '\n') return s;
-        s += c;
-      }
-    }
-    return s;
-  }
-  // SIGINT, then the exit status (-1 if it did not end within 5 s).
-  int interrupt() {
-    kill(pid_, SIGINT);
-    for (int i = 0; i < 500; ++i) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(10ms);
-    }
-    return -1;
-  }
-  int wait_exit() {
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  int out_ = -1;
-};
 
 struct Replies : ReceiverSink {
   std::vector<Frame> frames;

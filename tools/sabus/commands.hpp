@@ -19,5 +19,8 @@ struct Command {
 
 Command add_decode_command(CLI::App& app);
 Command add_sim_command(CLI::App& app);
+Command add_ports_command(CLI::App& app);
+Command add_run_command(CLI::App& app);
+Command add_vectors_command(CLI::App& app);
 
 }  // namespace sabus::cli

@@ -9,6 +9,9 @@ int main(int argc, char** argv) {
   const std::vector<sabus::cli::Command> commands = {
       sabus::cli::add_decode_command(app),
       sabus::cli::add_sim_command(app),
+      sabus::cli::add_run_command(app),
+      sabus::cli::add_vectors_command(app),
+      sabus::cli::add_ports_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -159,6 +159,7 @@ class Bus : public LineDevice {
 
  private:
   struct Unit;
+  void trim_log();
   std::vector<std::unique_ptr<Unit>> units_;
   Parity parity_;
   std::string log_;

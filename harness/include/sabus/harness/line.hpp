@@ -4,9 +4,11 @@
 // (libmodbus keeps its backends behind one small table of functions the same
 // way). Each backend is a small class in its own harness/src/line_*.cpp.
 //
-// Lines carry 8-bit bytes unchanged. SAbus is 7E1 on the wire; every backend
-// opens 8N1 and the protocol library puts the even-parity bit in bit 7
-// itself (a pty cannot do 7E1 at all, TOOLCHAIN-NOTES).
+// Lines carry 8-bit bytes unchanged. SAbus is 7E1 on the wire; by default
+// every backend opens 8N1 and the protocol library puts the even-parity bit in
+// bit 7 itself (READING-NOTES 1; a pty cannot do 7E1 at all, TOOLCHAIN-NOTES).
+// A serial port can also be opened true 7E1 (CharFormat::k7E1), where the
+// UART makes and checks the parity.
 #pragma once
 
 #include <chrono>
@@ -26,6 +28,22 @@
 struct sp_port;  // libserialport
 
 namespace sabus::harness {
+
+// How characters are framed on a serial port. Both are 10 bits a character on
+// the wire (READING-NOTES 1, 2).
+enum class CharFormat : std::uint8_t {
+  // The default: 8 data bits, no parity. SAbus's parity bit travels as bit 7
+  // of each byte, made and checked in software, so deliberately wrong parity
+  // can be sent.
+  k8N1,
+  // 7 data bits and even parity made by the UART. Input is read with
+  // INPCK|PARMRK|ISTRIP (termios(3)): a correct character arrives as its 7
+  // bits; one the UART received with a parity or framing error arrives as the
+  // three bytes FF 00 c, and a break as FF 00 00 (the reader must decode
+  // these marks). Output bytes lose bit 7. Not possible on a pseudo-terminal.
+  k7E1,
+};
+std::string_view to_string(CharFormat format);  // "8N1", "7E1"
 
 // A line that cannot be opened, or is lost (end of file, EIO, hangup, closed
 // socket, a write that makes no progress). The message names the line.
@@ -75,6 +93,11 @@ void set_exclusive(int fd, const std::string& path);
 // as one byte is there, at `baud` (300..115200), and checks that the settings
 // took. Throws LineError naming `what`.
 void set_raw_8n1(int fd, int baud, const std::string& what);
+// Switches a raw port (after set_raw_8n1, or libserialport's sp_set_config)
+// to CharFormat::k7E1: 7 data bits, even parity, INPCK|PARMRK|ISTRIP on and
+// IGNPAR off, and checks that the settings took (a pty reads back 8N1).
+// Throws LineError naming `what`.
+void set_7e1(int fd, const std::string& what);
 // Clears TIOCEXCL before close: the flag lives as long as the tty is open
 // anywhere, not just in this process.
 void clear_exclusive(int fd) noexcept;
@@ -156,28 +179,30 @@ class PtyLine final : public FdLine {
 // A serial port through plain POSIX termios: works on real ports and on ptys.
 class TermiosSerialLine final : public FdLine {
  public:
-  // Opens `path` (symlinks allowed) 8N1 raw at `baud` (300..115200), no flow
-  // control, exclusively (posix::lock_port; and posix::set_exclusive except
-  // on a pty), and discards stale input.
-  // Throws LineError.
-  static std::unique_ptr<TermiosSerialLine> open(const std::string& path, int baud);
+  // Opens `path` (symlinks allowed) 8N1 (or `format`) raw at `baud`
+  // (300..115200), no flow control, exclusively (posix::lock_port; and
+  // posix::set_exclusive except on a pty), and discards stale input.
+  // Throws LineError (7E1 on a pty: check_char_format).
+  static std::unique_ptr<TermiosSerialLine> open(const std::string& path, int baud,
+                                                 CharFormat format = CharFormat::k8N1);
   ~TermiosSerialLine() override;
 
   std::string describe() const override;
 
  private:
-  TermiosSerialLine(UniqueFd fd, const std::string& path, int baud);
+  TermiosSerialLine(UniqueFd fd, const std::string& path, int baud, CharFormat format);
   std::string description_;
 };
 
-// A serial port through libserialport (sp_open, 8N1, no flow control, DTR and
-// RTS on). libserialport 0.1.1 cannot open a pty (TOOLCHAIN-NOTES); tests
+// A serial port through libserialport (sp_open, 8N1 or 7E1, no flow control,
+// DTR and RTS on). libserialport 0.1.1 cannot open a pty (TOOLCHAIN-NOTES); tests
 // reach it on a pty through tests/support/ptyshim.c.
 class LibSerialPortLine final : public Line {
  public:
   // `path` may be a symlink (/dev/serial/by-id/...): it is resolved first,
   // because libserialport looks the name up in /sys/class/tty verbatim.
-  static std::unique_ptr<LibSerialPortLine> open(const std::string& path, int baud);
+  static std::unique_ptr<LibSerialPortLine> open(const std::string& path, int baud,
+                                                 CharFormat format = CharFormat::k8N1);
   ~LibSerialPortLine() override;
 
   std::size_t read(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override;
@@ -186,12 +211,14 @@ class LibSerialPortLine final : public Line {
   std::string describe() const override;
 
  private:
-  LibSerialPortLine(UniqueFd lock, sp_port* port, std::string path, std::string resolved, int baud);
+  LibSerialPortLine(UniqueFd lock, sp_port* port, std::string path, std::string resolved, int baud,
+                    CharFormat format);
   UniqueFd lock_;  // a second fd on the port that holds the flock
   sp_port* port_;
   int fd_ = -1;    // sp_get_port_handle; owned by port_
   std::string path_, resolved_;
   int baud_;
+  CharFormat format_;
 };
 
 enum class SerialBackend { automatic, libserialport, termios };
@@ -200,12 +227,19 @@ std::optional<SerialBackend> parse_serial_backend(std::string_view name);  // "a
 
 // True when `path` (after symlinks) is a pseudo-terminal slave or master.
 bool is_pseudo_terminal(const std::string& path);
+// Throws LineError when `path` cannot carry `format`: 7E1 on a
+// pseudo-terminal, which has 8 data bits and no parity whatever is asked
+// (TOOLCHAIN-NOTES). Both serial backends check this before touching the port.
+void check_char_format(const std::string& path, CharFormat format);
 
 // Opens a serial line with the chosen backend. `automatic` picks termios for a
 // pseudo-terminal (libserialport 0.1.1 cannot open one) and libserialport
 // otherwise. When `note` is given it receives one sentence saying which
 // backend was used and why, for the caller to print once.
 std::unique_ptr<Line> open_serial_line(const std::string& path, int baud, SerialBackend backend,
+                                       std::string* note = nullptr);
+// The same with the character format chosen.
+std::unique_ptr<Line> open_serial_line(const std::string& path, int baud, SerialBackend backend, CharFormat format,
                                        std::string* note = nullptr);
 
 // A TCP connection carrying raw bytes, as to a serial device server.

@@ -37,14 +37,20 @@ struct StructuredCommand {
 };
 
 // Raw bytes of 7-bit characters, hex with placeholders: "02 {addr} 31 03 {lrc}".
-// {addr} is the device's address, {lrc} the XOR of byte 0 through the byte
-// before it; "{$name}" a captured value.
+// {addr} is the device's address, {lrc} the XOR of the frame's byte 0 through
+// the byte before it; "{$name}" a captured value (its text, one byte a
+// character). The frame's byte 0 is the last STX, ACK or NAK before {lrc}
+// that is followed by an address byte (31h-6Fh): byte 0 of the send for one
+// frame, the second STX of `02 02 {addr} 31 03 {lrc}` (READING-NOTES 7).
+// expand_raw_bytes (vector_loader.hpp) implements this.
 struct RawBytes {
   std::string hex;
   SourceLocation where;
 };
 
-// Changes made to an encoded frame before it is put on the wire.
+// Changes made to an encoded frame before it is put on the wire, in this
+// order: address, extra_data_bytes, lrc_xor, replace, truncate, parity_flip,
+// then chunks (vectors/README.md).
 struct Modifiers {
   std::optional<std::uint8_t> lrc_xor;          // XOR the check byte with this mask (a bad LRC)
   std::optional<std::uint8_t> address;          // put another address in byte 1 (LRC recomputed)
@@ -60,7 +66,9 @@ struct Modifiers {
 // How a reply field is checked. The field is named as describe_frame names it
 // ("az status", "azimuth", "sat name"); a matcher compares the field's raw
 // text ("0x47", "-152.5", "SBS 6" with trailing blanks removed) or, for
-// `range`, its number (degrees, counts, the byte's data bits).
+// `range`, its number (degrees, counts, the byte's data bits). When a reply
+// has several fields of that name (31h "reserved": byte 13 and bytes 45-49),
+// the matcher must hold for each of them.
 struct FieldMatcher {
   enum class Kind : std::uint8_t { kEq, kOneOf, kRegex, kRange, kAny };
   std::string field;
@@ -120,6 +128,7 @@ struct Vector {
 struct Note {                        // a flag, after Wycheproof's notes
   std::string description;
   std::string errata;                // "E-7" or "" when the flag rests on no errata entry
+  SourceLocation where;              // the flag's key under `notes` (lint reports unused notes there)
 };
 
 struct VectorFile {

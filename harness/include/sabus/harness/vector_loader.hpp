@@ -4,13 +4,21 @@
 // the codecs do not know, lengths that contradict the catalog.
 #pragma once
 
+#include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "sabus/harness/profile.hpp"
 #include "sabus/harness/vector.hpp"
 
 namespace sabus::harness {
 
+// A file with any load error is left out of `files` (lint the rest): its
+// errors come first, and a half-read file would make lint report flags and
+// notes of the vectors that failed.
 struct LoadResult {
   std::vector<VectorFile> files;
   std::vector<LoadError> errors;
@@ -28,5 +36,18 @@ std::vector<LoadError> lint(const std::vector<VectorFile>& files);
 
 // vectors/ in the source tree.
 std::string default_vectors_dir();
+
+// The bytes of a raw template (RawBytes::hex) for a device at `address`, with
+// captured values by name ("$track" -> its text). Errors: bad hex, an unknown
+// placeholder, a capture not in `captures`, a byte above 7Fh.
+Expected<Bytes> expand_raw_bytes(std::string_view hex, std::uint8_t address,
+                                 const std::map<std::string, std::string>& captures = {});
+
+// Whether a device profile meets every requirement (each key's value is one
+// of the requirement's values; values are compared as to_yaml writes them).
+bool requirements_hold(const Profile& profile, const std::vector<Requirement>& requirements);
+// Why the profile does not meet one requirement ("polarization is circular,
+// needs single_port"), or nullopt when it does.
+std::optional<std::string> unmet_requirement(const Profile& profile, const Requirement& r);
 
 }  // namespace sabus::harness

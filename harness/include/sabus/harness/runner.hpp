@@ -1,0 +1,112 @@
+// The conformance runner: runs vectors against a device through a Transport
+// and gives a verdict per vector, per spec paragraph and per level.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/profile.hpp"
+#include "sabus/harness/transport.hpp"
+#include "sabus/harness/vector.hpp"
+#include "sabus/protocol/codec.hpp"
+
+namespace sabus::harness {
+
+// ---- matching replies (pure; used by the engine and its tests) --------------
+
+// The text a matcher compares for a described field: one-byte fields as
+// "0x47", text fields without their quotes and trailing blanks.
+std::string matcher_text(const FieldDescription& field);
+// The number a range matcher compares, when the field has one: positions in
+// degrees, counts, digits, a binary byte's data bits.
+std::optional<double> matcher_number(const FieldDescription& field);
+
+using Captures = std::map<std::string, std::string>;
+
+// Checks one matcher against a described reply; on failure returns a message
+// that names the byte range, the field, what was expected and what came, e.g.
+//   byte 36 az status: expected 0x57, got 0x44 (slow, ccw automatic movement in progress)
+std::optional<std::string> check_field(const FrameDescription& reply, const FieldMatcher& m, Captures& captures);
+
+// Applies a step's modifiers to an encoded frame of 7-bit characters.
+Bytes apply_modifiers(Bytes frame, const Modifiers& m);
+
+// ---- running --------------------------------------------------------------------
+
+enum class Verdict : std::uint8_t { kPass, kFail, kSkip, kKnownFailure, kUnexpectedPass };
+std::string_view to_string(Verdict v);
+
+struct TranscriptEntry {
+  double t_ms = 0;         // since the start of the run
+  bool sent = false;       // true: to the device; false: from it
+  Bytes bytes;             // 7-bit characters (sent: before parity; received: as decoded)
+  std::string note;        // decoded summary, or what was ignored
+};
+
+struct VectorResult {
+  std::string id, paragraph, file;
+  Level level = Level::kMust;
+  Verdict verdict = Verdict::kPass;
+  std::vector<std::string> failures;   // one line each
+  std::string skip_reason;
+  std::string known_issue_reason;
+  std::vector<TranscriptEntry> transcript;
+  double duration_ms = 0;
+  int repeats = 0, repeat_failures = 0;  // --repeat on a failure
+  bool counts_as_failure() const;        // a must/should failure that fails the run (should: only if strict)
+};
+
+struct LivenessResult {
+  std::string when;   // "before the first vector", "after 3.2-..."
+  bool alive = true;
+  std::string detail;
+};
+
+struct RunOptions {
+  bool allow_motion = false;
+  bool allow_destructive = false;
+  Level max_level = Level::kInformative;      // run vectors up to this level
+  std::vector<std::string> filters;           // id globs to run ("3.3-*"); empty: all
+  std::vector<std::string> excludes;          // id globs to skip
+  std::map<std::string, std::string> known_issues;  // id -> reason
+  int repeat = 0;                             // re-run each failing vector N times
+  std::uint64_t seed = 0;
+  std::chrono::milliseconds pace{0};          // at least this long between commands (§4); 0: none
+  std::chrono::milliseconds turnaround_allowance{50};
+  std::function<bool()> stop;                 // SIGINT: stop after the current step
+  std::function<void(const VectorResult&)> on_result;  // progress and incremental reports
+};
+
+struct RunResult {
+  std::vector<VectorResult> vectors;
+  std::vector<LivenessResult> liveness;
+  bool aborted = false;
+  std::string abort_reason;
+  std::chrono::microseconds measured_turnaround{0};
+  // Traffic of the whole run, liveness checks included: for line-efficiency figures.
+  std::size_t bytes_sent = 0, bytes_received = 0;
+  std::chrono::microseconds silence_listened{0};  // time spent in silence windows
+  std::size_t silence_windows = 0;
+  std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
+  // 0: every must-level vector that ran passed; 1: otherwise; 3: the device
+  // could not be reached (the first liveness check failed).
+  int exit_code() const;
+};
+
+class Runner {
+ public:
+  Runner(Transport& transport, const Profile& profile, RunOptions options);
+  RunResult run(const std::vector<Vector>& vectors);
+
+ private:
+  struct Context;
+  Transport& transport_;
+  Profile profile_;
+  RunOptions options_;
+};
+
+}  // namespace sabus::harness

@@ -1,0 +1,217 @@
+// The runner: matchers, raw templates, modifiers, requirements, and whole
+// runs against the in-process reference controller (also with faults).
+#include <gtest/gtest.h>
+
+#include "sabus/harness/controller.hpp"
+#include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/runner.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/harness/vector_loader.hpp"
+
+namespace sabus::harness {
+namespace {
+
+FrameDescription status_reply() {
+  StatusReply r;
+  r.status.sat_name = "SBS 6";
+  r.status.azimuth = {fields::AzimuthReading::Kind::kPosition, -1525, 0};
+  r.status.az_status = 0x04;
+  return describe_frame(encode_reply(r, '2', 0x31).value());
+}
+
+FieldMatcher matcher(std::string field, FieldMatcher::Kind kind, std::vector<std::string> values, double lo = 0,
+                     double hi = 0) {
+  FieldMatcher m;
+  m.field = std::move(field);
+  m.kind = kind;
+  m.values = std::move(values);
+  m.low = lo;
+  m.high = hi;
+  return m;
+}
+
+TEST(Matchers, EqOneOfRegexRangeAny) {
+  const auto d = status_reply();
+  Captures c;
+  using K = FieldMatcher::Kind;
+  EXPECT_FALSE(check_field(d, matcher("az status", K::kEq, {"0x44"}), c));
+  EXPECT_FALSE(check_field(d, matcher("az status", K::kEq, {"68"}), c)) << "numbers in any base";
+  EXPECT_FALSE(check_field(d, matcher("sat name", K::kEq, {"SBS 6"}), c));
+  EXPECT_FALSE(check_field(d, matcher("sat name", K::kOneOf, {"X", "SBS 6"}), c));
+  EXPECT_FALSE(check_field(d, matcher("azimuth", K::kRegex, {"^-15"}), c));
+  EXPECT_FALSE(check_field(d, matcher("azimuth", K::kRange, {}, -152.6, -152.4), c));
+  EXPECT_FALSE(check_field(d, matcher("agc", K::kAny, {}), c));
+  auto fail = check_field(d, matcher("az status", K::kEq, {"0x57"}), c);
+  ASSERT_TRUE(fail);
+  EXPECT_EQ(*fail, "byte 36 az status: expected 0x57, got 0x44 (slow, ccw automatic movement in progress)");
+  EXPECT_TRUE(check_field(d, matcher("azimuth", K::kRange, {}, 0, 10), c));
+  EXPECT_TRUE(check_field(d, matcher("no such field", K::kAny, {}), c));
+}
+
+TEST(Matchers, CaptureKeepsTheText) {
+  const auto d = status_reply();
+  Captures c;
+  auto m = matcher("sat name", FieldMatcher::Kind::kAny, {});
+  m.capture = "$sat";
+  EXPECT_FALSE(check_field(d, m, c));
+  EXPECT_EQ(c["$sat"], "SBS 6");
+  auto raw = expand_raw_bytes("02 {addr} 32 48 {$sat} 20 20 20 20 20 03 {lrc}", '2', c);
+  ASSERT_TRUE(raw.ok()) << raw.error().message();
+  EXPECT_EQ(raw.value(), encode_frame({FrameKind::kCommand, '2', 0x32, {'H', 'S', 'B', 'S', ' ', '6', ' ', ' ', ' ', ' ', ' '}}));
+}
+
+TEST(RawTemplates, AddressAndLrc) {
+  auto b = expand_raw_bytes("02 {addr} 31 03 {lrc}", '2', {});
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(to_hex(b.value()), "02 32 31 03 02");
+  auto restart = expand_raw_bytes("02 02 {addr} 31 03 {lrc}", '2', {});
+  ASSERT_TRUE(restart.ok());
+  EXPECT_EQ(to_hex(restart.value()), "02 02 32 31 03 02") << "the LRC of the frame the last STX begins";
+  EXPECT_EQ(to_hex(expand_raw_bytes("41 42 02 {addr} 31 03 {lrc}", '2', {}).value()), "41 42 02 32 31 03 02");
+  EXPECT_FALSE(expand_raw_bytes("02 {nope} 03", '2', {}).ok());
+  EXPECT_FALSE(expand_raw_bytes("02 {addr 03", '2', {}).ok());
+  EXPECT_FALSE(expand_raw_bytes("0g", '2', {}).ok());
+}
+
+TEST(Modifiers, BadLrcAddressExtraByteTruncateReplace) {
+  const Bytes poll = encode_frame({FrameKind::kCommand, '2', 0x31, {}});
+  Modifiers m;
+  m.lrc_xor = 0x01;
+  EXPECT_EQ(apply_modifiers(poll, m).back(), 0x03);
+  Modifiers a;
+  a.address = '3';
+  EXPECT_EQ(apply_modifiers(poll, a), encode_frame({FrameKind::kCommand, '3', 0x31, {}}));
+  Modifiers e;
+  e.extra_data_bytes = 1;
+  EXPECT_EQ(apply_modifiers(poll, e), encode_frame({FrameKind::kCommand, '2', 0x31, {'0'}}));
+  Modifiers t;
+  t.truncate = 2;
+  EXPECT_EQ(apply_modifiers(poll, t).size(), 3u);
+  Modifiers r;
+  r.replace = {{2, 0x05}};
+  EXPECT_EQ(apply_modifiers(poll, r)[2], 0x05);
+}
+
+TEST(Requirements, AgainstTheProfile) {
+  Profile p;
+  EXPECT_FALSE(unmet_requirement(p, {"polarization", {"single_port", "dual_port"}, {}}));
+  auto why = unmet_requirement(p, {"polarization", {"circular"}, {}});
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("single_port"), std::string::npos);
+  EXPECT_FALSE(unmet_requirement(p, {"dvb_receiver", {"false"}, {}}));
+  EXPECT_FALSE(unmet_requirement(p, {"errata.implements_iess", {"false"}, {}}));
+  EXPECT_TRUE(unmet_requirement(p, {"no_such_key", {"x"}, {}}));
+}
+
+// ---- whole runs in-process ---------------------------------------------------------
+
+Vector vector_with(std::string id, std::vector<Step> steps, std::vector<std::string> tags = {}) {
+  Vector v;
+  v.id = std::move(id);
+  v.paragraph = "3.2";
+  v.steps = std::move(steps);
+  v.tags = std::move(tags);
+  return v;
+}
+
+Step send_raw(std::string hex, Expectation::Kind kind) {
+  Step s;
+  s.raw = RawBytes{std::move(hex), {}};
+  s.expect.kind = kind;
+  return s;
+}
+
+Step send_command(std::string command, std::string form, std::map<std::string, std::string> fields,
+                  Expectation::Kind kind) {
+  Step s;
+  s.command = StructuredCommand{std::move(command), std::move(form), std::move(fields), std::nullopt, {}};
+  s.expect.kind = kind;
+  return s;
+}
+
+RunResult run_in_process(const std::vector<Vector>& vectors, FaultSet faults = {}, RunOptions options = {}) {
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto t = make_in_process_transport({p}, faults);
+  Runner runner(*t, p, options);
+  return runner.run(vectors);
+}
+
+TEST(Runner, PassFailSkipAndLiveness) {
+  auto status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  status.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {"0x06"}));
+  auto silent = send_raw("02 {addr} 31 03 00", Expectation::Kind::kSilence);
+  auto wrong = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);
+  auto motion = send_command("jog", "E", {{"speed", "F"}, {"duration", "50"}}, Expectation::Kind::kAck);
+  RunResult r = run_in_process({vector_with("a-status", {status}), vector_with("b-bad-lrc", {silent}),
+                                vector_with("c-wrong", {wrong}), vector_with("d-motion", {motion}, {"motion"})});
+  ASSERT_EQ(r.vectors.size(), 4u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass);
+  EXPECT_EQ(r.vectors[1].verdict, Verdict::kPass);
+  EXPECT_EQ(r.vectors[2].verdict, Verdict::kFail);
+  EXPECT_NE(r.vectors[2].failures[0].find("expected a NAK reply, got ACK"), std::string::npos) << r.vectors[2].failures[0];
+  EXPECT_EQ(r.vectors[3].verdict, Verdict::kSkip);
+  EXPECT_NE(r.vectors[3].skip_reason.find("--allow-motion"), std::string::npos);
+  // before the first vector, after the silence vector, after the last
+  EXPECT_EQ(r.liveness.size(), 3u);
+  EXPECT_EQ(r.exit_code(), 1);
+  EXPECT_FALSE(r.vectors[0].transcript.empty());
+}
+
+TEST(Runner, MotionRunsWithPermissionAndEndsWithAStop) {
+  auto jog = send_command("jog", "W", {{"speed", "S"}, {"duration", "9999"}}, Expectation::Kind::kAck);
+  RunOptions o;
+  o.allow_motion = true;
+  RunResult r = run_in_process({vector_with("jog", {jog}, {"motion"})}, {}, o);
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass);
+  const auto& last = r.vectors[0].transcript;
+  bool stopped = false;
+  for (const auto& t : last)
+    if (t.sent && t.bytes.size() > 3 && t.bytes[2] == 0x33 && t.bytes[3] == 'X') stopped = true;
+  EXPECT_TRUE(stopped) << "an X stop follows every motion vector";
+}
+
+TEST(Runner, KnownIssuesAndUnexpectedPasses) {
+  auto nak = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);
+  auto ack = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  RunOptions o;
+  o.known_issues = {{"known-fail", "firmware 1.59 bug #12"}, {"fixed-now", "was broken"}};
+  RunResult r = run_in_process({vector_with("known-fail", {nak}), vector_with("fixed-now", {ack})}, {}, o);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kKnownFailure);
+  EXPECT_EQ(r.vectors[1].verdict, Verdict::kUnexpectedPass);
+  EXPECT_EQ(r.exit_code(), 1) << "an unexpected pass fails the run, so the list cannot rot";
+}
+
+TEST(Runner, AFaultIsCaughtAndReproduced) {
+  auto status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  RunOptions o;
+  o.repeat = 2;
+  RunResult r = run_in_process({vector_with("status", {status})}, {Fault::kShortStatus}, o);
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  EXPECT_NE(r.vectors[0].failures[0].find("length"), std::string::npos) << r.vectors[0].failures[0];
+  EXPECT_NE(r.vectors[0].failures.back().find("reproducible"), std::string::npos);
+}
+
+TEST(Runner, UnreachableDeviceExits3) {
+  RunResult r = run_in_process({}, {Fault::kCheckByteStxRestarts});  // never answers 02 32 31 03 02
+  EXPECT_EQ(r.exit_code(), 3);
+  EXPECT_TRUE(r.aborted);
+}
+
+TEST(Runner, PollUntilTheMoveEnds) {
+  auto move = send_command("auto_move", "2A", {{"azimuth", "-10.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
+  Step poll = send_command("status", "", {}, Expectation::Kind::kAck);
+  poll.kind = Step::Kind::kPoll;
+  poll.timeout = std::chrono::milliseconds(60000);
+  poll.until = {matcher("az status", FieldMatcher::Kind::kEq, {"0x50"}),
+                matcher("azimuth", FieldMatcher::Kind::kRange, {}, -10.05, -9.95)};
+  RunOptions o;
+  o.allow_motion = true;
+  RunResult r = run_in_process({vector_with("move-and-poll", {move, poll}, {"motion"})}, {}, o);
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass) << (r.vectors[0].failures.empty() ? "" : r.vectors[0].failures[0]);
+}
+
+}  // namespace
+}  // namespace sabus::harness
