@@ -150,27 +150,24 @@ struct Handlers {
     std::string name = field;
     while (!name.empty() && name.back() == ' ') name.pop_back();
     if (find_stored(c, name)) return auto_move_form(c, f, AutoMoveStored{' ', name});
-    const double az = m.az / 10.0, el = m.el / 10.0;
+    return move_az_el(c, m.az / 10.0, m.el / 10.0, "auto move (form 2A)");
+  }
+
+  // Forms 2A and 2B: both axes to a target, or NAK when it is outside the limits.
+  static Outcome move_az_el(C& c, double az, double el, std::string note) {
     if (!target_ok(c, AxisId::kAz, az) || !target_ok(c, AxisId::kEl, el))
       return nak(c, 0x32, NakRule::kTargetOutOfRange);
     take_remote_control(c);
     c.start_move(AxisId::kAz, az, true);
     c.start_move(AxisId::kEl, el, true);
     c.state_.displayed_sat.clear();
-    return status(c, 0x32, "auto move (form 2A)");
+    return status(c, 0x32, std::move(note));
   }
 
   static Outcome auto_move_form(C& c, const Frame&, const AutoMoveCounts& m) {
     if (c.profile_.az_sensor != AzSensor::kPulse && c.profile_.az_sensor != AzSensor::kResolver)
       return nak(c, 0x32, NakRule::kNoCountSensors);
-    const double az = c.position_of_counts(m.az), el = c.position_of_counts(m.el);
-    if (!target_ok(c, AxisId::kAz, az) || !target_ok(c, AxisId::kEl, el))
-      return nak(c, 0x32, NakRule::kTargetOutOfRange);
-    take_remote_control(c);
-    c.start_move(AxisId::kAz, az, true);
-    c.start_move(AxisId::kEl, el, true);
-    c.state_.displayed_sat.clear();
-    return status(c, 0x32, "auto move (form 2B)");
+    return move_az_el(c, c.position_of_counts(m.az), c.position_of_counts(m.el), "auto move (form 2B)");
   }
 
   static Outcome auto_move_form(C& c, const Frame&, const AutoMoveAxis& m) {
