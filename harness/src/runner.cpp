@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fnmatch.h>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -33,6 +34,11 @@ bool glob_match(const std::string& pattern, const std::string& id) {
 std::string range_text(const FieldDescription& f) {
   return f.first == f.last ? "byte " + std::to_string(f.first)
                            : "bytes " + std::to_string(f.first) + "-" + std::to_string(f.last);
+}
+
+std::string fmt_slot(std::uint8_t read_code, std::uint8_t index) {
+  const char* what = read_code == 0x3A ? "preset satellite" : read_code == 0x3C ? "TLE" : "signpost";
+  return std::string(what) + " " + std::to_string(index);
 }
 
 }  // namespace
@@ -138,6 +144,24 @@ Bytes apply_modifiers(Bytes f, const Modifiers& m) {
     if (index < f.size()) f[index] = byte;
   if (m.truncate > 0) f.resize(f.size() > m.truncate ? f.size() - m.truncate : 0);
   return f;
+}
+
+std::string StoredDataBackup::to_json() const {
+  auto slots = [](const std::map<std::uint8_t, Bytes>& m) {
+    std::string out = "{";
+    for (const auto& [i, d] : m) out += (out.size() > 1 ? ", " : "") + std::string("\"") + std::to_string(i) + "\": \"" + to_hex(d) + "\"";
+    return out + "}";
+  };
+  std::string names = "[";
+  for (const auto& n : store_names) {
+    names += (names.size() > 1 ? ", \"" : "\"");
+    for (char c : n) names += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    names += "\"";
+  }
+  names += "]";
+  return "{\n  \"store_names\": " + names + ",\n  \"presets\": " + slots(presets) + ",\n  \"tles\": " + slots(tles) +
+         ",\n  \"signposts\": " + slots(signposts) + ",\n  \"navigation\": \"" +
+         (navigation ? to_hex(*navigation) : std::string()) + "\"\n}\n";
 }
 
 std::string_view to_string(Verdict v) {
@@ -404,6 +428,102 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     return l.alive;
   };
 
+  // ---- backup and restore of stored data (bench safety) -------------------------
+  // One request and its single ACK reply's data, or nullopt (NAK, silence).
+  auto ask = [&](const Request& request) -> std::optional<Bytes> {
+    const Bytes cmd = encode_request(request, address);
+    const auto replies = ctx.exchange(cmd, {}, ctx.reply_timeout(cmd.size()));
+    if (replies.size() != 1 || replies[0].kind != FrameKind::kAck || is_offline_reply(replies[0])) return std::nullopt;
+    return replies[0].data;
+  };
+  auto slot_data = [&](const Request& request) -> std::optional<Bytes> {
+    auto data = ask(request);
+    if (!data || data->size() < 2 || (*data)[0] == fields::kEmptySlot) return std::nullopt;  // empty slot
+    return data;
+  };
+  auto take_backup = [&]() {
+    StoredDataBackup& b = result.backup;
+    std::vector<TranscriptEntry> scratch;
+    ctx.transcript = &scratch;
+    for (std::uint32_t i = 1; i <= 50; ++i) {
+      auto d = ask(QueryName{{i}});
+      if (!d) break;
+      const Frame f{FrameKind::kAck, address, 0x35, *d};
+      if (auto r = decode_reply(f); r && std::holds_alternative<QueryNameReply>(r.value()))
+        b.store_names.push_back(std::get<QueryNameReply>(r.value()).name);
+    }
+    for (std::uint8_t i = 1; i <= 20; ++i)
+      if (auto d = slot_data(ReadSatellite{{i}})) b.presets[i] = *d;
+    for (std::uint8_t i = 1; i <= 10; ++i)
+      if (auto d = slot_data(ReadTle{{i}})) b.tles[i] = *d;
+    for (std::uint8_t i = 1; i <= 20; ++i) {
+      auto d = ask(ReadSignpost{{i}});
+      if (!d) break;  // no DVB option: 44h is NAKed (E-23)
+      if (d->size() >= 2 && (*d)[0] != fields::kEmptySlot) b.signposts[i] = *d;
+    }
+    b.navigation = ask(NavigationQuery{});
+    b.taken = true;
+    ctx.transcript = nullptr;
+    if (!options_.backup_path.empty()) {
+      std::ofstream out(options_.backup_path);
+      out << b.to_json();
+    }
+  };
+  // Writes back what differs from the backup; says what cannot be restored.
+  auto restore_backup = [&]() {
+    const StoredDataBackup& b = result.backup;
+    std::vector<TranscriptEntry> scratch;
+    ctx.transcript = &scratch;
+    auto note = [&](std::string s) { result.restore_notes.push_back(std::move(s)); };
+    auto restore_slots = [&]<class Read, class Reply>(std::uint8_t code, std::uint8_t max, const auto& saved,
+                                                       std::type_identity<Read>, std::type_identity<Reply>, auto write) {
+      for (std::uint8_t i = 1; i <= max; ++i) {
+        const auto now = slot_data(Read{{i}});
+        const auto it = saved.find(i);
+        if (it == saved.end()) {
+          if (now) note(fmt_slot(code, i) + " was empty and now holds data; the protocol cannot clear a slot");
+          continue;
+        }
+        if (now && *now == it->second) continue;
+        const auto decoded = decode_reply(Frame{FrameKind::kAck, address, code, it->second});
+        if (!decoded || !std::holds_alternative<Reply>(decoded.value())) continue;
+        const bool ok = ask(write(i, std::get<Reply>(decoded.value()))).has_value();
+        note(fmt_slot(code, i) + (ok ? " restored" : " could not be restored (NAK or no reply)"));
+      }
+    };
+    restore_slots(0x3A, 20, b.presets, std::type_identity<ReadSatellite>{}, std::type_identity<SatelliteDataReply>{},
+                  [](std::uint8_t i, const SatelliteDataReply& r) { return Request{WriteSatellite{i, r.sat}}; });
+    restore_slots(0x3C, 10, b.tles, std::type_identity<ReadTle>{}, std::type_identity<TleDataReply>{},
+                  [](std::uint8_t i, const TleDataReply& r) { return Request{WriteTle{i, r.line1, r.line2}}; });
+    if (!b.signposts.empty())
+      restore_slots(0x44, 20, b.signposts, std::type_identity<ReadSignpost>{}, std::type_identity<SignpostDataReply>{},
+                    [](std::uint8_t i, const SignpostDataReply& r) { return Request{WriteSignpost{i, r.signpost}}; });
+    const auto nav = ask(NavigationQuery{});
+    if (b.navigation && nav && *nav != *b.navigation) {
+      const auto d = decode_reply(Frame{FrameKind::kAck, address, 0x45, *b.navigation});
+      const auto* n = d ? std::get_if<NavigationDataReply>(&d.value()) : nullptr;
+      if (n && n->latitude && n->longitude) {
+        // §3.23 takes sddmm / sdddmm; writing it deletes the STORE list.
+        auto ddmm = [](std::int32_t minutes) { return (minutes < 0 ? -1 : 1) * (std::abs(minutes) / 60 * 100 + std::abs(minutes) % 60); };
+        const bool ok = ask(WriteNavigation{ddmm(*n->latitude), ddmm(*n->longitude), n->heading.value_or(0), ""}).has_value();
+        note(std::string("navigation data ") + (ok ? "restored (this deletes the STORE list, §3.23)" : "could not be restored"));
+      } else {
+        note("navigation data changed and the backup holds no position to write back");
+      }
+    }
+    std::vector<std::string> names;
+    for (std::uint32_t i = 1; i <= 50; ++i) {
+      auto d = ask(QueryName{{i}});
+      if (!d) break;
+      if (auto r = decode_reply(Frame{FrameKind::kAck, address, 0x35, *d}); r && std::holds_alternative<QueryNameReply>(r.value()))
+        names.push_back(std::get<QueryNameReply>(r.value()).name);
+    }
+    for (const auto& n : b.store_names)
+      if (std::find(names.begin(), names.end(), n) == names.end())
+        note("STORE entry \"" + n + "\" is gone; it can only be stored again at its satellite (42h stores the current position)");
+    ctx.transcript = nullptr;
+  };
+
   // An 'X' stop after every vector that can move the antenna (§3.4).
   auto stop_motion = [&]() {
     const Bytes x = encode_request(Jog{{'X', 'S', 0}}, address);
@@ -458,6 +578,15 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     if (r.verdict != Verdict::kSkip && v.has_tag("parity") && !transport_.can_send_parity_errors())
       skip("sends parity errors: the port is a true 7E1 port (--line 7E1)");
 
+    if (r.verdict != Verdict::kSkip && v.has_tag("destructive") && !result.backup.taken) {
+      try {
+        take_backup();
+      } catch (const TransportLost& e) {
+        result.aborted = true;
+        result.abort_reason = std::string("device lost while backing up stored data: ") + e.what();
+        break;
+      }
+    }
     if (r.verdict != Verdict::kSkip) {
       const auto attempt = [&](std::vector<TranscriptEntry>& transcript) {
         std::vector<std::string> failures;
@@ -526,6 +655,13 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
         result.abort_reason = "no answer to three liveness probes";
         break;
       }
+    }
+  }
+  if (result.backup.taken) {
+    try {
+      restore_backup();
+    } catch (const TransportLost& e) {
+      result.restore_notes.push_back(std::string("stored data not restored, the device is lost: ") + e.what());
     }
   }
   if (!result.aborted || result.abort_reason == "stopped by SIGINT") {

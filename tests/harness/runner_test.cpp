@@ -193,6 +193,37 @@ TEST(Runner, AFaultIsCaughtAndReproduced) {
   EXPECT_NE(r.vectors[0].failures.back().find("reproducible"), std::string::npos);
 }
 
+TEST(Runner, StoredDataIsBackedUpAndRestored) {
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto t = make_in_process_transport({p}, {});
+  Controller& c = t->bus().controller(0);
+  const auto preset1 = c.state().presets[0];
+  ASSERT_TRUE(preset1.has_value());
+  auto write1 = send_command("write_satellite", "", {{"index", "1"}, {"sat name", "OVERWRITE"}}, Expectation::Kind::kAck);
+  auto write5 = send_command("write_satellite", "", {{"index", "5"}, {"sat name", "NEW"}}, Expectation::Kind::kAck);
+  auto nav = send_command("write_navigation", "", {{"latitude", "1000"}, {"longitude", "1000"}}, Expectation::Kind::kAck);
+  RunOptions o;
+  o.allow_destructive = true;
+  Runner runner(*t, p, o);
+  RunResult r = runner.run({vector_with("3.10-overwrite", {write1, write5, nav}, {"destructive"})});
+  ASSERT_EQ(r.vectors[0].verdict, Verdict::kPass) << r.vectors[0].failures[0];
+  EXPECT_TRUE(r.backup.taken);
+  EXPECT_EQ(r.backup.store_names.size(), p.store.size());
+  EXPECT_EQ(c.state().presets[0]->data, preset1->data) << "preset 1 written back";
+  EXPECT_EQ(c.state().navigation.latitude_min, p.navigation.latitude_min) << "navigation data written back";
+  std::string notes;
+  for (const auto& n : r.restore_notes) notes += n + "\n";
+  EXPECT_NE(notes.find("preset satellite 5 was empty"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("STORE entry"), std::string::npos) << "the STORE list cannot be rebuilt remotely:\n" << notes;
+  EXPECT_NE(r.backup.to_json().find("\"presets\""), std::string::npos);
+}
+
+TEST(Runner, NoBackupWithoutDestructiveVectors) {
+  RunResult r = run_in_process({vector_with("status", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck)})});
+  EXPECT_FALSE(r.backup.taken);
+  EXPECT_TRUE(r.restore_notes.empty());
+}
+
 TEST(Runner, UnreachableDeviceExits3) {
   RunResult r = run_in_process({}, {Fault::kCheckByteStxRestarts});  // never answers 02 32 31 03 02
   EXPECT_EQ(r.exit_code(), 3);

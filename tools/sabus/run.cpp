@@ -104,6 +104,7 @@ class JsonReport {
     nlohmann::json live = nlohmann::json::array();
     for (const auto& l : run.liveness) live.push_back({{"when", l.when}, {"alive", l.alive}, {"detail", l.detail}});
     doc_["liveness"] = live;
+    doc_["restore"] = run.restore_notes;
     doc_["traffic"] = {{"bytes_sent", run.bytes_sent},
                        {"bytes_received", run.bytes_received},
                        {"silence_windows", run.silence_windows},
@@ -276,6 +277,10 @@ int run_run(RunCliOptions o) {
     if (json_path.empty()) json_path = (fs::path(o.report_dir) / "run.json").string();
     if (junit_path.empty()) junit_path = (fs::path(o.report_dir) / "junit.xml").string();
   }
+  // The stored-data backup (taken before the first destructive vector).
+  ro.backup_path = !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
+                   : !json_path.empty()  ? json_path + ".backup.json"
+                                         : "sabus-backup.json";
   JsonReport json(json_path, {{"device", transport->describe()},
                               {"profile", profile.name},
                               {"address", profile.address},
@@ -304,6 +309,8 @@ int run_run(RunCliOptions o) {
   if (tty) std::cout << "\r\033[K";
   for (const auto& l : run.liveness)
     if (!l.alive) std::cout << fmt::format("LIVENESS {}: {}\n", l.when, l.detail);
+  if (run.backup.taken) std::cout << "stored data backed up to " << ro.backup_path << "\n";
+  for (const auto& n : run.restore_notes) std::cout << "RESTORE " << n << "\n";
   if (run.aborted) std::cout << "ABORTED: " << run.abort_reason << "\n";
   std::cout << fmt::format("{} passed, {} failed, {} skipped", run.passed, run.failed + run.unexpected, run.skipped);
   if (run.known) std::cout << fmt::format(", {} known failures", run.known);

@@ -79,6 +79,19 @@ struct RunOptions {
   std::chrono::milliseconds turnaround_allowance{50};
   std::function<bool()> stop;                 // SIGINT: stop after the current step
   std::function<void(const VectorResult&)> on_result;  // progress and incremental reports
+  std::string backup_path;                    // where the stored-data backup is written ("" : not written)
+};
+
+// The controller's stored data as read back through the protocol before the
+// first destructive vector: the STORE list's names (35h), the preset
+// satellites (3Ah), TLEs (3Ch), signposts (44h, with the DVB option) and the
+// navigation data (45h). Slots hold the reply's data bytes.
+struct StoredDataBackup {
+  bool taken = false;
+  std::vector<std::string> store_names;
+  std::map<std::uint8_t, Bytes> presets, tles, signposts;
+  std::optional<Bytes> navigation;
+  std::string to_json() const;
 };
 
 struct RunResult {
@@ -91,6 +104,8 @@ struct RunResult {
   std::size_t bytes_sent = 0, bytes_received = 0;
   std::chrono::microseconds silence_listened{0};  // time spent in silence windows
   std::size_t silence_windows = 0;
+  StoredDataBackup backup;
+  std::vector<std::string> restore_notes;  // what was restored, and what could not be
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
   // 0: every must-level vector that ran passed; 1: otherwise; 3: the device
   // could not be reached (the first liveness check failed).
