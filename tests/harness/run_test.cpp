@@ -72,6 +72,8 @@ TEST(Run, UnreachableDeviceExits3AndUsageExits2) {
   EXPECT_EQ(Process({SABUS_BIN, "run", "--port", "/nonexistent/tty"}).wait_exit(), 3);
   EXPECT_EQ(Process({SABUS_BIN, "run", "--level", "sometimes"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "run", "--sim", "--fault", "no-such-fault"}).wait_exit(), 2);
+  EXPECT_EQ(Process({SABUS_BIN, "run", "--tcp", "127.0.0.1:abc"}).wait_exit(), 2);
+  EXPECT_EQ(Process({SABUS_BIN, "run", "--tcp", "127.0.0.1:70000"}).wait_exit(), 2);
 }
 
 }  // namespace

@@ -147,6 +147,7 @@ TEST(Sim, UsageErrorsExit2) {
   EXPECT_EQ(Process({SABUS_BIN, "sim", "--pty", "--link", temp_path("x"), "--fault", "no-such-fault"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "sim", "--pty", "--link", temp_path("y"), "--profile", "/nonexistent.yaml"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "sim"}).wait_exit(), 2);
+  EXPECT_EQ(Process({SABUS_BIN, "sim", "--tcp", "127.0.0.1:port"}).wait_exit(), 2);
   const std::string bad = temp_path("bad.yaml");
   std::ofstream(bad) << "address: 50\nnot_a_key: 1\n";
   EXPECT_EQ(Process({SABUS_BIN, "sim", "--pty", "--link", temp_path("z"), "--profile", bad}).wait_exit(), 2);

@@ -3,7 +3,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <charconv>
+#include <cstdint>
 #include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
 
 namespace sabus::cli {
 
@@ -11,6 +16,21 @@ namespace sabus::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitUsage = 2;
+
+// "HOST:PORT" as --tcp takes it (port 0-65535); nullopt when it is not.
+struct HostPort {
+  std::string host;
+  std::uint16_t port = 0;
+};
+inline std::optional<HostPort> parse_host_port(std::string_view text) {
+  const auto colon = text.rfind(':');
+  if (colon == std::string_view::npos || colon == 0) return std::nullopt;
+  const std::string_view digits = text.substr(colon + 1);
+  unsigned port = 0;
+  auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), port);
+  if (digits.empty() || ec != std::errc{} || end != digits.data() + digits.size() || port > 65535) return std::nullopt;
+  return HostPort{std::string(text.substr(0, colon)), static_cast<std::uint16_t>(port)};
+}
 
 struct Command {
   CLI::App* app;            // the subcommand

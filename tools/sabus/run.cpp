@@ -226,6 +226,11 @@ int run_run(RunCliOptions o) {
     faults.set(*f);
   }
 
+  std::optional<HostPort> tcp;
+  if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) {
+    std::cerr << "sabus run: --tcp HOST:PORT, with a port 0-65535\n";
+    return kExitUsage;
+  }
   std::unique_ptr<Transport> transport;
   try {
     if (o.sim) {
@@ -237,14 +242,7 @@ int run_run(RunCliOptions o) {
                                         o.line == "7E1" ? LineMode::kTrue7E1 : LineMode::kSoftwareParity8N1, &note);
       if (!note.empty()) std::cerr << "sabus run: " << note << "\n";
     } else {
-      const auto colon = o.tcp.rfind(':');
-      if (colon == std::string::npos) {
-        std::cerr << "sabus run: --tcp HOST:PORT\n";
-        return kExitUsage;
-      }
-      transport = make_tcp_transport(o.tcp.substr(0, colon),
-                                     static_cast<std::uint16_t>(std::stoi(o.tcp.substr(colon + 1))),
-                                     std::chrono::seconds(5));
+      transport = make_tcp_transport(tcp->host, tcp->port, std::chrono::seconds(5));
     }
   } catch (const std::exception& e) {
     std::cerr << "sabus run: cannot reach the device: " << e.what() << "\n";

@@ -141,21 +141,19 @@ int run_sim(const SimOptions& o) {
     serve_options.log = &log_file;
   }
 
+  std::optional<HostPort> tcp;
+  if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) {
+    std::cerr << "sabus sim: --tcp HOST:PORT, with a port 0-65535\n";
+    return kExitUsage;
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
   int status = kExitOk;
   try {
-    if (!o.tcp.empty()) {
-      const auto colon = o.tcp.rfind(':');
-      if (colon == std::string::npos) {
-        std::cerr << "sabus sim: --tcp HOST:PORT\n";
-        return kExitUsage;
-      }
-      const std::string host = o.tcp.substr(0, colon);
-      const int port = std::stoi(o.tcp.substr(colon + 1));
-      auto listener = TcpListener::listen(host, static_cast<std::uint16_t>(port));
-      std::cout << "READY tcp " << host << ":" << listener->port() << std::endl;
+    if (tcp) {
+      auto listener = TcpListener::listen(tcp->host, tcp->port);
+      std::cout << "READY tcp " << tcp->host << ":" << listener->port() << std::endl;
       status = serve_tcp(*listener, bus, serve_options, g_stop);
     } else if (o.pty) {
       auto line = PtyLine::create(o.link);
@@ -172,9 +170,6 @@ int run_sim(const SimOptions& o) {
   } catch (const LineError& e) {
     std::cerr << "sabus sim: " << e.what() << "\n";
     status = kExitFailed;
-  } catch (const std::invalid_argument&) {
-    std::cerr << "sabus sim: --tcp HOST:PORT needs a port number\n";
-    return kExitUsage;
   }
   if (!o.state_file.empty()) {
     std::string error;
