@@ -441,17 +441,22 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     if (!data || data->size() < 2 || (*data)[0] == fields::kEmptySlot) return std::nullopt;  // empty slot
     return data;
   };
+  // The STORE list's names, read with 35h from index 1 until the NAK (§3.6).
+  auto read_store_names = [&]() {
+    std::vector<std::string> names;
+    for (std::uint32_t i = 1; i <= 50; ++i) {
+      auto d = ask(QueryName{{i}});
+      if (!d) break;
+      if (auto r = decode_reply(Frame{FrameKind::kAck, address, 0x35, *d}); r && std::holds_alternative<QueryNameReply>(r.value()))
+        names.push_back(std::get<QueryNameReply>(r.value()).name);
+    }
+    return names;
+  };
   auto take_backup = [&]() {
     StoredDataBackup& b = result.backup;
     std::vector<TranscriptEntry> scratch;
     ctx.transcript = &scratch;
-    for (std::uint32_t i = 1; i <= 50; ++i) {
-      auto d = ask(QueryName{{i}});
-      if (!d) break;
-      const Frame f{FrameKind::kAck, address, 0x35, *d};
-      if (auto r = decode_reply(f); r && std::holds_alternative<QueryNameReply>(r.value()))
-        b.store_names.push_back(std::get<QueryNameReply>(r.value()).name);
-    }
+    b.store_names = read_store_names();
     for (std::uint8_t i = 1; i <= 20; ++i)
       if (auto d = slot_data(ReadSatellite{{i}})) b.presets[i] = *d;
     for (std::uint8_t i = 1; i <= 10; ++i)
@@ -511,13 +516,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
         note("navigation data changed and the backup holds no position to write back");
       }
     }
-    std::vector<std::string> names;
-    for (std::uint32_t i = 1; i <= 50; ++i) {
-      auto d = ask(QueryName{{i}});
-      if (!d) break;
-      if (auto r = decode_reply(Frame{FrameKind::kAck, address, 0x35, *d}); r && std::holds_alternative<QueryNameReply>(r.value()))
-        names.push_back(std::get<QueryNameReply>(r.value()).name);
-    }
+    const std::vector<std::string> names = read_store_names();
     for (const auto& n : b.store_names)
       if (std::find(names.begin(), names.end(), n) == names.end())
         note("STORE entry \"" + n + "\" is gone; it can only be stored again at its satellite (42h stores the current position)");
