@@ -343,7 +343,9 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     const bool silence = s.expect.kind == Expectation::Kind::kSilence;
     const auto window = silence ? ctx.silence_window(wire.size()) : ctx.reply_timeout(wire.size());
     const TimePoint listen_start = transport_.now();
+    (void)transport_.take_nak_rules();  // only this exchange's rules count
     const auto replies = ctx.exchange(wire, s.modifiers, window);
+    const auto nak_rules = transport_.take_nak_rules();
     if (silence) {
       ctx.silence_listened += std::chrono::duration_cast<std::chrono::microseconds>(transport_.now() - listen_start) -
                               std::chrono::duration_cast<std::chrono::microseconds>(wire_time(wire.size(), transport_.baud()));
@@ -357,6 +359,13 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     const std::uint8_t sent_command = start + 1 < wire.size() ? wire[start + 1] : 0;
     const std::uint8_t want_address = s.command && s.command->address ? *s.command->address : sent_address;
     if (auto e = check_kind(s.expect, replies, want_address, sent_command)) return e;
+    if (!s.expect.nak_rule.empty() && nak_rules &&
+        std::find(nak_rules->begin(), nak_rules->end(), s.expect.nak_rule) == nak_rules->end()) {
+      std::string fired;
+      for (const auto& r : *nak_rules) fired += (fired.empty() ? "" : ", ") + r;
+      return "expected a NAK by rule " + s.expect.nak_rule + ", the reference controller applied " +
+             (fired.empty() ? std::string("none") : fired);
+    }
     if (replies.empty()) return std::nullopt;
     const Bytes reply = encode_frame(replies[0]);
     if (s.expect.bytes) {

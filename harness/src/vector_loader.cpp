@@ -21,6 +21,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -644,9 +645,19 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     e.kind = to_reply_kind(v, at);
     return e;
   }
-  MapReader r(v, at, {"reply", "bytes", "fields"});
+  MapReader r(v, at, {"reply", "bytes", "fields", "rule"});
   require_keys(r, at, {"reply"}, "expect");
   r.read("reply", e.kind, to_reply_kind);
+  r.with("rule", [&](const YAML::Node& n, const At& a) {
+    if (e.kind != Expectation::Kind::kNak) fail(a, "only a nak reply names a rule");
+    const std::string& s = scalar(n, a, "a NAK rule");
+    if (!find_nak_rule(s)) {
+      std::string names;
+      for (NakRule rule : all_nak_rules()) names += (names.empty() ? "" : ", ") + std::string(name(rule));
+      fail(a, quoted_clip(s) + " is not a NAK rule of harness/include/sabus/harness/nak_rules.hpp: " + names);
+    }
+    e.nak_rule = s;
+  });
   if (e.kind == Expectation::Kind::kSilence)
     for (auto k : {"bytes", "fields"})
       if (r.has(k)) fail(r.at(k), std::string("silence has no ") + k);
