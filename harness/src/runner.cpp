@@ -180,7 +180,7 @@ bool VectorResult::counts_as_failure() const {
 }
 
 int RunResult::exit_code() const {
-  if (!liveness.empty() && !liveness.front().alive) return 3;
+  if (!liveness.empty() && !liveness.front().alive) return liveness.front().heard ? 1 : 3;
   if (aborted) return 1;
   for (const auto& v : vectors)
     if (v.counts_as_failure()) return 1;
@@ -413,9 +413,10 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
 
   // Liveness: a device type query and a status poll (tlsfuzzer's sanity runs).
   auto liveness = [&](const std::string& when) {
-    LivenessResult l{when, true, ""};
+    LivenessResult l{when, true, false, ""};
     std::vector<TranscriptEntry> scratch;
     ctx.transcript = &scratch;
+    const std::size_t received_before = ctx.bytes_received;
     for (std::uint8_t code : {std::uint8_t{0x30}, std::uint8_t{0x31}}) {
       const Bytes cmd = encode_frame({FrameKind::kCommand, address, code, {}});
       try {
@@ -433,6 +434,8 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
       }
     }
     ctx.transcript = nullptr;
+    l.heard = ctx.bytes_received > received_before;
+    if (!l.alive && l.heard) l.detail += " (the device sends bytes, but not the reply the spec asks for)";
     result.liveness.push_back(l);
     return l.alive;
   };
@@ -542,7 +545,9 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   };
 
   try {
-    if (!liveness("before the first vector")) {
+    // A device that sends bytes is reachable, however wrong they are: its
+    // vectors run and say what is wrong. Only silence ends the run here.
+    if (!liveness("before the first vector") && !result.liveness.back().heard) {
       result.aborted = true;
       result.abort_reason = "the device did not answer: " + result.liveness.back().detail;
       return result;

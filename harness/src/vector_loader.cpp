@@ -294,18 +294,32 @@ std::optional<Effects> effects_of(const FrameSketch& s) {
 // Requirements: profile keys and values, as the profile loader reads them
 // ---------------------------------------------------------------------------
 
-std::optional<std::string> scalar_at(const YAML::Node& node, std::span<const std::string> path) {
-  if (path.empty()) return node.IsScalar() ? std::optional<std::string>(node.Scalar()) : std::nullopt;
+// The values at a key path: a scalar's text, or each element of a list of
+// scalars (bus_peers); nullopt when the path leads nowhere or to a map.
+std::optional<std::vector<std::string>> values_at(const YAML::Node& node, std::span<const std::string> path) {
+  if (path.empty()) {
+    if (node.IsScalar()) return std::vector<std::string>{node.Scalar()};
+    if (!node.IsSequence()) return std::nullopt;
+    std::vector<std::string> out;
+    for (const auto& e : node) {
+      if (!e.IsScalar()) return std::nullopt;
+      out.push_back(e.Scalar());
+    }
+    return out;
+  }
   if (!node.IsMap()) return std::nullopt;
   const YAML::Node child = node[path.front()];  // const lookup: never inserts
   if (!child.IsDefined()) return std::nullopt;
-  return scalar_at(child, path.subspan(1));
+  return values_at(child, path.subspan(1));
 }
 
-// A key's value as to_yaml writes it: the text requirements compare.
+// A key's value as to_yaml writes it: the text requirements compare. A list
+// key (bus_peers) is required to contain the value, so one value is given.
 std::optional<std::string> written_value(const Profile& profile, const std::vector<std::string>& path) {
   const YAML::Node root = YAML::Load(to_yaml(profile));
-  return scalar_at(root, path);
+  const auto values = values_at(root, path);
+  if (!values || values->size() != 1) return std::nullopt;
+  return values->front();
 }
 
 bool is_plain_word(std::string_view s) {
@@ -1405,12 +1419,17 @@ std::optional<std::string> unmet_requirement(const Profile& profile, const Requi
   try {
     // The profile as YAML is the one place its keys and value spellings live.
     const YAML::Node root = YAML::Load(to_yaml(profile));
-    const auto value = scalar_at(root, split(r.key, '.'));
-    if (!value) return "the profile has no key " + r.key;
-    if (contains(r.values, *value)) return std::nullopt;
-    std::string wanted;
+    // A scalar key holds one of the values; a list key (bus_peers) holds one
+    // of them among its elements.
+    const auto values = values_at(root, split(r.key, '.'));
+    if (!values) return "the profile has no key " + r.key;
+    for (const auto& v : *values)
+      if (contains(r.values, v)) return std::nullopt;
+    std::string wanted, has;
     for (const auto& w : r.values) wanted += (wanted.empty() ? "" : " or ") + w;
-    return r.key + " is " + *value + ", needs " + wanted;
+    for (const auto& v : *values) has += (has.empty() ? "" : ", ") + v;
+    if (values->size() != 1) return r.key + " is [" + has + "], needs one of " + wanted;
+    return r.key + " is " + has + ", needs " + wanted;
   } catch (const YAML::Exception& e) {
     return std::string("cannot read the profile: ") + e.what();
   }

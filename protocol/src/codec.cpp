@@ -314,6 +314,32 @@ std::string_view form_of(const Request& r) {
       r);
 }
 
+CommandForm classify_command(ByteView b) {
+  CommandForm out;
+  // The frame is the one the last STX begins; the final byte is a check
+  // byte, which may itself be 02h.
+  std::size_t start = b.empty() ? 0 : b.size() - 1;
+  while (start > 0 && b[start - 1] != STX) --start;
+  if (start == 0 || start + 1 >= b.size()) return out;
+  out.info = find_command(b[start + 1]);
+  if (!out.info) return out;
+  if (out.info->forms.size() == 1) {
+    out.form = &out.info->forms.front();
+    return out;
+  }
+  if (auto frame = decode_frame(ByteView(b).subspan(start - 1)); frame) {
+    if (auto request = decode_request(frame.value()); request) {
+      out.form = out.info->form_by_id(form_of(request.value()));
+      return out;
+    }
+  }
+  if (out.info->form_selector_offset) {
+    const std::size_t at = start - 1 + *out.info->form_selector_offset;
+    if (at < b.size()) out.form = out.info->form_for_selector(b[at]);
+  }
+  return out;
+}
+
 Bytes encode_request_data(const Request& r) {
   return std::visit([](const auto& m) { return encode_request_alt(m); }, r);
 }

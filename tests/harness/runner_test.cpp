@@ -225,9 +225,31 @@ TEST(Runner, NoBackupWithoutDestructiveVectors) {
 }
 
 TEST(Runner, UnreachableDeviceExits3) {
-  RunResult r = run_in_process({}, {Fault::kCheckByteStxRestarts});  // never answers 02 32 31 03 02
+  // The only controller on the line is at 51: nothing answers the runner's 50.
+  Profile device = load_profile_file(default_profile_path()).profile.value();
+  const Profile expected = device;
+  device.address = 51;
+  auto t = make_in_process_transport({device});
+  RunResult r = Runner(*t, expected, {}).run({vector_with("status", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck)})});
   EXPECT_EQ(r.exit_code(), 3);
   EXPECT_TRUE(r.aborted);
+  EXPECT_TRUE(r.vectors.empty());
+  ASSERT_FALSE(r.liveness.empty());
+  EXPECT_FALSE(r.liveness.front().heard);
+}
+
+TEST(Runner, DeviceThatSendsBytesIsReachableAndItsVectorsRun) {
+  // The status poll 02 32 31 03 02 is never answered (its check byte is taken
+  // as a new STX), but the device type query is: the device is there, broken.
+  RunResult r = run_in_process({vector_with("status", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck)})},
+                               {Fault::kCheckByteStxRestarts});
+  EXPECT_EQ(r.exit_code(), 1);
+  EXPECT_FALSE(r.aborted);
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  ASSERT_FALSE(r.liveness.empty());
+  EXPECT_FALSE(r.liveness.front().alive);
+  EXPECT_TRUE(r.liveness.front().heard);
 }
 
 TEST(Runner, PollUntilTheMoveEnds) {

@@ -234,7 +234,7 @@ int run_run(RunCliOptions o) {
   std::unique_ptr<Transport> transport;
   try {
     if (o.sim) {
-      transport = make_in_process_transport({profile}, faults);
+      transport = make_in_process_transport(bus_of(profile), faults);  // §1 multi-drop: bus_peers
     } else if (!o.port.empty()) {
       std::string note;
       const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);

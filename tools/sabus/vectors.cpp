@@ -1,7 +1,8 @@
-// `sabus vectors lint|list`: checks the conformance vector suite (vectors/*.yaml)
-// and lists its vectors. The loader and linter are sabus::vectors
+// `sabus vectors lint|list|coverage`: checks the conformance vector suite
+// (vectors/*.yaml), lists its vectors and prints its coverage matrix. The loader and linter are sabus::vectors
 // (vector_loader.hpp); this file only prints.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <iostream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <set>
 
 #include "commands.hpp"
+#include "sabus/harness/coverage.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
 namespace sabus::cli {
@@ -21,6 +23,7 @@ using harness::Vector;
 struct VectorsOptions {
   std::vector<std::string> paths;
   bool json = false;
+  bool missing_only = false;
 };
 
 LoadResult load(const VectorsOptions& o) {
@@ -89,6 +92,49 @@ int run_list(const VectorsOptions& o) {
   return r.errors.empty() ? kExitOk : kExitFailed;
 }
 
+// The matrix command x form x path, one line a cell with its vector ids;
+// exit 1 when a cell the spec defines has none (CoverageMatrix::missing).
+int run_coverage(const VectorsOptions& o) {
+  LoadResult r = load(o);
+  for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  if (!r.errors.empty()) return kExitUsage;
+  const harness::CoverageMatrix m = harness::coverage(r.files);
+  const auto missing = m.missing();
+  if (o.json) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& row : m.rows) {
+      nlohmann::json cells = nlohmann::json::object();
+      for (auto p : harness::kCoveragePaths) cells[std::string(to_string(p))] = row.ids[static_cast<std::size_t>(p)];
+      rows.push_back({{"command", fmt::format("{:02X}h", row.command->code)},
+                      {"key", row.command->key},
+                      {"paragraph", row.command->paragraph},
+                      {"form", row.form ? std::string(row.form->id) : std::string()},
+                      {"cells", cells}});
+    }
+    std::cout << nlohmann::json{{"rows", rows}, {"unknown_codes", {{"nak", m.unknown_codes}}}, {"missing", missing}}.dump(2)
+              << "\n";
+  } else {
+    std::size_t covered = 0, cells = 0;
+    for (const auto& row : m.rows) {
+      for (auto p : harness::kCoveragePaths) {
+        const auto& ids = row.ids[static_cast<std::size_t>(p)];
+        ++cells;
+        covered += !ids.empty();
+        if (o.missing_only) continue;
+        std::cout << fmt::format("{:<36} §{:<5} {:<8} {:>3}  {}\n", harness::row_label(row), row.command->paragraph,
+                                 to_string(p), ids.size(), ids.empty() ? "-" : fmt::format("{}", fmt::join(ids, " ")));
+      }
+    }
+    if (!o.missing_only)
+      std::cout << fmt::format("{:<36} §{:<5} {:<8} {:>3}  {}\n", "other codes", "3", "nak", m.unknown_codes.size(),
+                               m.unknown_codes.empty() ? "-" : fmt::format("{}", fmt::join(m.unknown_codes, " ")));
+    for (const auto& line : missing) std::cout << "MISSING " << line << "\n";
+    std::cout << fmt::format("{} of {} cells covered; {} required cell(s) without a vector\n", covered, cells,
+                             missing.size());
+  }
+  return missing.empty() ? kExitOk : kExitFailed;
+}
+
 }  // namespace
 
 Command add_vectors_command(CLI::App& app) {
@@ -101,7 +147,17 @@ Command add_vectors_command(CLI::App& app) {
   CLI::App* list = sub->add_subcommand("list", "List the vectors: id, paragraph, level, tags");
   list->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   list->add_flag("--json", opts->json, "Print JSON");
-  return {sub, [opts, lint] { return lint->parsed() ? run_lint(*opts) : run_list(*opts); }};
+  CLI::App* cov = sub->add_subcommand(
+      "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids; exit 1 when a cell "
+                  "the spec defines has no vector");
+  cov->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
+  cov->add_flag("--json", opts->json, "Print JSON");
+  cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
+  return {sub, [opts, lint, cov] {
+            if (lint->parsed()) return run_lint(*opts);
+            if (cov->parsed()) return run_coverage(*opts);
+            return run_list(*opts);
+          }};
 }
 
 }  // namespace sabus::cli

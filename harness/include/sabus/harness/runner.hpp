@@ -63,6 +63,7 @@ struct VectorResult {
 struct LivenessResult {
   std::string when;   // "before the first vector", "after 3.2-..."
   bool alive = true;
+  bool heard = false;   // some bytes came back: reachable, if not alive
   std::string detail;
 };
 
@@ -107,8 +108,9 @@ struct RunResult {
   StoredDataBackup backup;
   std::vector<std::string> restore_notes;  // what was restored, and what could not be
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
-  // 0: every must-level vector that ran passed; 1: otherwise; 3: the device
-  // could not be reached (the first liveness check failed).
+  // 0: every must-level vector that ran passed; 1: otherwise (a liveness
+  // check failed on a device that sends bytes, too); 3: the device could not
+  // be reached (nothing came back to the first liveness check).
   int exit_code() const;
 };
 
