@@ -193,6 +193,7 @@ struct Runner::Context : ReceiverSink {
   Runner& runner;
   Captures captures;
   std::vector<TranscriptEntry>* transcript = nullptr;
+  std::string expect;  // the expected path of the step being sent (TranscriptEntry::expect)
   TimePoint start;
   TimePoint last_send{};
   TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
@@ -210,7 +211,7 @@ struct Runner::Context : ReceiverSink {
     return std::chrono::duration<double, std::milli>(runner.transport_.now() - start).count();
   }
   void record(bool sent, const Bytes& bytes, std::string note) {
-    if (transcript) transcript->push_back({t_ms(), sent, bytes, std::move(note)});
+    if (transcript) transcript->push_back({t_ms(), sent, bytes, std::move(note), sent ? expect : std::string()});
   }
   Parity parity() const { return receiver_parity(runner.transport_); }
 
@@ -315,7 +316,26 @@ std::optional<std::string> check_kind(const Expectation& e, const std::vector<Fr
   return std::nullopt;
 }
 
+std::string expect_name(Expectation::Kind k) {
+  switch (k) {
+    case Expectation::Kind::kAck: return "ack";
+    case Expectation::Kind::kNak: return "nak";
+    case Expectation::Kind::kOffline: return "offline";
+    case Expectation::Kind::kSilence: return "silence";
+    case Expectation::Kind::kAny: return "any";
+  }
+  return "any";
+}
+
 }  // namespace
+
+bool is_selected(const RunOptions& options, const std::string& id) {
+  bool selected = options.filters.empty();
+  for (const auto& f : options.filters) selected |= glob_match(f, id);
+  for (const auto& x : options.excludes)
+    if (glob_match(x, id)) selected = false;
+  return selected;
+}
 
 Runner::Runner(Transport& transport, const Profile& profile, RunOptions options)
     : transport_(transport), profile_(profile), options_(std::move(options)) {}
@@ -344,7 +364,9 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     const auto window = silence ? ctx.silence_window(wire.size()) : ctx.reply_timeout(wire.size());
     const TimePoint listen_start = transport_.now();
     (void)transport_.take_nak_rules();  // only this exchange's rules count
+    ctx.expect = expect_name(s.expect.kind);
     const auto replies = ctx.exchange(wire, s.modifiers, window);
+    ctx.expect.clear();
     const auto nak_rules = transport_.take_nak_rules();
     if (silence) {
       ctx.silence_listened += std::chrono::duration_cast<std::chrono::microseconds>(transport_.now() - listen_start) -
@@ -570,16 +592,14 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     r.id = v.id;
     r.paragraph = v.paragraph;
     r.file = v.where.file;
+    r.quote = v.quote;
+    r.comment = v.comment;
     r.level = v.level;
     auto skip = [&](std::string why) {
       r.verdict = Verdict::kSkip;
       r.skip_reason = std::move(why);
     };
-    bool selected = options_.filters.empty();
-    for (const auto& f : options_.filters) selected |= glob_match(f, v.id);
-    for (const auto& x : options_.excludes)
-      if (glob_match(x, v.id)) selected = false;
-    if (!selected) continue;  // not part of this run at all
+    if (!is_selected(options_, v.id)) continue;  // not part of this run at all
     if (static_cast<int>(v.level) > static_cast<int>(options_.max_level)) skip("level " + std::string(to_string(v.level)));
     for (const auto& req : v.requires_)
       if (r.verdict != Verdict::kSkip)

@@ -45,10 +45,15 @@ struct TranscriptEntry {
   bool sent = false;       // true: to the device; false: from it
   Bytes bytes;             // 7-bit characters (sent: before parity; received: as decoded)
   std::string note;        // decoded summary, or what was ignored
+  // Sent frames of a vector's send or poll step: the reply path the step
+  // expects ("ack", "nak", "offline", "silence", "any"); "" for frames the
+  // runner sends on its own (liveness, stop, backup).
+  std::string expect;
 };
 
 struct VectorResult {
   std::string id, paragraph, file;
+  std::string quote, comment;  // the spec quote the vector checks, and what and why (reports)
   Level level = Level::kMust;
   Verdict verdict = Verdict::kPass;
   std::vector<std::string> failures;   // one line each
@@ -113,6 +118,10 @@ struct RunResult {
   // be reached (nothing came back to the first liveness check).
   int exit_code() const;
 };
+
+// Whether a vector id is part of a run with these filters and excludes
+// (the runner passes over the others without a result).
+bool is_selected(const RunOptions& options, const std::string& id);
 
 class Runner {
  public:
