@@ -95,21 +95,29 @@ std::optional<Frame> one_frame(const Bytes& chars) {
   return std::move(f).value();
 }
 
-const CommandInfo* request_command(const Bytes& chars) {
-  auto f = one_frame(chars);
-  return f && f->kind == FrameKind::kCommand ? find_command(f->command) : nullptr;
+// Byte 0 of the last frame of a send: the last start byte followed by an
+// address byte, as the vector linter reads a raw send (vectors/README.md
+// "Lengths"; a send may restart a frame, 02 02 A 31 03 LRC).
+std::optional<std::size_t> last_frame_start(const Bytes& chars) {
+  for (std::size_t i = chars.size(); i-- > 0;)
+    if ((chars[i] == STX || chars[i] == ACK || chars[i] == NAK) && i + 1 < chars.size() && is_valid_address(chars[i + 1]))
+      return i;
+  return std::nullopt;
 }
 
-// The frame the linter checks a raw send's length by: from the last STX that
-// is followed by an address byte to the end (vectors/README.md "Lengths").
+// The command of a send's last frame, when its command byte can be read.
+const CommandInfo* request_command(const Bytes& chars) {
+  const auto start = last_frame_start(chars);
+  return start && *start + 2 < chars.size() ? find_command(chars[*start + 2]) : nullptr;
+}
+
+// Whether the linter's length rule needs `length_mismatch: true`: the last
+// frame is not the catalog's request length (not checked for unknown codes
+// and TBD lengths).
 bool length_mismatch(const Bytes& chars) {
-  for (std::size_t i = chars.size(); i-- > 0;) {
-    if (chars[i] != STX || i + 2 >= chars.size() || !is_valid_address(chars[i + 1])) continue;
-    const CommandInfo* info = find_command(chars[i + 2]);
-    if (!info || !info->request_length) return false;
-    return chars.size() - i != *info->request_length;
-  }
-  return false;
+  const CommandInfo* info = request_command(chars);
+  if (!info || !info->request_length) return false;
+  return chars.size() - *last_frame_start(chars) != *info->request_length;
 }
 
 // A raw template: one good frame to the session's address is written with
@@ -123,21 +131,16 @@ std::string raw_template(const Bytes& chars, std::uint8_t session_address) {
   return "02 {addr} " + to_hex(middle) + " 03 {lrc}";
 }
 
-// Effects of a request as the catalog tells them from its form byte
-// (READING-NOTES 26), or of the command when the form cannot be told.
+// Effects of a send as the catalog tells them from its last frame's form
+// byte (READING-NOTES 26), or of the command when the form cannot be told:
+// the reading the linter enforces.
 Effects effects_of(const Bytes& chars) {
-  Effects e;
-  for (std::size_t i = 0; i + 2 < chars.size(); ++i) {
-    if (chars[i] != STX) continue;
-    const CommandInfo* info = find_command(chars[i + 2]);
-    if (!info) continue;
-    Effects one = info->effects();
-    if (info->form_selector_offset && i + *info->form_selector_offset < chars.size())
-      if (const FormInfo* form = info->form_for_selector(chars[i + *info->form_selector_offset])) one = form->effects;
-    e.moves_antenna |= one.moves_antenna;
-    e.changes_stored_data |= one.changes_stored_data;
-  }
-  return e;
+  const CommandInfo* info = request_command(chars);
+  if (!info) return {};
+  const std::size_t start = *last_frame_start(chars);
+  if (info->form_selector_offset && start + *info->form_selector_offset < chars.size())
+    if (const FormInfo* form = info->form_for_selector(chars[start + *info->form_selector_offset])) return form->effects;
+  return info->effects();
 }
 
 // The expectation of one exchange, as YAML lines at `indent`.
