@@ -210,6 +210,19 @@ TEST(Record, ARunJsonReplaysCleanAndAOneCommandRecordingTakesItsParagraph) {
   fs::remove(out);
 }
 
+TEST(Record, ARestartedFrameIsTaggedAndCheckedByItsLastFrameAsTheLinterReadsIt) {
+  // framing.yaml sends 02 02 A 31 03 LRC: the 32h after the first STX is the
+  // address, not an auto move, and the reply is the status poll's.
+  const std::string json = temp_path("framing.json"), out = temp_path("framing.yaml");
+  std::string text;
+  ASSERT_EQ(run_sabus({"run", "--sim", "--vectors", SABUS_SOURCE_DIR "/vectors/framing.yaml", "--json", json}, &text), 0) << text;
+  ASSERT_EQ(run_sabus({"record", json, "--out", out, "--name", "fr"}, &text), 0) << text;
+  EXPECT_EQ(run_sabus({"run", "--sim", "--vectors", out}, &text), 0) << text;
+  EXPECT_NE(text.find("4 passed, 0 failed, 0 skipped"), std::string::npos) << text;
+  fs::remove(json);
+  fs::remove(out);
+}
+
 TEST(Record, BadInputIsAUsageErrorNamingTheLine) {
   const std::string bad = temp_path("bad.jsonl"), out = temp_path("never.yaml");
   {
