@@ -137,12 +137,17 @@ TEST(Proxy, ForwardsRepliesUnchangedAndLogsDecodedPairedFrames) {
   // The chunks carry the wire bytes, parity bit included, in order.
   std::string wire_from_device;
   for (const auto& c : chunks)
-    if (c["dir"] == "dev->mc") wire_from_device += (wire_from_device.empty() ? "" : " ") + c["hex"].get<std::string>();
+    if (c["dir"] == "dev->mc") {
+      if (!wire_from_device.empty()) wire_from_device += ' ';
+      wire_from_device += c["hex"].get<std::string>();
+    }
   EXPECT_EQ(wire_from_device, to_hex(s.proxied_status) + " " + to_hex(s.proxied_type));
   EXPECT_EQ(log.back()["type"], "event");
   EXPECT_EQ(log.back()["what"], "stop");
   for (const auto& r : log)
-    if (r.contains("t_ms")) EXPECT_TRUE(r["wall"].is_string());
+    if (r.contains("t_ms")) {
+      EXPECT_TRUE(r["wall"].is_string());
+    }
   fs::remove(s.log);
 }
 
