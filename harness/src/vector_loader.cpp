@@ -1375,7 +1375,11 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
       const fs::path& path = it->path();
       const std::string leaf = path.filename().string();
-      if (it->is_directory(ec) && (leaf == "profiles" || leaf == "examples")) it.disable_recursion_pending();
+      // Not vector files: profiles/ and examples/. regression/ holds vectors
+      // recorded from one controller (`sabus record`), not conformance: run
+      // them by naming the folder or a file (vectors/README.md).
+      if (it->is_directory(ec) && (leaf == "profiles" || leaf == "examples" || leaf == "regression"))
+        it.disable_recursion_pending();
       else if (path.extension() == ".yaml" && it->is_regular_file(ec)) found.push_back(path.string());
     }
     if (ec) result.errors.push_back(file_error(p, "cannot list: " + ec.message()));

@@ -105,12 +105,13 @@ struct Describer {
       if (!error) error = DecodeError{kDataStart + in.size(), std::string(name), want, "ETX"};
       if (remaining > 0)
         out.push_back({kDataStart + pos, kDataStart + in.size() - 1, std::string(name), raw_text(in.subspan(pos)),
-                       "invalid: the data ends here, expected " + want, false});
+                       "invalid: the data ends here, expected " + want, false, fields::KindOf<C>::value});
       return;
     }
     if (w == 0) return;
     ByteView slice = in.subspan(pos, w);
-    FieldDescription d{kDataStart + pos, kDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true};
+    FieldDescription d{kDataStart + pos, kDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true,
+                       fields::KindOf<C>::value};
     if (auto e = c.decode(slice, value)) {
       const std::size_t at = std::min(e->index, w - 1);  // see Decoder
       d.ok = false;
@@ -416,15 +417,16 @@ std::string FieldDescription::line() const {
 
 FrameDescription describe_frame(ByteView b) {
   FrameDescription out;
-  auto add = [&](std::size_t first, std::size_t last, std::string name, std::string meaning, bool ok = true) {
+  auto add = [&](std::size_t first, std::size_t last, std::string name, std::string meaning, bool ok = true,
+                 fields::Kind kind = fields::Kind::kHeader) {
     out.fields.push_back({first, last, std::move(name), raw_text(b.subspan(first, last - first + 1)),
-                          std::move(meaning), ok});
+                          std::move(meaning), ok, kind});
   };
   auto frame = decode_frame(b);
   if (!frame) out.error = frame.error();
   if (b.size() < 5) {
     out.summary = "short frame of " + std::to_string(b.size()) + " bytes";
-    for (std::size_t i = 0; i < b.size(); ++i) add(i, i, "byte", describe_byte(b[i]), false);
+    for (std::size_t i = 0; i < b.size(); ++i) add(i, i, "byte", describe_byte(b[i]), false, fields::Kind::kUndescribed);
     return out;
   }
   const std::uint8_t start = b[0];
@@ -475,7 +477,8 @@ FrameDescription describe_frame(ByteView b) {
     }
   }
   if (!described && !data.empty() && !(start == ACK && data.size() == 1 && data[0] == kOfflineMarker))
-    add(kDataStart, etx - 1, "data", std::to_string(data.size()) + " byte(s) not described", false);
+    add(kDataStart, etx - 1, "data", std::to_string(data.size()) + " byte(s) not described", false,
+        fields::Kind::kUndescribed);
   if (field_error && !out.error) out.error = field_error;
 
   add(etx, etx, "ETX", b[etx] == ETX ? "end of text" : "expected ETX", b[etx] == ETX);

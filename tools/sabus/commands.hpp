@@ -44,5 +44,7 @@ Command add_run_command(CLI::App& app);
 Command add_vectors_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_diff_command(CLI::App& app);
+Command add_proxy_command(CLI::App& app);
+Command add_record_command(CLI::App& app);
 
 }  // namespace sabus::cli

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
       sabus::cli::add_ports_command(app),
       sabus::cli::add_report_command(app),
       sabus::cli::add_diff_command(app),
+      sabus::cli::add_proxy_command(app),
+      sabus::cli::add_record_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -27,7 +27,8 @@ struct LoadResult {
 
 LoadResult load_vector_text(const std::string& yaml, const std::string& name);
 LoadResult load_vector_file(const std::string& path);
-// Files, or directories searched recursively for *.yaml (except profiles/ and examples/).
+// Files, or directories searched recursively for *.yaml (except the folders
+// profiles/, examples/ and regression/ below a directory given).
 LoadResult load_vectors(const std::vector<std::string>& paths);
 
 // Suite-wide checks beyond one file: unique ids, every flag defined in its

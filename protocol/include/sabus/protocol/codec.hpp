@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sabus/protocol/fields.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/messages.hpp"
 
@@ -35,6 +36,7 @@ struct FieldDescription {
   std::string raw;        // "0x45" for one byte, "\"-152.5\"" for text
   std::string meaning;
   bool ok = true;
+  fields::Kind kind = fields::Kind::kHeader;  // the codec that read it
   std::string line() const;
 };
 
