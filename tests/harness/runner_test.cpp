@@ -2,6 +2,8 @@
 // runs against the in-process reference controller (also with faults).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
@@ -134,6 +136,31 @@ RunResult run_in_process(const std::vector<Vector>& vectors, FaultSet faults = {
   auto t = make_in_process_transport({p}, faults);
   Runner runner(*t, p, options);
   return runner.run(vectors);
+}
+
+// The shipped suite against the reference controller, one run a profile with
+// motion and destructive vectors allowed: every vector passes or is skipped by
+// its requirements, and each NAK names the rule the vector expects.
+TEST(Runner, ShippedVectorsPassOnTheShippedProfiles) {
+  std::vector<Vector> vectors;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors) vectors.push_back(std::move(v));
+  ASSERT_FALSE(vectors.empty());
+  const auto profiles_dir = std::filesystem::path(default_profile_path()).parent_path();
+  for (const auto& e : std::filesystem::directory_iterator(profiles_dir)) {
+    if (e.path().extension() != ".yaml") continue;
+    Profile p = load_profile_file(e.path().string()).profile.value();
+    auto t = make_in_process_transport(bus_of(p), {});  // multidrop-bus has peers on its line
+    RunOptions o;
+    o.allow_motion = true;
+    o.allow_destructive = true;
+    Runner runner(*t, p, o);
+    const RunResult r = runner.run(vectors);
+    EXPECT_FALSE(r.aborted) << p.name << ": " << r.abort_reason;
+    EXPECT_EQ(r.passed + r.skipped, vectors.size()) << p.name;
+    for (const auto& v : r.vectors)
+      EXPECT_NE(v.verdict, Verdict::kFail) << p.name << ": " << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+  }
 }
 
 TEST(Runner, PassFailSkipAndLiveness) {

@@ -226,23 +226,9 @@ std::map<std::string, Vector> shipped_vectors() {
   return out;
 }
 
-// The starter vectors only: this small bench knows no modifiers beyond lrc_xor
-// and chunks. The whole suite runs through the runner (`sabus run --sim
-// --profile P` for every shipped profile), which also skips vectors whose
-// requirements the profile does not meet.
-TEST(vectors, ShippedVectorsPassAgainstTheReferenceController) {
-  const auto vectors = shipped_vectors();
-  for (const char* id : {"framing-check-byte-stx", "framing-stx-stx-restart", "framing-bad-lrc-silence",
-                         "framing-chunks-with-pauses", "3.1-device-type-reply-length", "3.1-device-type-controller-3k",
-                         "3.1-device-type-version-format", "3.2-status-reply-length", "3.2-status-reserved-bytes",
-                         "3.2-status-agc-right-justified", "3.2-status-binary-high-bits"}) {
-    ASSERT_TRUE(vectors.count(id)) << id;
-    const Vector& v = vectors.at(id);
-    Bench bench({});
-    ASSERT_TRUE(requirements_hold(bench.profile, v.requires_)) << id;
-    EXPECT_EQ(bench.run(v), "") << id;
-  }
-}
+// That every shipped vector passes on every shipped profile is checked with the
+// runner itself (runner_test.cpp: Runner.ShippedVectorsPassOnTheShippedProfiles):
+// the vectors use requirements, captures and whole-reply templates.
 
 TEST(vectors, ShippedVectorsCatchTheirFaults) {
   const std::pair<const char*, Fault> cases[] = {
