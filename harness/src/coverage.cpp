@@ -6,7 +6,6 @@
 
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/codec.hpp"
-#include "sabus/protocol/structured.hpp"
 
 namespace sabus::harness {
 
@@ -35,28 +34,6 @@ std::optional<CoveragePath> path_of(Expectation::Kind kind) {
   return std::nullopt;
 }
 
-// The frame a step sends, as far as the matrix needs it. Captured values are
-// not known before a run: each becomes a blank, which keeps the command byte.
-std::optional<Bytes> frame_of(const Step& s) {
-  if (s.raw) {
-    std::string hex = s.raw->hex;
-    for (std::size_t at = hex.find("{$"); at != std::string::npos; at = hex.find("{$")) {
-      const auto end = hex.find('}', at);
-      if (end == std::string::npos) return std::nullopt;
-      hex.replace(at, end - at + 1, "20");
-    }
-    auto b = expand_raw_bytes(hex, kAnyAddress);
-    if (!b) return std::nullopt;
-    return b.value();
-  }
-  if (!s.command) return std::nullopt;
-  const CommandInfo* info = find_command(s.command->command);
-  if (!info) return std::nullopt;
-  auto request = build_request(*info, s.command->form, s.command->fields);
-  if (!request) return std::nullopt;
-  return encode_request(request.value(), kAnyAddress);
-}
-
 }  // namespace
 
 CoverageMatrix coverage(const std::vector<VectorFile>& files) {
@@ -74,9 +51,10 @@ CoverageMatrix coverage(const std::vector<VectorFile>& files) {
         for (const Step& s : *list) {
           if (s.kind == Step::Kind::kWait) continue;
           const auto path = path_of(s.expect.kind);
-          const auto bytes = frame_of(s);
+          // Captured values are not known before a run: a blank keeps the command byte.
+          const auto bytes = step_bytes(s, kAnyAddress, {}, true);
           if (!path || !bytes) continue;
-          const CommandForm cf = classify_command(*bytes);
+          const CommandForm cf = classify_command(bytes.value());
           if (!cf.info) {
             if (*path == CoveragePath::kNak) add(m.unknown_codes, v.id);
             continue;

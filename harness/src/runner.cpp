@@ -346,14 +346,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   const std::uint8_t address = profile_.address;
 
   // Builds the bytes of a send step.
-  auto frame_of = [&](const Step& s) -> Expected<Bytes> {
-    if (s.raw) return expand_raw_bytes(s.raw->hex, address, ctx.captures);
-    const CommandInfo* info = find_command(s.command->command);
-    if (!info) return DecodeError{0, "command", "a command of the catalog", s.command->command};
-    auto r = build_request(*info, s.command->form, s.command->fields);
-    if (!r) return r.error();
-    return encode_request(r.value(), s.command->address.value_or(address));
-  };
+  auto frame_of = [&](const Step& s) { return step_bytes(s, address, ctx.captures); };
 
   // Runs one send step; returns the failure, if any.
   auto run_send = [&](const Step& s) -> std::optional<std::string> {

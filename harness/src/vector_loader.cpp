@@ -1445,4 +1445,28 @@ bool requirements_hold(const Profile& profile, const std::vector<Requirement>& r
   return true;
 }
 
+Expected<Bytes> step_bytes(const Step& s, std::uint8_t address, const std::map<std::string, std::string>& captures,
+                           bool blank_missing_captures) {
+  if (s.raw) {
+    if (!blank_missing_captures) return expand_raw_bytes(s.raw->hex, address, captures);
+    std::string hex = s.raw->hex;
+    for (std::size_t at = hex.find("{$"); at != std::string::npos; at = hex.find("{$", at)) {
+      const auto end = hex.find('}', at);
+      if (end == std::string::npos) break;
+      if (captures.count(hex.substr(at + 1, end - at - 1))) {
+        at = end;
+        continue;
+      }
+      hex.replace(at, end - at + 1, "20");
+    }
+    return expand_raw_bytes(hex, address, captures);
+  }
+  if (!s.command) return DecodeError{0, "step", "a send with a command or raw bytes", "neither"};
+  const CommandInfo* info = find_command(s.command->command);
+  if (!info) return DecodeError{0, "command", "a command of the catalog", s.command->command};
+  auto r = build_request(*info, s.command->form, s.command->fields);
+  if (!r) return r.error();
+  return encode_request(r.value(), s.command->address.value_or(address));
+}
+
 }  // namespace sabus::harness

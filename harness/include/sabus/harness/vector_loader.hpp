@@ -44,6 +44,15 @@ std::string default_vectors_dir();
 Expected<Bytes> expand_raw_bytes(std::string_view hex, std::uint8_t address,
                                  const std::map<std::string, std::string>& captures = {});
 
+// The command bytes a send or poll step puts on the wire before its
+// modifiers: the structured command built by the codecs, or the raw template
+// expanded. With `blank_missing_captures`, a capture not in `captures` is one
+// blank (20h) instead of an error: for static analysis (coverage, seeds),
+// where values captured at run time are not known.
+Expected<Bytes> step_bytes(const Step& step, std::uint8_t address,
+                           const std::map<std::string, std::string>& captures = {},
+                           bool blank_missing_captures = false);
+
 // Whether a device profile meets every requirement (each key's value is one
 // of the requirement's values; values are compared as to_yaml writes them).
 bool requirements_hold(const Profile& profile, const std::vector<Requirement>& requirements);
