@@ -118,7 +118,8 @@ std::optional<Verdict> Session::probe() {
   const std::vector<Frame> accepted = oracle_.accept(q);
   const Observation seen = exchange(q, accepted.size(), expected_reply_bytes(accepted));
   tail_.clear();
-  if (seen.replies.empty())
+  // No byte at all: dead. Bytes that are no reply frame are judged below.
+  if (seen.replies.empty() && seen.garbage.empty())
     return Verdict{FindingKind::kDead, "no answer to the liveness probe (device type query, §3.1)"};
   if (auto v = oracle_.judge(accepted, seen)) return v;
   const Frame& reply = seen.replies.front();

@@ -77,9 +77,11 @@ int run_fuzz(const FuzzCliOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   std::cout << fmt::format("sabus fuzz: {}, seed {}\n", transport.describe(), seed) << std::flush;
+  std::optional<Verdict> first;
   try {
-    if (auto v = session.probe(); v && v->kind == FindingKind::kDead) {
-      std::cerr << "sabus fuzz: the device does not answer: " << v->message << "\n";
+    first = session.probe();
+    if (first && first->kind == FindingKind::kDead) {
+      std::cerr << "sabus fuzz: the device does not answer: " << first->message << "\n";
       return 3;
     }
   } catch (const TransportLost& e) {
@@ -113,6 +115,10 @@ int run_fuzz(const FuzzCliOptions& o) {
     findings.push_back(std::move(f));
   };
 
+  if (first) {  // answered, but wrongly: a finding already
+    history.push_back(liveness_probe(profile.address));
+    record(*first);
+  }
   try {
     while (!g_stop && (o.max_frames == 0 || frames < o.max_frames) && (o.max_time <= 0 || elapsed() < o.max_time) &&
            findings.size() < o.max_findings) {
@@ -120,7 +126,9 @@ int run_fuzz(const FuzzCliOptions& o) {
       // A frame the device must ignore is followed by a status poll in the
       // same write: the reply sequence shows whether the ignored frame drew
       // an answer, without waiting out a silence window.
-      if (session.would_be_ignored(f)) {
+      // A second one when the first is lost too (its STX taken as the check
+      // byte of a frame left open, E-7).
+      for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
         f.chars.insert(f.chars.end(), status_probe.chars.begin(), status_probe.chars.end());
         f.what += " + " + status_probe.what;
       }
