@@ -46,5 +46,6 @@ Command add_report_command(CLI::App& app);
 Command add_diff_command(CLI::App& app);
 Command add_proxy_command(CLI::App& app);
 Command add_record_command(CLI::App& app);
+Command add_fuzz_command(CLI::App& app);
 
 }  // namespace sabus::cli

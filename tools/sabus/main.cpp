@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
       sabus::cli::add_diff_command(app),
       sabus::cli::add_proxy_command(app),
       sabus::cli::add_record_command(app),
+      sabus::cli::add_fuzz_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "device.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
@@ -31,11 +32,10 @@ std::atomic<bool> g_stop{false};
 extern "C" void on_sigint(int) { g_stop = true; }
 
 struct RunCliOptions {
-  bool sim = false;
-  std::string port, tcp, profile, address, level = "informative", junit, json, html, md, report_dir, known_issues;
-  std::string line = "8N1", serial_backend = "auto";
-  std::vector<std::string> vectors, filters, excludes, faults;
-  int baud = 0, repeat = 0;
+  DeviceOptions device;
+  std::string level = "informative", junit, json, html, md, report_dir, known_issues;
+  std::vector<std::string> vectors, filters, excludes;
+  int repeat = 0;
   long pace_ms = -1;
   std::uint64_t seed = 0;
   bool allow_motion = false, allow_destructive = false;
@@ -68,32 +68,11 @@ std::optional<std::map<std::string, std::string>> read_known_issues(const std::s
 }
 
 int run_run(RunCliOptions o) {
-  const int transports = (o.sim ? 1 : 0) + (o.port.empty() ? 0 : 1) + (o.tcp.empty() ? 0 : 1);
-  if (transports > 1) {
-    std::cerr << "sabus run: choose one of --sim, --port DEV, --tcp HOST:PORT\n";
-    return kExitUsage;
-  }
-  if (transports == 0) o.sim = true;  // the in-process reference controller is the default
   const auto level = parse_level(o.level);
   if (!level) {
     std::cerr << "sabus run: --level must be must, should or informative\n";
     return kExitUsage;
   }
-  ProfileResult loaded = load_profile_file(o.profile.empty() ? default_profile_path() : o.profile);
-  if (!loaded) {
-    std::cerr << "sabus run: " << loaded.error->text() << "\n";
-    return kExitUsage;
-  }
-  Profile profile = *loaded.profile;
-  if (!o.address.empty()) {
-    auto a = parse_address(o.address);
-    if (!a) {
-      std::cerr << "sabus run: --address: " << a.error().message() << "\n";
-      return kExitUsage;
-    }
-    profile.address = a.value();
-  }
-  if (o.baud > 0) profile.baud = o.baud;
   LoadResult suite = load_vectors(o.vectors.empty() ? std::vector<std::string>{default_vectors_dir()} : o.vectors);
   auto lint_errors = lint(suite.files);
   suite.errors.insert(suite.errors.end(), lint_errors.begin(), lint_errors.end());
@@ -105,38 +84,10 @@ int run_run(RunCliOptions o) {
   std::vector<Vector> vectors;
   for (const auto& f : suite.files) vectors.insert(vectors.end(), f.vectors.begin(), f.vectors.end());
 
-  FaultSet faults;
-  for (const auto& name : o.faults) {
-    auto f = find_fault(name);
-    if (!f || !o.sim) {
-      std::cerr << "sabus run: " << (o.sim ? "unknown fault \"" + name + "\"" : "--fault needs --sim") << "\n";
-      return kExitUsage;
-    }
-    faults.set(*f);
-  }
-
-  std::optional<HostPort> tcp;
-  if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) {
-    std::cerr << "sabus run: --tcp HOST:PORT, with a port 0-65535\n";
-    return kExitUsage;
-  }
-  std::unique_ptr<Transport> transport;
-  try {
-    if (o.sim) {
-      transport = make_in_process_transport(bus_of(profile), faults);  // §1 multi-drop: bus_peers
-    } else if (!o.port.empty()) {
-      std::string note;
-      const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);
-      transport = make_serial_transport(o.port, profile.baud, backend,
-                                        o.line == "7E1" ? LineMode::kTrue7E1 : LineMode::kSoftwareParity8N1, &note);
-      if (!note.empty()) std::cerr << "sabus run: " << note << "\n";
-    } else {
-      transport = make_tcp_transport(tcp->host, tcp->port, std::chrono::seconds(5));
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "sabus run: cannot reach the device: " << e.what() << "\n";
-    return 3;
-  }
+  OpenedDevice device = open_device("run", o.device);
+  if (device.exit_code != kExitOk) return device.exit_code;
+  const Profile& profile = device.profile;
+  std::unique_ptr<Transport>& transport = device.transport;
 
   RunOptions ro;
   ro.allow_motion = o.allow_motion;
@@ -175,9 +126,12 @@ int run_run(RunCliOptions o) {
     in_dir(md_path, "summary.md");
   }
   // The stored-data backup (taken before the first destructive vector).
+  // In-process, the device is gone at exit: a backup file is written only
+  // next to a report there.
   ro.backup_path = !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
                    : !json_path.empty()  ? json_path + ".backup.json"
-                                         : "sabus-backup.json";
+                   : transport->in_process() ? ""
+                                             : "sabus-backup.json";
 
   reports::RunDocument doc;
   doc.generator = "sabus " SABUS_VERSION;
@@ -185,7 +139,7 @@ int run_run(RunCliOptions o) {
   doc.device = transport->describe();
   doc.profile = profile.name;
   doc.address = profile.address;
-  doc.faults = o.faults;
+  doc.faults = o.device.faults;
   doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
                  {"level", o.level},               {"seed", o.seed},
                  {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
@@ -248,16 +202,7 @@ int run_run(RunCliOptions o) {
 Command add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunCliOptions>();
   CLI::App* sub = app.add_subcommand("run", "Run the conformance vectors against a controller");
-  sub->add_flag("--sim", o->sim, "The in-process reference controller (the default)");
-  sub->add_option("--port", o->port, "A serial port");
-  sub->add_option("--tcp", o->tcp, "A TCP serial server, HOST:PORT");
-  sub->add_option("--profile", o->profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");
-  sub->add_option("--address", o->address, "Device address (49-111, or the address character)");
-  sub->add_option("--baud", o->baud, "Baud rate (default: the profile's)");
-  sub->add_option("--line", o->line, "8N1 (default: parity computed by sabus) or 7E1 (a true 7E1 port)")
-      ->check(CLI::IsMember({"8N1", "7E1"}));
-  sub->add_option("--serial-backend", o->serial_backend, "auto, libserialport or termios")
-      ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
+  add_device_options(sub, o->device);
   sub->add_option("--vectors", o->vectors, "Vector files or folders (default vectors/)");
   sub->add_option("--filter", o->filters, "Run only vectors whose id matches this glob (repeatable)");
   sub->add_option("--exclude", o->excludes, "Skip vectors whose id matches this glob (repeatable)");
@@ -268,7 +213,6 @@ Command add_run_command(CLI::App& app) {
   sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times");
   sub->add_option("--seed", o->seed, "Seed for every random choice");
   sub->add_option("--pace", o->pace_ms, "Milliseconds between commands (default 1000 on a line, 0 in-process)");
-  sub->add_option("--fault", o->faults, "With --sim: inject a named fault (sabus sim --list-faults)");
   sub->add_option("--junit", o->junit, "Write JUnit XML");
   sub->add_option("--json", o->json, "Write the JSON result (written after every vector)");
   sub->add_option("--html", o->html, "Write the HTML report");
