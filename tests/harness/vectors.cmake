@@ -31,3 +31,10 @@ if(NOT SABUS_SANITIZE)
   add_test(NAME gate.suite COMMAND $<TARGET_FILE:suite_gates>)
   set_tests_properties(gate.suite PROPERTIES LABELS gate)
 endif()
+
+# The generated parts of the suite's documents are current (tools/update-suite-docs.sh).
+add_test(NAME gate.errata_vector_lists COMMAND $<TARGET_FILE:sabus> vectors errata --check ${PROJECT_SOURCE_DIR}/protocol/ERRATA.md)
+add_test(NAME gate.suite_summary_current
+         COMMAND ${CMAKE_COMMAND} -DSABUS=$<TARGET_FILE:sabus> -DREADME=${PROJECT_SOURCE_DIR}/vectors/README.md
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/suite_summary_current.cmake)
+set_tests_properties(gate.errata_vector_lists gate.suite_summary_current PROPERTIES LABELS gate)

@@ -7,6 +7,11 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <set>
 
 #include "commands.hpp"
@@ -16,6 +21,8 @@
 namespace sabus::cli {
 namespace {
 
+namespace fs = std::filesystem;
+
 using harness::LoadError;
 using harness::LoadResult;
 using harness::Vector;
@@ -24,6 +31,8 @@ struct VectorsOptions {
   std::vector<std::string> paths;
   bool json = false;
   bool missing_only = false;
+  bool summary = false;
+  std::string update, check;  // errata: the ERRATA.md to rewrite or compare
 };
 
 LoadResult load(const VectorsOptions& o) {
@@ -135,6 +144,117 @@ int run_coverage(const VectorsOptions& o) {
   return missing.empty() ? kExitOk : kExitFailed;
 }
 
+// Paragraph order: numbers by their parts (3.2 < 3.10), then the topics.
+bool paragraph_less(const std::string& a, const std::string& b) {
+  auto key = [](const std::string& p) {
+    std::vector<int> parts;
+    std::size_t at = 0;
+    while (at < p.size() && std::isdigit(static_cast<unsigned char>(p[at]))) {
+      std::size_t end = at;
+      while (end < p.size() && std::isdigit(static_cast<unsigned char>(p[end]))) ++end;
+      parts.push_back(std::stoi(p.substr(at, end - at)));
+      at = end + (end < p.size() && p[end] == '.' ? 1 : 0);
+    }
+    return std::make_pair(parts.empty(), parts.empty() ? std::vector<int>{} : parts);
+  };
+  const auto ka = key(a), kb = key(b);
+  if (ka != kb) return ka < kb;
+  return a < b;
+}
+
+// The suite by paragraph as a Markdown table: vectors/README.md carries it.
+int run_summary(const VectorsOptions& o) {
+  LoadResult r = load(o);
+  for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  struct Counts {
+    std::set<std::string> files;
+    std::size_t must = 0, should = 0, informative = 0;
+  };
+  std::map<std::string, Counts, decltype(&paragraph_less)> by(&paragraph_less);
+  Counts all;
+  for (const auto& f : r.files)
+    for (const auto& v : f.vectors)
+      for (Counts* c : {&by[v.paragraph], &all}) {
+        c->files.insert(fs::path(f.path).filename().string());
+        (v.level == harness::Level::kMust ? c->must : v.level == harness::Level::kShould ? c->should : c->informative)++;
+      }
+  std::cout << "| paragraph | file | must | should | informative | total |\n|---|---|---:|---:|---:|---:|\n";
+  auto row = [](const std::string& name, const std::string& files, const Counts& c) {
+    std::cout << fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, files, c.must, c.should, c.informative,
+                             c.must + c.should + c.informative);
+  };
+  for (const auto& [paragraph, c] : by) {
+    std::string files;
+    for (const auto& f : c.files) files += (files.empty() ? "" : ", ") + fmt::format("`{}`", f);
+    row(std::isdigit(static_cast<unsigned char>(paragraph[0])) ? "§" + paragraph : paragraph, files, c);
+  }
+  row("**all**", fmt::format("{} files", all.files.size()), all);
+  return r.errors.empty() ? kExitOk : kExitFailed;
+}
+
+// Errata entry -> the vectors whose flags rest on it (the notes' `errata`).
+std::map<std::string, std::vector<std::string>> errata_vectors(const LoadResult& r) {
+  std::map<std::string, std::vector<std::string>> out;
+  for (const auto& f : r.files)
+    for (const auto& v : f.vectors)
+      for (const auto& flag : v.flags)
+        if (auto n = f.notes.find(flag); n != f.notes.end() && !n->second.errata.empty()) {
+          auto& ids = out[n->second.errata];
+          if (std::find(ids.begin(), ids.end(), v.id) == ids.end()) ids.push_back(v.id);
+        }
+  return out;
+}
+
+// The "- **Vectors:**" line of every entry of protocol/ERRATA.md, from the
+// suite: printed, written back (--update) or compared (--check, exit 1 when
+// the file is not current).
+int run_errata(const VectorsOptions& o) {
+  LoadResult r = load(o);
+  for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  if (!r.errors.empty()) return kExitUsage;
+  const auto by_entry = errata_vectors(r);
+  const std::string path = !o.update.empty() ? o.update : o.check;
+  if (path.empty()) {
+    for (const auto& [entry, ids] : by_entry) std::cout << entry << ": " << fmt::format("{}", fmt::join(ids, " ")) << "\n";
+    return kExitOk;
+  }
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << "sabus vectors errata: cannot read " << path << "\n";
+    return kExitUsage;
+  }
+  std::string out, entry, line;
+  std::size_t stale = 0;
+  bool in_vectors_line = false;
+  while (std::getline(in, line)) {
+    if (in_vectors_line && line.rfind("  ", 0) == 0) continue;  // a wrapped continuation of the old line
+    in_vectors_line = false;
+    if (line.rfind("### E-", 0) == 0) entry = line.substr(4, line.find(':') - 4);
+    if (line.rfind("- **Vectors:**", 0) == 0) {
+      const auto it = by_entry.find(entry);
+      std::string ids;
+      if (it != by_entry.end())
+        for (const auto& id : it->second) ids += (ids.empty() ? "`" : ", `") + id + "`";
+      const std::string fresh = "- **Vectors:** " + (ids.empty() ? std::string("— (no vector yet)") : ids);
+      if (fresh != line) {
+        ++stale;
+        if (!o.check.empty()) std::cout << path << ": " << entry << ": the vector list is not current\n";
+      }
+      out += fresh + "\n";
+      in_vectors_line = true;
+      continue;
+    }
+    out += line + "\n";
+  }
+  if (!o.check.empty()) {
+    if (stale) std::cout << stale << " entr" << (stale == 1 ? "y" : "ies") << " to update: sabus vectors errata --update " << path << "\n";
+    return stale ? kExitFailed : kExitOk;
+  }
+  std::ofstream(path, std::ios::trunc) << out;
+  std::cout << "updated " << stale << " entr" << (stale == 1 ? "y" : "ies") << " of " << path << "\n";
+  return kExitOk;
+}
+
 }  // namespace
 
 Command add_vectors_command(CLI::App& app) {
@@ -147,16 +267,23 @@ Command add_vectors_command(CLI::App& app) {
   CLI::App* list = sub->add_subcommand("list", "List the vectors: id, paragraph, level, tags");
   list->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   list->add_flag("--json", opts->json, "Print JSON");
+  list->add_flag("--summary", opts->summary, "Print the suite by paragraph with counts per level (Markdown)");
+  CLI::App* errata = sub->add_subcommand("errata", "The vectors resting on each errata entry (their flags' notes)");
+  errata->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
+  auto* update = errata->add_option("--update", opts->update, "Rewrite the Vectors lines of this ERRATA.md");
+  errata->add_option("--check", opts->check, "Exit 1 when the Vectors lines of this ERRATA.md are not current")
+      ->excludes(update);
   CLI::App* cov = sub->add_subcommand(
       "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids; exit 1 when a cell "
                   "the spec defines has no vector");
   cov->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   cov->add_flag("--json", opts->json, "Print JSON");
   cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
-  return {sub, [opts, lint, cov] {
+  return {sub, [opts, lint, cov, errata] {
             if (lint->parsed()) return run_lint(*opts);
             if (cov->parsed()) return run_coverage(*opts);
-            return run_list(*opts);
+            if (errata->parsed()) return run_errata(*opts);
+            return opts->summary ? run_summary(*opts) : run_list(*opts);
           }};
 }
 
