@@ -1422,7 +1422,16 @@ Expected<Bytes> expand_raw_bytes(std::string_view hex, std::uint8_t address, con
 std::optional<std::string> unmet_requirement(const Profile& profile, const Requirement& r) {
   try {
     // The profile as YAML is the one place its keys and value spellings live.
-    const YAML::Node root = YAML::Load(to_yaml(profile));
+    // A run checks every vector's requirements against one profile: parse
+    // its text once, not once a requirement.
+    thread_local std::string last_text;
+    thread_local YAML::Node last_root;
+    std::string text = to_yaml(profile);
+    if (text != last_text || !last_root.IsDefined() || last_root.IsNull()) {
+      last_root = YAML::Load(text);
+      last_text = std::move(text);
+    }
+    const YAML::Node& root = last_root;
     // A scalar key holds one of the values; a list key (bus_peers) holds one
     // of them among its elements.
     const auto values = values_at(root, split(r.key, '.'));

@@ -179,18 +179,19 @@ int run_run(RunCliOptions o) {
   reports::finish(doc, run, reports::utc_now());
   if (json_ok && !json.finish(doc)) std::cerr << "sabus run: " << json.error() << "\n";
   std::string error;
-  auto write = [&](const std::string& path, const std::string& text) {
-    if (!path.empty() && !reports::write_file(path, text, error)) std::cerr << "sabus run: " << error << "\n";
+  // Each report is made only when asked for.
+  auto write = [&](const std::string& path, std::string (*make)(const reports::RunDocument&)) {
+    if (!path.empty() && !reports::write_file(path, make(doc), error)) std::cerr << "sabus run: " << error << "\n";
   };
-  write(junit_path, reports::junit_xml(doc));
-  write(html_path, reports::html_report(doc));
-  write(md_path, reports::markdown_summary(doc));
+  write(junit_path, reports::junit_xml);
+  write(html_path, reports::html_report);
+  write(md_path, reports::markdown_summary);
   if (tty) std::cout << "\r\033[K";
   if (doc.identity.ok)
     std::cout << "device: controller " << doc.identity.controller_type << ", firmware " << doc.identity.firmware_version << "\n";
   for (const auto& l : run.liveness)
     if (!l.alive) std::cout << fmt::format("LIVENESS {}: {}\n", l.when, l.detail);
-  if (run.backup.taken) std::cout << "stored data backed up to " << ro.backup_path << "\n";
+  if (run.backup.taken && !ro.backup_path.empty()) std::cout << "stored data backed up to " << ro.backup_path << "\n";
   for (const auto& n : run.restore_notes) std::cout << "RESTORE " << n << "\n";
   if (run.aborted) std::cout << "ABORTED: " << run.abort_reason << "\n";
   std::cout << reports::summary_line(*doc.summary) << "\n";
