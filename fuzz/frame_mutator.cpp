@@ -2,6 +2,7 @@
 // (fuzz_support.hpp mutate_stream). Kept apart from fuzz_support.cpp because
 // it needs libFuzzer's LLVMFuzzerMutate (replay_main.cpp has a stand-in).
 #include <algorithm>
+#include <cstdio>
 #include <random>
 #include <set>
 
@@ -29,8 +30,9 @@ struct Segment {
 };
 constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-std::vector<Segment> segments(const Bytes& b) {
-  std::vector<Segment> out;
+// Fills `out` (reused between calls: the mutator runs once per execution).
+void segments(const Bytes& b, std::vector<Segment>& out) {
+  out.clear();
   std::size_t i = 0;
   while (i < b.size() && !is_start(b[i])) ++i;
   while (i < b.size()) {
@@ -46,7 +48,6 @@ std::vector<Segment> segments(const Bytes& b) {
     out.push_back(s);
     i = s.end;
   }
-  return out;
 }
 
 // One encoded request (7-bit characters, address '2') of every catalog
@@ -94,13 +95,16 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   auto pick = [&](std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); };
   const std::size_t h = format.header;
   if (max_size <= h) return LLVMFuzzerMutate(data, size, max_size);
-  Bytes head(data, data + std::min(size, h));
+  // Reused buffers: no allocation per call once they have grown.
+  thread_local Bytes head, b, out;
+  thread_local std::vector<Segment> segs, again;
+  head.assign(data, data + std::min(size, h));
   head.resize(h, 0);
-  Bytes b(data + std::min(size, h), data + size);
+  b.assign(data + std::min(size, h), data + size);
   const Bytes& tokens = field_bytes();
   const auto& tmpl = templates();
 
-  auto segs = segments(b);
+  segments(b, segs);
   auto address = [&]() -> std::uint8_t {
     for (const auto& s : segs)
       if (s.begin + 1 < b.size()) return b[s.begin + 1] & 0x7F;
@@ -214,7 +218,8 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   if (repair) {
     const bool wire = format.wire && format.wire(head.data());
     const LrcRule rule = format.lrc_rule ? format.lrc_rule(head.data()) : LrcRule::kFromByte0;
-    for (const Segment& s : segments(b)) {
+    segments(b, again);
+    for (const Segment& s : again) {
       std::size_t etx = s.etx;
       if (etx == npos) {
         if (pick(2)) continue;
@@ -232,7 +237,7 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
     }
   }
 
-  Bytes out = head;
+  out.assign(head.begin(), head.end());
   out.insert(out.end(), b.begin(), b.end());
   if (out.size() > max_size) out.resize(max_size);
   std::copy(out.begin(), out.end(), data);
