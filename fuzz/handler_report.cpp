@@ -134,8 +134,11 @@ int main(int argc, char** argv) {
   for (const auto& [code, m] : t.handler_nak)
     for (const auto& [r, count] : m) rules.insert(r);
   for (const auto& [r, count] : t.front_door_nak) rules.insert(r);
-  std::printf("NAK rules fired: %zu of %zu\n", rules.size(), kNakRuleCount);
-  for (const auto& r : rules) std::printf("  %s\n", r.c_str());
+  std::printf("NAK rules fired: %zu of %zu; not fired:\n", rules.size(), kNakRuleCount);
+  for (std::size_t i = 0; i < kNakRuleCount; ++i) {
+    const std::string r = rule_name(static_cast<NakRule>(i));
+    if (!rules.count(r)) std::printf("  %s\n", r.c_str());
+  }
   std::printf("offline replies: %zu command code(s)\n", t.offline.size());
   std::printf("handlers reached: %zu of %zu commands\n", reached, catalog().size());
   return t.mismatches == 0 ? 0 : 1;

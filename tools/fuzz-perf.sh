@@ -2,7 +2,7 @@
 # Prints the fuzz targets' speed on one core and what the whole-controller
 # target reaches in a given time (figures are printed, never asserted):
 #   tools/fuzz-perf.sh [SECONDS]
-# 1. every target runs EXEC_SECONDS (default 20) from its seed corpus, pinned
+# 1. every target runs EXEC_SECONDS (default 20; 0 skips this) from its seed corpus, pinned
 #    to one core (taskset -c 0): libFuzzer's exec/s, and executions per
 #    CPU-second of the process (the same figure on a machine shared with
 #    other jobs, where wall-clock exec/s understates the target);
@@ -42,7 +42,8 @@ flags_of() {
 echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 printf "%-22s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
-for t in $(cat "$fuzz/fuzz_targets.txt"); do
+((exec_seconds > 0)) && targets=$(cat "$fuzz/fuzz_targets.txt") || targets=""
+for t in $targets; do
   corpus=$work/$t
   mkdir -p "$corpus"
   cp "$fuzz/seeds/$t"/* "$corpus/"
@@ -65,7 +66,7 @@ mapfile -t flags < <(flags_of fuzz_controller)
 /usr/bin/time -f "%U %S" -o "$work/long.time" taskset -c 0 "$fuzz/fuzz_controller" "${flags[@]}" \
   -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/long.log" 2>&1 || {
   echo "fuzz_controller failed:"; tail -30 "$work/long.log"; exit 1; }
-grep -E "^#[0-9]+ " "$work/long.log" | tail -1 | sed "s/^/  /" || true
+grep -E "^#[0-9]+[[:space:]]" "$work/long.log" | tail -1 | sed "s/^/  /" || true
 grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)" "$work/long.log" | sed 's/^/  /'
 echo "  CPU seconds: $(awk '{printf "%.1f", $1 + $2}' "$work/long.time")  (cov: = edges covered, ft: = features)"
 echo
