@@ -5,8 +5,7 @@
 //  - one seed per conformance vector (whatever vectors/ holds when it runs)
 //    for the receiver, the whole-controller and the differential targets:
 //    its send and poll steps (setup, steps, teardown) encoded as the runner
-//    encodes them (structured commands through the codecs, raw bytes through
-//    expand_raw_bytes, then apply_modifiers, parity and parity flips);
+//    encodes them (step_bytes, then apply_modifiers, parity and parity flips);
 //  - one seed per reply type (the codecs' defaults) and per vector reply
 //    given as bytes, for the reply decoders;
 //  - each vector file and each device profile, for the loaders;
@@ -108,38 +107,32 @@ VectorSeeds vector_seeds(const harness::Vector& v, std::uint8_t address) {
   VectorSeeds out;
   auto add_step = [&](const harness::Step& s) {
     if (s.kind == harness::Step::Kind::kWait) return;
-    // The runner's step encoding (Runner::run frame_of, apply_modifiers,
-    // Context::exchange's parity flips); captured values are unknown here.
-    Bytes chars;
-    if (s.raw) {
-      auto b = harness::expand_raw_bytes(s.raw->hex, address);
-      if (!b) return;
-      chars = b.value();
-    } else if (s.command) {
+    // The runner's step encoding: step_bytes (captured values, unknown
+    // here, are blanks), then apply_modifiers, parity and parity flips as
+    // the runner's exchange sends them.
+    const auto chars = harness::step_bytes(s, address, {}, true);
+    if (!chars) return;
+    if (s.command) {
       const auto* info = sabus::find_command(s.command->command);
-      if (!info) return;
-      auto r = sabus::build_request(*info, s.command->form, s.command->fields);
-      if (!r) return;
-      chars = sabus::encode_request(r.value(), s.command->address.value_or(address));
-      // The differential target: command, form, then each field's value.
-      out.structured.push_back(static_cast<std::uint8_t>(catalog_index(info)));
-      std::size_t form = 0;
-      for (std::size_t i = 0; i < info->forms.size(); ++i)
-        if (info->forms[i].id == s.command->form) form = i;
-      out.structured.push_back(static_cast<std::uint8_t>(form));
-      for (const auto& name : sabus::request_field_names(*info, s.command->form)) {
-        auto it = s.command->fields.find(name);
-        if (it == s.command->fields.end() || it->second.size() >= 0x80) {
-          out.structured.push_back(0x80);
-        } else {
-          out.structured.push_back(static_cast<std::uint8_t>(it->second.size()));
-          out.structured.insert(out.structured.end(), it->second.begin(), it->second.end());
+      if (info && sabus::build_request(*info, s.command->form, s.command->fields)) {
+        // The differential target: command, form, then each field's value.
+        out.structured.push_back(static_cast<std::uint8_t>(catalog_index(info)));
+        std::size_t form = 0;
+        for (std::size_t i = 0; i < info->forms.size(); ++i)
+          if (info->forms[i].id == s.command->form) form = i;
+        out.structured.push_back(static_cast<std::uint8_t>(form));
+        for (const auto& name : sabus::request_field_names(*info, s.command->form)) {
+          auto it = s.command->fields.find(name);
+          if (it == s.command->fields.end() || it->second.size() >= 0x80) {
+            out.structured.push_back(0x80);
+          } else {
+            out.structured.push_back(static_cast<std::uint8_t>(it->second.size()));
+            out.structured.insert(out.structured.end(), it->second.begin(), it->second.end());
+          }
         }
       }
-    } else {
-      return;
     }
-    Bytes wire = sabus::add_even_parity(harness::apply_modifiers(chars, s.modifiers));
+    Bytes wire = sabus::add_even_parity(harness::apply_modifiers(chars.value(), s.modifiers));
     for (auto p : s.modifiers.parity_flip)
       if (p < wire.size()) wire[p] ^= 0x80;
     out.wire.insert(out.wire.end(), wire.begin(), wire.end());

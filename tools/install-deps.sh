@@ -15,6 +15,7 @@ packages=(
   libfmt-dev                            # formatting
   nlohmann-json3-dev                    # JSON output
   socat                                 # pty pairs for integration tests
+  libxml2-utils                         # xmllint: the JUnit report validates against reports/junit.xsd
 )
 
 missing=()

@@ -73,6 +73,7 @@ void Bus::receive(ByteView wire, Bytes& out) {
       const Bytes in = encode_frame(f);
       log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
       Outcome o = u->controller.execute(f);
+      if (o.nak && nak_rules_.size() < 64) nak_rules_.emplace_back(name(*o.nak));
       if (o.reply) {
         Bytes w = parity_ == Parity::kNone ? *o.reply : add_even_parity(*o.reply);
         out.insert(out.end(), w.begin(), w.end());
@@ -101,6 +102,12 @@ void Bus::trim_log() {
 
 void Bus::tick() {
   for (auto& u : units_) u->controller.update();
+}
+
+std::vector<std::string> Bus::take_nak_rules() {
+  std::vector<std::string> r;
+  r.swap(nak_rules_);
+  return r;
 }
 
 std::string Bus::take_log() {

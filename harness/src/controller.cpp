@@ -39,6 +39,10 @@ Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faul
   for (const auto& s : profile_.signposts)
     if (s.index >= 1 && s.index <= state_.signposts.size()) state_.signposts[s.index - 1] = s;
   state_.navigation = profile_.navigation;
+  state_.az.alarm = profile_.alarms.az;
+  state_.el.alarm = profile_.alarms.el;
+  state_.pol.alarm = profile_.alarms.pol;
+  state_.alarm_code = profile_.alarms.code;
   state_.track = {profile_.track.active, profile_.track.activity, profile_.track.band, profile_.track.dual_band};
   // Power-on: INIT has finished; MANUAL (or TRACK, for profiles that test it).
   state_.mode.last_mode = mode_value("INIT_MODE");

@@ -264,6 +264,12 @@ struct Handlers {
 
   // ---- §3.7 Miscellaneous -----------------------------------------------------------
   static Outcome misc(C& c, const Misc& m) {
+    // §3.19 byte 29 'C' needs "a LOCATE function ... immediately prior to the
+    // Remote Store": an automatic function in between (STOW, DEPLOY, search)
+    // ends that LOCATE's claim. Jogs to peak up the satellite do not.
+    const bool function = (m.sub == 'S' && c.profile_.stow) || (m.sub == 'D' && c.profile_.deploy) ||
+                          (m.sub == 'A' && (m.param == 'E' || m.param == 'F'));
+    if (function) c.state_.last_located.reset();
     switch (m.sub) {
       case 'R': return drive_reset(c, m.param);
       case 'T': return track_command(c, m.param);

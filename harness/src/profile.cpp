@@ -9,6 +9,15 @@ namespace sabus::harness {
 // own address; everything else is shared. The name gets the decimal address
 // (the controller's own notation, ERRATA E-4) so reports tell them apart.
 // The addresses are taken as given: the caller has parsed and checked them.
+std::vector<Profile> bus_of(const Profile& profile) {
+  if (profile.bus_peers.empty()) return {profile};
+  Profile base = profile;
+  base.bus_peers.clear();
+  std::vector<std::uint8_t> addresses{profile.address};
+  addresses.insert(addresses.end(), profile.bus_peers.begin(), profile.bus_peers.end());
+  return multi_drop(base, addresses);
+}
+
 std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint8_t>& addresses) {
   std::vector<Profile> out;
   out.reserve(addresses.size());

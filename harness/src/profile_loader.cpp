@@ -66,6 +66,9 @@ constexpr Named<std::uint8_t> kLatLonSources[] = {{"none", 1},   {"gps", 2},   {
 constexpr Named<std::uint8_t> kHeadingSources[] = {{"none", 1},     {"fluxgate_auto", 2}, {"fluxgate_manual", 3},
                                                    {"manual", 4},   {"user_fix", 5},      {"dvb_receiver", 6},
                                                    {"remote", 7}};
+// §3.2 bytes 36-38 'XXXX': the alarm codes 1000-1100.
+constexpr Named<std::uint8_t> kAxisAlarms[] = {{"none", 0},     {"off_axis", 8}, {"sensor_direction", 9},
+                                               {"runaway", 10}, {"jammed", 11},  {"drive", 12}};
 // ERRATA E-2: CONFIG items 1-6.
 constexpr int kBauds[] = {300, 600, 1200, 2400, 4800, 9600};
 
@@ -353,6 +356,16 @@ void read_track(const YAML::Node& v, const At& at, TrackProfile& track) {
   r.read("dual_band", track.dual_band, to_bool);
 }
 
+void read_alarms(const YAML::Node& v, const At& at, AlarmProfile& alarms) {
+  MapReader r(v, at, {"az", "el", "pol", "code"});
+  auto axis = [](const YAML::Node& n, const At& a) { return to_choice(n, a, kAxisAlarms); };
+  r.read("az", alarms.az, axis);
+  r.read("el", alarms.el, axis);
+  r.read("pol", alarms.pol, axis);
+  // §3.2 byte 39: A5..A0.
+  r.read("code", alarms.code, [](const YAML::Node& n, const At& a) { return static_cast<std::uint8_t>(to_integer_in(n, a, 0, 63)); });
+}
+
 // The *profile* switches of protocol/ERRATA.md.
 void read_errata(const YAML::Node& v, const At& at, Profile& p) {
   MapReader r(v, at,
@@ -375,15 +388,30 @@ void read_errata(const YAML::Node& v, const At& at, Profile& p) {
              std::to_string(p.locate_index_max));
 }
 
+// §1 multi-drop: the other addresses on the line, one address or a list;
+// each distinct and not the profile's own.
+void read_bus_peers(const YAML::Node& v, const At& at, Profile& p) {
+  auto one = [&](const YAML::Node& n, const At& a) {
+    const std::uint8_t peer = to_address(n, a);
+    if (peer == p.address) fail(a, "a bus peer cannot have the profile's own address " + std::to_string(peer));
+    if (std::find(p.bus_peers.begin(), p.bus_peers.end(), peer) != p.bus_peers.end())
+      fail(a, "address " + std::to_string(peer) + " is listed twice");
+    p.bus_peers.push_back(peer);
+  };
+  if (v.IsScalar()) return one(v, at);
+  for_each_element(v, at, 62, one);
+}
+
 Profile read_profile(const YAML::Node& root) {
   Profile p;
   if (root.IsNull()) return p;  // an empty document: every key at its default
   MapReader r(root, At{"", root.Mark()},
-              {"name", "address", "remote_enabled", "baud", "firmware", "polarization", "azimuth_sensor", "hundredths",
+              {"name", "address", "bus_peers", "remote_enabled", "baud", "firmware", "polarization", "azimuth_sensor", "hundredths",
                "stow", "deploy", "dvb_receiver", "counts_per_degree", "count_offset", "axes", "turnaround_ms", "agc",
-               "store", "presets", "tles", "signposts", "navigation", "track", "errata"});
+               "store", "presets", "tles", "signposts", "navigation", "track", "alarms", "errata"});
   r.read("name", p.name, [](const YAML::Node& n, const At& a) { return to_field_text(n, a, 1, kMaxProfileName); });
   r.read("address", p.address, to_address);
+  r.with("bus_peers", [&](const YAML::Node& n, const At& a) { read_bus_peers(n, a, p); });
   r.read("remote_enabled", p.remote_enabled, to_bool);
   r.read("baud", p.baud, to_baud);
   r.read("firmware", p.firmware, to_firmware);
@@ -407,6 +435,7 @@ Profile read_profile(const YAML::Node& root) {
   r.with("signposts", [&](const YAML::Node& n, const At& a) { read_signposts(n, a, p); });
   r.with("navigation", [&](const YAML::Node& n, const At& a) { read_navigation(n, a, p.navigation); });
   r.with("track", [&](const YAML::Node& n, const At& a) { read_track(n, a, p.track); });
+  r.with("alarms", [&](const YAML::Node& n, const At& a) { read_alarms(n, a, p.alarms); });
   r.with("errata", [&](const YAML::Node& n, const At& a) { read_errata(n, a, p); });
   // §3.20 NOTE / ERRATA E-23: signposts exist only with the DVB receiver option.
   if (!p.signposts.empty() && !p.dvb_receiver)
@@ -552,6 +581,11 @@ std::string to_yaml(const Profile& p) {
   auto sub = [&out](std::string_view key, const std::string& value) { out += "  " + std::string(key) + ": " + value + "\n"; };
   line("name", quoted(p.name));
   line("address", std::to_string(p.address));
+  {
+    std::string peers;
+    for (auto a : p.bus_peers) peers += (peers.empty() ? "" : ", ") + std::to_string(a);
+    line("bus_peers", "[" + peers + "]");
+  }
   line("remote_enabled", bool_text(p.remote_enabled));
   line("baud", std::to_string(p.baud));
   line("firmware", quoted(p.firmware));
@@ -612,6 +646,11 @@ std::string to_yaml(const Profile& p) {
   sub("activity", name_text(kTrackActivities, p.track.activity));
   sub("band", name_text(kTrackBands, p.track.band));
   sub("dual_band", bool_text(p.track.dual_band));
+  out += "alarms:\n";
+  sub("az", name_text(kAxisAlarms, p.alarms.az));
+  sub("el", name_text(kAxisAlarms, p.alarms.el));
+  sub("pol", name_text(kAxisAlarms, p.alarms.pol));
+  sub("code", std::to_string(p.alarms.code));
   out += "errata:\n";
   sub("stx_restarts_in_data", bool_text(p.stx_restarts_in_data));
   sub("unknown_command_while_offline", name_text(kOfflineUnknown, p.unknown_command_while_offline));

@@ -180,7 +180,7 @@ bool VectorResult::counts_as_failure() const {
 }
 
 int RunResult::exit_code() const {
-  if (!liveness.empty() && !liveness.front().alive) return 3;
+  if (!liveness.empty() && !liveness.front().alive) return liveness.front().heard ? 1 : 3;
   if (aborted) return 1;
   for (const auto& v : vectors)
     if (v.counts_as_failure()) return 1;
@@ -193,6 +193,7 @@ struct Runner::Context : ReceiverSink {
   Runner& runner;
   Captures captures;
   std::vector<TranscriptEntry>* transcript = nullptr;
+  std::string expect;  // the expected path of the step being sent (TranscriptEntry::expect)
   TimePoint start;
   TimePoint last_send{};
   TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
@@ -210,7 +211,7 @@ struct Runner::Context : ReceiverSink {
     return std::chrono::duration<double, std::milli>(runner.transport_.now() - start).count();
   }
   void record(bool sent, const Bytes& bytes, std::string note) {
-    if (transcript) transcript->push_back({t_ms(), sent, bytes, std::move(note)});
+    if (transcript) transcript->push_back({t_ms(), sent, bytes, std::move(note), sent ? expect : std::string()});
   }
   Parity parity() const { return receiver_parity(runner.transport_); }
 
@@ -315,7 +316,26 @@ std::optional<std::string> check_kind(const Expectation& e, const std::vector<Fr
   return std::nullopt;
 }
 
+std::string expect_name(Expectation::Kind k) {
+  switch (k) {
+    case Expectation::Kind::kAck: return "ack";
+    case Expectation::Kind::kNak: return "nak";
+    case Expectation::Kind::kOffline: return "offline";
+    case Expectation::Kind::kSilence: return "silence";
+    case Expectation::Kind::kAny: return "any";
+  }
+  return "any";
+}
+
 }  // namespace
+
+bool is_selected(const RunOptions& options, const std::string& id) {
+  bool selected = options.filters.empty();
+  for (const auto& f : options.filters) selected |= glob_match(f, id);
+  for (const auto& x : options.excludes)
+    if (glob_match(x, id)) selected = false;
+  return selected;
+}
 
 Runner::Runner(Transport& transport, const Profile& profile, RunOptions options)
     : transport_(transport), profile_(profile), options_(std::move(options)) {}
@@ -326,14 +346,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   const std::uint8_t address = profile_.address;
 
   // Builds the bytes of a send step.
-  auto frame_of = [&](const Step& s) -> Expected<Bytes> {
-    if (s.raw) return expand_raw_bytes(s.raw->hex, address, ctx.captures);
-    const CommandInfo* info = find_command(s.command->command);
-    if (!info) return DecodeError{0, "command", "a command of the catalog", s.command->command};
-    auto r = build_request(*info, s.command->form, s.command->fields);
-    if (!r) return r.error();
-    return encode_request(r.value(), s.command->address.value_or(address));
-  };
+  auto frame_of = [&](const Step& s) { return step_bytes(s, address, ctx.captures); };
 
   // Runs one send step; returns the failure, if any.
   auto run_send = [&](const Step& s) -> std::optional<std::string> {
@@ -343,7 +356,11 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     const bool silence = s.expect.kind == Expectation::Kind::kSilence;
     const auto window = silence ? ctx.silence_window(wire.size()) : ctx.reply_timeout(wire.size());
     const TimePoint listen_start = transport_.now();
+    (void)transport_.take_nak_rules();  // only this exchange's rules count
+    ctx.expect = expect_name(s.expect.kind);
     const auto replies = ctx.exchange(wire, s.modifiers, window);
+    ctx.expect.clear();
+    const auto nak_rules = transport_.take_nak_rules();
     if (silence) {
       ctx.silence_listened += std::chrono::duration_cast<std::chrono::microseconds>(transport_.now() - listen_start) -
                               std::chrono::duration_cast<std::chrono::microseconds>(wire_time(wire.size(), transport_.baud()));
@@ -357,6 +374,13 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     const std::uint8_t sent_command = start + 1 < wire.size() ? wire[start + 1] : 0;
     const std::uint8_t want_address = s.command && s.command->address ? *s.command->address : sent_address;
     if (auto e = check_kind(s.expect, replies, want_address, sent_command)) return e;
+    if (!s.expect.nak_rule.empty() && nak_rules &&
+        std::find(nak_rules->begin(), nak_rules->end(), s.expect.nak_rule) == nak_rules->end()) {
+      std::string fired;
+      for (const auto& r : *nak_rules) fired += (fired.empty() ? "" : ", ") + r;
+      return "expected a NAK by rule " + s.expect.nak_rule + ", the reference controller applied " +
+             (fired.empty() ? std::string("none") : fired);
+    }
     if (replies.empty()) return std::nullopt;
     const Bytes reply = encode_frame(replies[0]);
     if (s.expect.bytes) {
@@ -404,9 +428,10 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
 
   // Liveness: a device type query and a status poll (tlsfuzzer's sanity runs).
   auto liveness = [&](const std::string& when) {
-    LivenessResult l{when, true, ""};
+    LivenessResult l{when, true, false, ""};
     std::vector<TranscriptEntry> scratch;
     ctx.transcript = &scratch;
+    const std::size_t received_before = ctx.bytes_received;
     for (std::uint8_t code : {std::uint8_t{0x30}, std::uint8_t{0x31}}) {
       const Bytes cmd = encode_frame({FrameKind::kCommand, address, code, {}});
       try {
@@ -424,6 +449,8 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
       }
     }
     ctx.transcript = nullptr;
+    l.heard = ctx.bytes_received > received_before;
+    if (!l.alive && l.heard) l.detail += " (the device sends bytes, but not the reply the spec asks for)";
     result.liveness.push_back(l);
     return l.alive;
   };
@@ -533,7 +560,9 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   };
 
   try {
-    if (!liveness("before the first vector")) {
+    // A device that sends bytes is reachable, however wrong they are: its
+    // vectors run and say what is wrong. Only silence ends the run here.
+    if (!liveness("before the first vector") && !result.liveness.back().heard) {
       result.aborted = true;
       result.abort_reason = "the device did not answer: " + result.liveness.back().detail;
       return result;
@@ -556,16 +585,14 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     r.id = v.id;
     r.paragraph = v.paragraph;
     r.file = v.where.file;
+    r.quote = v.quote;
+    r.comment = v.comment;
     r.level = v.level;
     auto skip = [&](std::string why) {
       r.verdict = Verdict::kSkip;
       r.skip_reason = std::move(why);
     };
-    bool selected = options_.filters.empty();
-    for (const auto& f : options_.filters) selected |= glob_match(f, v.id);
-    for (const auto& x : options_.excludes)
-      if (glob_match(x, v.id)) selected = false;
-    if (!selected) continue;  // not part of this run at all
+    if (!is_selected(options_, v.id)) continue;  // not part of this run at all
     if (static_cast<int>(v.level) > static_cast<int>(options_.max_level)) skip("level " + std::string(to_string(v.level)));
     for (const auto& req : v.requires_)
       if (r.verdict != Verdict::kSkip)

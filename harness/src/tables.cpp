@@ -39,4 +39,30 @@ std::string_view description(NakRule rule) {
   return "";
 }
 
+std::string_view name(NakRule rule) {
+  switch (rule) {
+#define SABUS_X(id, paragraph, text) \
+  case NakRule::id: return std::string_view(#id).substr(1);
+    SABUS_NAK_RULES(SABUS_X)
+#undef SABUS_X
+  }
+  return "";
+}
+
+namespace {
+constexpr NakRule kNakRules[] = {
+#define SABUS_X(id, paragraph, text) NakRule::id,
+    SABUS_NAK_RULES(SABUS_X)
+#undef SABUS_X
+};
+}  // namespace
+
+std::span<const NakRule> all_nak_rules() { return kNakRules; }
+
+std::optional<NakRule> find_nak_rule(std::string_view text) {
+  for (NakRule r : kNakRules)
+    if (name(r) == text) return r;
+  return std::nullopt;
+}
+
 }  // namespace sabus::harness

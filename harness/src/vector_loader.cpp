@@ -21,6 +21,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -293,18 +294,32 @@ std::optional<Effects> effects_of(const FrameSketch& s) {
 // Requirements: profile keys and values, as the profile loader reads them
 // ---------------------------------------------------------------------------
 
-std::optional<std::string> scalar_at(const YAML::Node& node, std::span<const std::string> path) {
-  if (path.empty()) return node.IsScalar() ? std::optional<std::string>(node.Scalar()) : std::nullopt;
+// The values at a key path: a scalar's text, or each element of a list of
+// scalars (bus_peers); nullopt when the path leads nowhere or to a map.
+std::optional<std::vector<std::string>> values_at(const YAML::Node& node, std::span<const std::string> path) {
+  if (path.empty()) {
+    if (node.IsScalar()) return std::vector<std::string>{node.Scalar()};
+    if (!node.IsSequence()) return std::nullopt;
+    std::vector<std::string> out;
+    for (const auto& e : node) {
+      if (!e.IsScalar()) return std::nullopt;
+      out.push_back(e.Scalar());
+    }
+    return out;
+  }
   if (!node.IsMap()) return std::nullopt;
   const YAML::Node child = node[path.front()];  // const lookup: never inserts
   if (!child.IsDefined()) return std::nullopt;
-  return scalar_at(child, path.subspan(1));
+  return values_at(child, path.subspan(1));
 }
 
-// A key's value as to_yaml writes it: the text requirements compare.
+// A key's value as to_yaml writes it: the text requirements compare. A list
+// key (bus_peers) is required to contain the value, so one value is given.
 std::optional<std::string> written_value(const Profile& profile, const std::vector<std::string>& path) {
   const YAML::Node root = YAML::Load(to_yaml(profile));
-  return scalar_at(root, path);
+  const auto values = values_at(root, path);
+  if (!values || values->size() != 1) return std::nullopt;
+  return values->front();
 }
 
 bool is_plain_word(std::string_view s) {
@@ -644,9 +659,19 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     e.kind = to_reply_kind(v, at);
     return e;
   }
-  MapReader r(v, at, {"reply", "bytes", "fields"});
+  MapReader r(v, at, {"reply", "bytes", "fields", "rule"});
   require_keys(r, at, {"reply"}, "expect");
   r.read("reply", e.kind, to_reply_kind);
+  r.with("rule", [&](const YAML::Node& n, const At& a) {
+    if (e.kind != Expectation::Kind::kNak) fail(a, "only a nak reply names a rule");
+    const std::string& s = scalar(n, a, "a NAK rule");
+    if (!find_nak_rule(s)) {
+      std::string names;
+      for (NakRule rule : all_nak_rules()) names += (names.empty() ? "" : ", ") + std::string(name(rule));
+      fail(a, quoted_clip(s) + " is not a NAK rule of harness/include/sabus/harness/nak_rules.hpp: " + names);
+    }
+    e.nak_rule = s;
+  });
   if (e.kind == Expectation::Kind::kSilence)
     for (auto k : {"bytes", "fields"})
       if (r.has(k)) fail(r.at(k), std::string("silence has no ") + k);
@@ -1350,7 +1375,11 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
       const fs::path& path = it->path();
       const std::string leaf = path.filename().string();
-      if (it->is_directory(ec) && (leaf == "profiles" || leaf == "examples")) it.disable_recursion_pending();
+      // Not vector files: profiles/ and examples/. regression/ holds vectors
+      // recorded from one controller (`sabus record`), not conformance: run
+      // them by naming the folder or a file (vectors/README.md).
+      if (it->is_directory(ec) && (leaf == "profiles" || leaf == "examples" || leaf == "regression"))
+        it.disable_recursion_pending();
       else if (path.extension() == ".yaml" && it->is_regular_file(ec)) found.push_back(path.string());
     }
     if (ec) result.errors.push_back(file_error(p, "cannot list: " + ec.message()));
@@ -1394,12 +1423,17 @@ std::optional<std::string> unmet_requirement(const Profile& profile, const Requi
   try {
     // The profile as YAML is the one place its keys and value spellings live.
     const YAML::Node root = YAML::Load(to_yaml(profile));
-    const auto value = scalar_at(root, split(r.key, '.'));
-    if (!value) return "the profile has no key " + r.key;
-    if (contains(r.values, *value)) return std::nullopt;
-    std::string wanted;
+    // A scalar key holds one of the values; a list key (bus_peers) holds one
+    // of them among its elements.
+    const auto values = values_at(root, split(r.key, '.'));
+    if (!values) return "the profile has no key " + r.key;
+    for (const auto& v : *values)
+      if (contains(r.values, v)) return std::nullopt;
+    std::string wanted, has;
     for (const auto& w : r.values) wanted += (wanted.empty() ? "" : " or ") + w;
-    return r.key + " is " + *value + ", needs " + wanted;
+    for (const auto& v : *values) has += (has.empty() ? "" : ", ") + v;
+    if (values->size() != 1) return r.key + " is [" + has + "], needs one of " + wanted;
+    return r.key + " is " + has + ", needs " + wanted;
   } catch (const YAML::Exception& e) {
     return std::string("cannot read the profile: ") + e.what();
   }
@@ -1409,6 +1443,30 @@ bool requirements_hold(const Profile& profile, const std::vector<Requirement>& r
   for (const auto& r : requirements)
     if (unmet_requirement(profile, r)) return false;
   return true;
+}
+
+Expected<Bytes> step_bytes(const Step& s, std::uint8_t address, const std::map<std::string, std::string>& captures,
+                           bool blank_missing_captures) {
+  if (s.raw) {
+    if (!blank_missing_captures) return expand_raw_bytes(s.raw->hex, address, captures);
+    std::string hex = s.raw->hex;
+    for (std::size_t at = hex.find("{$"); at != std::string::npos; at = hex.find("{$", at)) {
+      const auto end = hex.find('}', at);
+      if (end == std::string::npos) break;
+      if (captures.count(hex.substr(at + 1, end - at - 1))) {
+        at = end;
+        continue;
+      }
+      hex.replace(at, end - at + 1, "20");
+    }
+    return expand_raw_bytes(hex, address, captures);
+  }
+  if (!s.command) return DecodeError{0, "step", "a send with a command or raw bytes", "neither"};
+  const CommandInfo* info = find_command(s.command->command);
+  if (!info) return DecodeError{0, "command", "a command of the catalog", s.command->command};
+  auto r = build_request(*info, s.command->form, s.command->fields);
+  if (!r) return r.error();
+  return encode_request(r.value(), s.command->address.value_or(address));
 }
 
 }  // namespace sabus::harness

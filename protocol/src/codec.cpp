@@ -105,12 +105,13 @@ struct Describer {
       if (!error) error = DecodeError{kDataStart + in.size(), std::string(name), want, "ETX"};
       if (remaining > 0)
         out.push_back({kDataStart + pos, kDataStart + in.size() - 1, std::string(name), raw_text(in.subspan(pos)),
-                       "invalid: the data ends here, expected " + want, false});
+                       "invalid: the data ends here, expected " + want, false, fields::KindOf<C>::value});
       return;
     }
     if (w == 0) return;
     ByteView slice = in.subspan(pos, w);
-    FieldDescription d{kDataStart + pos, kDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true};
+    FieldDescription d{kDataStart + pos, kDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true,
+                       fields::KindOf<C>::value};
     if (auto e = c.decode(slice, value)) {
       const std::size_t at = std::min(e->index, w - 1);  // see Decoder
       d.ok = false;
@@ -314,6 +315,32 @@ std::string_view form_of(const Request& r) {
       r);
 }
 
+CommandForm classify_command(ByteView b) {
+  CommandForm out;
+  // The frame is the one the last STX begins; the final byte is a check
+  // byte, which may itself be 02h.
+  std::size_t start = b.empty() ? 0 : b.size() - 1;
+  while (start > 0 && b[start - 1] != STX) --start;
+  if (start == 0 || start + 1 >= b.size()) return out;
+  out.info = find_command(b[start + 1]);
+  if (!out.info) return out;
+  if (out.info->forms.size() == 1) {
+    out.form = &out.info->forms.front();
+    return out;
+  }
+  if (auto frame = decode_frame(ByteView(b).subspan(start - 1)); frame) {
+    if (auto request = decode_request(frame.value()); request) {
+      out.form = out.info->form_by_id(form_of(request.value()));
+      return out;
+    }
+  }
+  if (out.info->form_selector_offset) {
+    const std::size_t at = start - 1 + *out.info->form_selector_offset;
+    if (at < b.size()) out.form = out.info->form_for_selector(b[at]);
+  }
+  return out;
+}
+
 Bytes encode_request_data(const Request& r) {
   return std::visit([](const auto& m) { return encode_request_alt(m); }, r);
 }
@@ -390,15 +417,16 @@ std::string FieldDescription::line() const {
 
 FrameDescription describe_frame(ByteView b) {
   FrameDescription out;
-  auto add = [&](std::size_t first, std::size_t last, std::string name, std::string meaning, bool ok = true) {
+  auto add = [&](std::size_t first, std::size_t last, std::string name, std::string meaning, bool ok = true,
+                 fields::Kind kind = fields::Kind::kHeader) {
     out.fields.push_back({first, last, std::move(name), raw_text(b.subspan(first, last - first + 1)),
-                          std::move(meaning), ok});
+                          std::move(meaning), ok, kind});
   };
   auto frame = decode_frame(b);
   if (!frame) out.error = frame.error();
   if (b.size() < 5) {
     out.summary = "short frame of " + std::to_string(b.size()) + " bytes";
-    for (std::size_t i = 0; i < b.size(); ++i) add(i, i, "byte", describe_byte(b[i]), false);
+    for (std::size_t i = 0; i < b.size(); ++i) add(i, i, "byte", describe_byte(b[i]), false, fields::Kind::kUndescribed);
     return out;
   }
   const std::uint8_t start = b[0];
@@ -449,7 +477,8 @@ FrameDescription describe_frame(ByteView b) {
     }
   }
   if (!described && !data.empty() && !(start == ACK && data.size() == 1 && data[0] == kOfflineMarker))
-    add(kDataStart, etx - 1, "data", std::to_string(data.size()) + " byte(s) not described", false);
+    add(kDataStart, etx - 1, "data", std::to_string(data.size()) + " byte(s) not described", false,
+        fields::Kind::kUndescribed);
   if (field_error && !out.error) out.error = field_error;
 
   add(etx, etx, "ETX", b[etx] == ETX ? "end of text" : "expected ETX", b[etx] == ETX);

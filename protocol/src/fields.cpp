@@ -76,6 +76,18 @@ std::string quantity_text(std::int32_t v, int decimals, Quantity q) {
 
 }  // namespace
 
+std::string_view to_string(Kind kind) {
+  switch (kind) {
+    case Kind::kHeader: return "header";
+    case Kind::kUndescribed: return "undescribed";
+#define SABUS_X(T) \
+  case Kind::k##T: return #T;
+      SABUS_FIELD_CODECS(SABUS_X)
+#undef SABUS_X
+  }
+  return "?";
+}
+
 std::string format_scaled(std::int64_t value, int decimals) {
   const bool negative = value < 0;
   std::uint64_t a = negative ? static_cast<std::uint64_t>(-value) : static_cast<std::uint64_t>(value);

@@ -363,6 +363,25 @@ TEST(Controller, RemoteLocateThenStoreWithCalculatedPolarization) {
   EXPECT_EQ(count, 2u) << "GALAXY 19 overwritten, not added";
 }
 
+// §3.19 byte 29 'C': the LOCATE must be "immediately prior"; a search started
+// after it ends its claim, a jog to peak up does not.
+TEST(Controller, StoreWithCalculatedPolarizationNeedsTheLocateImmediatelyBefore) {
+  Rig r;
+  RemoteLocate l;
+  l.preset = {true, 1};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(300s);
+  ASSERT_FALSE(is_nak(r.send(Jog{{'W', 'S', 50}}))) << "peaking up by hand";
+  RemoteStore s;
+  s.preset = {true, 1};
+  s.pol_selection = 'C';
+  EXPECT_FALSE(is_nak(r.send(s))) << "a jog keeps the LOCATE";
+  ASSERT_FALSE(is_nak(r.send(Misc{'A', 'E'})));
+  EXPECT_EQ(r.send(s).nak, NakRule::kStoreNeedsLocate) << "a search after the LOCATE ends its claim";
+  ASSERT_FALSE(is_nak(r.send(l)));
+  EXPECT_FALSE(is_nak(r.send(s))) << "a new LOCATE";
+}
+
 // ---- offline, unknown, length --------------------------------------------------------------
 
 TEST(Controller, OfflineReplyForEveryValidCommandWhileDisabled) {

@@ -232,6 +232,12 @@ TEST(profile, VariantFilesChangeWhatTheySay) {
   EXPECT_TRUE(iess.implements_signal_strength);
   EXPECT_TRUE(iess.implements_iess);
   EXPECT_FALSE(iess.nak_bad_tle_checksum);  // the other switches keep their defaults
+
+  Profile pulse = load_shipped("pulse-counts");  // §3.3 form 2B needs count-type sensors
+  EXPECT_EQ(pulse.az_sensor, AzSensor::kPulse);
+  EXPECT_EQ(pulse.counts_per_degree, 100.0);
+  EXPECT_EQ(pulse.count_offset, 10000);
+  EXPECT_TRUE(pulse.store.empty());
 }
 
 // ---------------------------------------------------------------------------

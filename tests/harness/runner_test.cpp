@@ -2,6 +2,8 @@
 // runs against the in-process reference controller (also with faults).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
@@ -136,6 +138,31 @@ RunResult run_in_process(const std::vector<Vector>& vectors, FaultSet faults = {
   return runner.run(vectors);
 }
 
+// The shipped suite against the reference controller, one run a profile with
+// motion and destructive vectors allowed: every vector passes or is skipped by
+// its requirements, and each NAK names the rule the vector expects.
+TEST(Runner, ShippedVectorsPassOnTheShippedProfiles) {
+  std::vector<Vector> vectors;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors) vectors.push_back(std::move(v));
+  ASSERT_FALSE(vectors.empty());
+  const auto profiles_dir = std::filesystem::path(default_profile_path()).parent_path();
+  for (const auto& e : std::filesystem::directory_iterator(profiles_dir)) {
+    if (e.path().extension() != ".yaml") continue;
+    Profile p = load_profile_file(e.path().string()).profile.value();
+    auto t = make_in_process_transport(bus_of(p), {});  // multidrop-bus has peers on its line
+    RunOptions o;
+    o.allow_motion = true;
+    o.allow_destructive = true;
+    Runner runner(*t, p, o);
+    const RunResult r = runner.run(vectors);
+    EXPECT_FALSE(r.aborted) << p.name << ": " << r.abort_reason;
+    EXPECT_EQ(r.passed + r.skipped, vectors.size()) << p.name;
+    for (const auto& v : r.vectors)
+      EXPECT_NE(v.verdict, Verdict::kFail) << p.name << ": " << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+  }
+}
+
 TEST(Runner, PassFailSkipAndLiveness) {
   auto status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
   status.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {"0x06"}));
@@ -225,9 +252,31 @@ TEST(Runner, NoBackupWithoutDestructiveVectors) {
 }
 
 TEST(Runner, UnreachableDeviceExits3) {
-  RunResult r = run_in_process({}, {Fault::kCheckByteStxRestarts});  // never answers 02 32 31 03 02
+  // The only controller on the line is at 51: nothing answers the runner's 50.
+  Profile device = load_profile_file(default_profile_path()).profile.value();
+  const Profile expected = device;
+  device.address = 51;
+  auto t = make_in_process_transport({device});
+  RunResult r = Runner(*t, expected, {}).run({vector_with("status", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck)})});
   EXPECT_EQ(r.exit_code(), 3);
   EXPECT_TRUE(r.aborted);
+  EXPECT_TRUE(r.vectors.empty());
+  ASSERT_FALSE(r.liveness.empty());
+  EXPECT_FALSE(r.liveness.front().heard);
+}
+
+TEST(Runner, DeviceThatSendsBytesIsReachableAndItsVectorsRun) {
+  // The status poll 02 32 31 03 02 is never answered (its check byte is taken
+  // as a new STX), but the device type query is: the device is there, broken.
+  RunResult r = run_in_process({vector_with("status", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck)})},
+                               {Fault::kCheckByteStxRestarts});
+  EXPECT_EQ(r.exit_code(), 1);
+  EXPECT_FALSE(r.aborted);
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  ASSERT_FALSE(r.liveness.empty());
+  EXPECT_FALSE(r.liveness.front().alive);
+  EXPECT_TRUE(r.liveness.front().heard);
 }
 
 TEST(Runner, PollUntilTheMoveEnds) {

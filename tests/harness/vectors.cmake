@@ -15,3 +15,26 @@ add_test(NAME cli.vectors.usage_exits_2
          COMMAND sh -c "\"$0\" vectors lint /no/such/path; test $? -eq 2" $<TARGET_FILE:sabus>)
 set_tests_properties(cli.vectors.lint_shipped cli.vectors.lint_errors_exit_1 cli.vectors.usage_exits_2
                      PROPERTIES LABELS integration)
+
+# Every vector's command bytes split at every point give the same receiver events.
+sabus_add_test(vector_chunk_properties property ${CMAKE_CURRENT_SOURCE_DIR}/property/vector_chunk_properties.cpp)
+target_link_libraries(vector_chunk_properties PRIVATE sabus::vectors sabus::controller sabus::runner sabus::transport)
+
+# The suite's gates: `sabus vectors coverage` has no required cell without a
+# vector; every shipped profile passes and every injected fault fails a
+# must-level vector (tools/gates/suite_gates.cpp prints the mutation score).
+add_test(NAME gate.coverage COMMAND $<TARGET_FILE:sabus> vectors coverage --missing)
+set_tests_properties(gate.coverage PROPERTIES LABELS gate)
+if(NOT SABUS_SANITIZE)
+  # Some 45 runs of the whole suite: minutes under the sanitizers, whose
+  # build runs the in-process profile gate (Runner.ShippedVectorsPassOnTheShippedProfiles).
+  add_test(NAME gate.suite COMMAND $<TARGET_FILE:suite_gates>)
+  set_tests_properties(gate.suite PROPERTIES LABELS gate)
+endif()
+
+# The generated parts of the suite's documents are current (tools/update-suite-docs.sh).
+add_test(NAME gate.errata_vector_lists COMMAND $<TARGET_FILE:sabus> vectors errata --check ${PROJECT_SOURCE_DIR}/protocol/ERRATA.md)
+add_test(NAME gate.suite_summary_current
+         COMMAND ${CMAKE_COMMAND} -DSABUS=$<TARGET_FILE:sabus> -DREADME=${PROJECT_SOURCE_DIR}/vectors/README.md
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/suite_summary_current.cmake)
+set_tests_properties(gate.errata_vector_lists gate.suite_summary_current PROPERTIES LABELS gate)

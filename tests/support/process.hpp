@@ -75,6 +75,38 @@ class Process {
     }
     return -1;
   }
+  // Everything the child writes to stdout until it closes it, waiting up to
+  // `timeout` in all.
+  std::string read_all(std::chrono::milliseconds timeout) {
+    std::string s;
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    char buf[4096];
+    while (std::chrono::steady_clock::now() < end) {
+      fd_set set;
+      FD_ZERO(&set);
+      FD_SET(out_, &set);
+      timeval tv{0, 20000};
+      if (select(out_ + 1, &set, nullptr, nullptr, &tv) > 0) {
+        const ssize_t n = read(out_, buf, sizeof buf);
+        if (n <= 0) break;
+        s.append(buf, static_cast<std::size_t>(n));
+      }
+    }
+    return s;
+  }
+  // The exit status once the child ends within `timeout`; -1 if it does not.
+  int wait_exit_for(std::chrono::milliseconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+    return -1;
+  }
   int wait_exit() {
     int status = 0;
     waitpid(pid_, &status, 0);

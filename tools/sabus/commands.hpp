@@ -42,5 +42,10 @@ Command add_sim_command(CLI::App& app);
 Command add_ports_command(CLI::App& app);
 Command add_run_command(CLI::App& app);
 Command add_vectors_command(CLI::App& app);
+Command add_report_command(CLI::App& app);
+Command add_diff_command(CLI::App& app);
+Command add_proxy_command(CLI::App& app);
+Command add_record_command(CLI::App& app);
+Command add_fuzz_command(CLI::App& app);
 
 }  // namespace sabus::cli

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "sabus/harness/capture.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/receiver.hpp"
 
@@ -58,12 +59,21 @@ bool looks_like_hex_text(const std::string& s) {
   return true;
 }
 
-std::optional<Bytes> read_input(const DecodeOptions& o, std::string& error) {
+// Input that is a proxy log or a run JSON rather than bytes.
+struct CaptureInput {
+  std::string text;
+};
+
+std::optional<Bytes> read_input(const DecodeOptions& o, std::string& error, std::optional<CaptureInput>& capture) {
   std::string text;
   if (!o.hex.empty() && o.hex != "-") {
     text = o.hex;
   } else if (o.hex == "-") {
     text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    if (harness::looks_like_capture(text)) {
+      capture = CaptureInput{std::move(text)};
+      return Bytes{};
+    }
   } else {
     std::ifstream in(o.file, std::ios::binary);
     if (!in) {
@@ -71,6 +81,10 @@ std::optional<Bytes> read_input(const DecodeOptions& o, std::string& error) {
       return std::nullopt;
     }
     std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (harness::looks_like_capture(content)) {
+      capture = CaptureInput{std::move(content)};
+      return Bytes{};
+    }
     if (!looks_like_hex_text(content)) return Bytes(content.begin(), content.end());  // a raw capture
     text = std::move(content);
   }
@@ -87,9 +101,107 @@ nlohmann::json field_json(const FieldDescription& f) {
           {"raw", f.raw},     {"meaning", f.meaning}, {"ok", f.ok}};
 }
 
+nlohmann::json fields_json(const FrameDescription& d) {
+  nlohmann::json jf = nlohmann::json::array();
+  for (const auto& f : d.fields) jf.push_back(field_json(f));
+  return jf;
+}
+
+// A proxy log or a run JSON: every frame with its time and direction (and,
+// for a run, its vector). Frames of a run's transcript are framed again by
+// the receiver (a send may hold several, or none).
+int run_decode_capture(const DecodeOptions& o, const std::string& text) {
+  std::string error;
+  auto capture = harness::read_capture(text, error);
+  if (!capture) {
+    std::cerr << "sabus decode: " << (o.file.empty() ? std::string("stdin") : o.file) << ": " << error << "\n";
+    return kExitUsage;
+  }
+  bool all_valid = true;
+  std::size_t frames = 0, ignored = 0;
+  nlohmann::json jevents = nlohmann::json::array();
+  if (!o.json)
+    std::cout << fmt::format("{}{}\n", to_string(capture->source), capture->device.empty() ? "" : " of " + capture->device);
+  for (const auto& seg : capture->segments) {
+    if (!seg.id.empty() && !o.json) std::cout << fmt::format("vector {} (§{}, {}): {}\n", seg.id, seg.paragraph, seg.level, seg.outcome);
+    for (const auto& item : seg.items) {
+      const std::string when = item.wall.empty() ? fmt::format("{:10.3f} ms", item.t_ms)
+                                                 : fmt::format("{:10.3f} ms {}", item.t_ms, item.wall);
+      nlohmann::json base = {{"t_ms", item.t_ms}, {"wall", item.wall}, {"dir", std::string(to_string(item.dir))}};
+      if (!seg.id.empty()) base["vector"] = seg.id;
+      if (item.ignored) {
+        ++ignored;
+        all_valid = false;
+        if (o.json) {
+          base.update({{"type", "discard"}, {"hex", to_hex(item.chars)}, {"message", item.note}});
+          jevents.push_back(base);
+        } else {
+          std::cout << fmt::format("{} {} ignored: {}{}\n", when, to_string(item.dir), item.note,
+                                   item.chars.empty() ? "" : "\n  " + to_hex(item.chars));
+        }
+        continue;
+      }
+      ReceiverOptions ro = item.dir == harness::Direction::kToDevice ? ReceiverOptions::slave_any_address()
+                                                                     : ReceiverOptions::master();
+      ro.parity = Parity::kNone;  // both formats hold 7-bit characters
+      Receiver receiver(ro);
+      Collector events;
+      receiver.feed(item.chars, events);
+      receiver.finish(events);
+      for (const auto& e : events.events) {
+        nlohmann::json j = base;
+        if (e.is_frame) {
+          ++frames;
+          const FrameDescription d = describe_frame(e.bytes);
+          all_valid &= !d.error.has_value();
+          if (o.json) {
+            j.update({{"type", "frame"}, {"hex", to_hex(e.bytes)}, {"summary", d.summary}, {"fields", fields_json(d)},
+                      {"error", d.error ? nlohmann::json(d.error->message()) : nlohmann::json()}});
+            if (item.seq) j["seq"] = *item.seq;
+            if (item.reply_to) j["reply_to"] = *item.reply_to;
+            jevents.push_back(j);
+          } else {
+            std::cout << fmt::format("{} {} {}\n", when, to_string(item.dir), d.summary);
+            for (const auto& f : d.fields) std::cout << "  " << f.line() << "\n";
+            if (d.error) std::cout << "  error: " << d.error->message() << "\n";
+          }
+        } else {
+          ++ignored;
+          all_valid = false;
+          const std::string hex = to_hex(ByteView(item.chars).subspan(e.offset, e.length));
+          if (o.json) {
+            j.update({{"type", "discard"}, {"hex", hex}, {"reason", std::string(to_string(e.discard->reason))},
+                      {"message", e.discard->message()}});
+            jevents.push_back(j);
+          } else {
+            std::cout << fmt::format("{} {} ignored: {}\n  {}\n", when, to_string(item.dir), e.discard->message(), hex);
+          }
+        }
+      }
+    }
+  }
+  for (const auto& ev : capture->events)
+    if (!o.json) std::cout << "event: " << ev << "\n";
+  if (o.json) {
+    nlohmann::json out = {{"source", std::string(to_string(capture->source))},
+                          {"device", capture->device},
+                          {"frames", frames},
+                          {"ignored_runs", ignored},
+                          {"valid", all_valid},
+                          {"session_events", capture->events},
+                          {"events", jevents}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << fmt::format("{} frame(s), {} ignored run(s)\n", frames, ignored);
+  }
+  return all_valid && frames > 0 ? kExitOk : kExitFailed;
+}
+
 int run_decode(const DecodeOptions& o) {
   std::string error;
-  auto input = read_input(o, error);
+  std::optional<CaptureInput> capture;
+  auto input = read_input(o, error, capture);
+  if (capture) return run_decode_capture(o, capture->text);
   if (!input) {
     std::cerr << "sabus decode: " << error << "\n";
     return kExitUsage;
@@ -187,8 +299,8 @@ int run_decode(const DecodeOptions& o) {
 Command add_decode_command(CLI::App& app) {
   auto opts = std::make_shared<DecodeOptions>();
   CLI::App* sub = app.add_subcommand("decode", "Decode SAbus frames from a capture, field by field");
-  sub->add_option("--hex", opts->hex, "Hex bytes (\"02 32 31 03 02\"; spaces optional), or - for hex text on stdin");
-  sub->add_option("file", opts->file, "A capture file: hex text ('#' comments allowed) or raw bytes")
+  sub->add_option("--hex", opts->hex, "Hex bytes (\"02 32 31 03 02\"; spaces optional), or - for hex text, a proxy log or a run JSON on stdin");
+  sub->add_option("file", opts->file, "A capture file: hex text ('#' comments allowed), raw bytes, a proxy log (sabus proxy) or a run JSON (sabus run --json)")
       ->check(CLI::ExistingFile);
   sub->add_option("--side", opts->side, "slave: command frames; master: replies; both; auto guesses from byte 0")
       ->check(CLI::IsMember({"auto", "slave", "master", "both"}));

@@ -12,6 +12,11 @@ int main(int argc, char** argv) {
       sabus::cli::add_run_command(app),
       sabus::cli::add_vectors_command(app),
       sabus::cli::add_ports_command(app),
+      sabus::cli::add_report_command(app),
+      sabus::cli::add_diff_command(app),
+      sabus::cli::add_proxy_command(app),
+      sabus::cli::add_record_command(app),
+      sabus::cli::add_fuzz_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -13,11 +13,14 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "device.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "sabus/reports/document.hpp"
+#include "sabus/reports/writers.hpp"
 
 namespace sabus::cli {
 namespace {
@@ -29,11 +32,10 @@ std::atomic<bool> g_stop{false};
 extern "C" void on_sigint(int) { g_stop = true; }
 
 struct RunCliOptions {
-  bool sim = false;
-  std::string port, tcp, profile, address, level = "informative", junit, json, report_dir, known_issues;
-  std::string line = "8N1", serial_backend = "auto";
-  std::vector<std::string> vectors, filters, excludes, faults;
-  int baud = 0, repeat = 0;
+  DeviceOptions device;
+  std::string level = "informative", junit, json, html, md, report_dir, known_issues;
+  std::vector<std::string> vectors, filters, excludes;
+  int repeat = 0;
   long pace_ms = -1;
   std::uint64_t seed = 0;
   bool allow_motion = false, allow_destructive = false;
@@ -65,146 +67,12 @@ std::optional<std::map<std::string, std::string>> read_known_issues(const std::s
   return out;
 }
 
-nlohmann::json result_json(const VectorResult& r) {
-  nlohmann::json transcript = nlohmann::json::array();
-  for (const auto& t : r.transcript)
-    transcript.push_back({{"t_ms", t.t_ms}, {"dir", t.sent ? "tx" : "rx"}, {"hex", to_hex(t.bytes)}, {"note", t.note}});
-  return {{"id", r.id},
-          {"paragraph", r.paragraph},
-          {"file", r.file},
-          {"level", std::string(to_string(r.level))},
-          {"outcome", std::string(to_string(r.verdict))},
-          {"failures", r.failures},
-          {"skip_reason", r.skip_reason},
-          {"known_issue", r.known_issue_reason},
-          {"duration_ms", r.duration_ms},
-          {"transcript", transcript}};
-}
-
-// Written after every vector (to a temporary file renamed over the target),
-// so an interrupted run keeps what it measured.
-class JsonReport {
- public:
-  JsonReport(std::string path, nlohmann::json header) : path_(std::move(path)), doc_(std::move(header)) {
-    doc_["schema"] = "sabus-run";
-    doc_["schema_version"] = 1;
-    doc_["status"] = "running";
-    doc_["vectors"] = nlohmann::json::array();
-    write();
-  }
-  void add(const VectorResult& r) {
-    doc_["vectors"].push_back(result_json(r));
-    write();
-  }
-  void finish(const RunResult& run) {
-    doc_["status"] = run.aborted ? "aborted" : "complete";
-    doc_["abort_reason"] = run.abort_reason;
-    doc_["summary"] = {{"passed", run.passed},   {"failed", run.failed},       {"skipped", run.skipped},
-                       {"known", run.known},     {"unexpected", run.unexpected}, {"exit_code", run.exit_code()}};
-    nlohmann::json live = nlohmann::json::array();
-    for (const auto& l : run.liveness) live.push_back({{"when", l.when}, {"alive", l.alive}, {"detail", l.detail}});
-    doc_["liveness"] = live;
-    doc_["restore"] = run.restore_notes;
-    doc_["traffic"] = {{"bytes_sent", run.bytes_sent},
-                       {"bytes_received", run.bytes_received},
-                       {"silence_windows", run.silence_windows},
-                       {"silence_listened_ms", run.silence_listened.count() / 1000.0},
-                       {"measured_turnaround_ms", run.measured_turnaround.count() / 1000.0}};
-    write();
-  }
-
- private:
-  void write() {
-    if (path_.empty()) return;
-    const std::string tmp = path_ + ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::trunc);
-      out << doc_.dump(2) << "\n";
-    }
-    std::error_code ec;
-    fs::rename(tmp, path_, ec);
-  }
-  std::string path_;
-  nlohmann::json doc_;
-};
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') out += fmt::format("&#x{:x};", static_cast<int>(c));
-        else out += c;
-    }
-  }
-  return out;
-}
-
-// One testsuite per spec paragraph, one testcase per vector.
-void write_junit(const std::string& path, const RunResult& run) {
-  std::map<std::string, std::vector<const VectorResult*>> by_paragraph;
-  for (const auto& r : run.vectors) by_paragraph[r.paragraph].push_back(&r);
-  std::ofstream out(path);
-  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"sabus\">\n";
-  for (const auto& [paragraph, results] : by_paragraph) {
-    std::size_t failures = 0, skipped = 0;
-    for (const auto* r : results) {
-      failures += r->verdict == Verdict::kFail || r->verdict == Verdict::kUnexpectedPass;
-      skipped += r->verdict == Verdict::kSkip || r->verdict == Verdict::kKnownFailure;
-    }
-    out << fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" skipped=\"{}\">\n",
-                       xml_escape("§" + paragraph), results.size(), failures, skipped);
-    for (const auto* r : results) {
-      out << fmt::format("    <testcase name=\"{}\" classname=\"sabus.{}\" time=\"{:.3f}\">", xml_escape(r->id),
-                         xml_escape(paragraph), r->duration_ms / 1000.0);
-      if (r->verdict == Verdict::kFail || r->verdict == Verdict::kUnexpectedPass) {
-        std::string text;
-        for (const auto& f : r->failures) text += f + "\n";
-        for (const auto& t : r->transcript) text += (t.sent ? "tx " : "rx ") + to_hex(t.bytes) + "  " + t.note + "\n";
-        out << fmt::format("<failure message=\"{}\">{}</failure>",
-                           xml_escape(r->failures.empty() ? "unexpected pass" : r->failures.front()), xml_escape(text));
-      } else if (r->verdict == Verdict::kSkip || r->verdict == Verdict::kKnownFailure) {
-        out << fmt::format("<skipped message=\"{}\"/>",
-                           xml_escape(r->verdict == Verdict::kSkip ? r->skip_reason : "known issue: " + r->known_issue_reason));
-      }
-      out << "</testcase>\n";
-    }
-    out << "  </testsuite>\n";
-  }
-  out << "</testsuites>\n";
-}
-
 int run_run(RunCliOptions o) {
-  const int transports = (o.sim ? 1 : 0) + (o.port.empty() ? 0 : 1) + (o.tcp.empty() ? 0 : 1);
-  if (transports > 1) {
-    std::cerr << "sabus run: choose one of --sim, --port DEV, --tcp HOST:PORT\n";
-    return kExitUsage;
-  }
-  if (transports == 0) o.sim = true;  // the in-process reference controller is the default
   const auto level = parse_level(o.level);
   if (!level) {
     std::cerr << "sabus run: --level must be must, should or informative\n";
     return kExitUsage;
   }
-  ProfileResult loaded = load_profile_file(o.profile.empty() ? default_profile_path() : o.profile);
-  if (!loaded) {
-    std::cerr << "sabus run: " << loaded.error->text() << "\n";
-    return kExitUsage;
-  }
-  Profile profile = *loaded.profile;
-  if (!o.address.empty()) {
-    auto a = parse_address(o.address);
-    if (!a) {
-      std::cerr << "sabus run: --address: " << a.error().message() << "\n";
-      return kExitUsage;
-    }
-    profile.address = a.value();
-  }
-  if (o.baud > 0) profile.baud = o.baud;
   LoadResult suite = load_vectors(o.vectors.empty() ? std::vector<std::string>{default_vectors_dir()} : o.vectors);
   auto lint_errors = lint(suite.files);
   suite.errors.insert(suite.errors.end(), lint_errors.begin(), lint_errors.end());
@@ -216,38 +84,10 @@ int run_run(RunCliOptions o) {
   std::vector<Vector> vectors;
   for (const auto& f : suite.files) vectors.insert(vectors.end(), f.vectors.begin(), f.vectors.end());
 
-  FaultSet faults;
-  for (const auto& name : o.faults) {
-    auto f = find_fault(name);
-    if (!f || !o.sim) {
-      std::cerr << "sabus run: " << (o.sim ? "unknown fault \"" + name + "\"" : "--fault needs --sim") << "\n";
-      return kExitUsage;
-    }
-    faults.set(*f);
-  }
-
-  std::optional<HostPort> tcp;
-  if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) {
-    std::cerr << "sabus run: --tcp HOST:PORT, with a port 0-65535\n";
-    return kExitUsage;
-  }
-  std::unique_ptr<Transport> transport;
-  try {
-    if (o.sim) {
-      transport = make_in_process_transport({profile}, faults);
-    } else if (!o.port.empty()) {
-      std::string note;
-      const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);
-      transport = make_serial_transport(o.port, profile.baud, backend,
-                                        o.line == "7E1" ? LineMode::kTrue7E1 : LineMode::kSoftwareParity8N1, &note);
-      if (!note.empty()) std::cerr << "sabus run: " << note << "\n";
-    } else {
-      transport = make_tcp_transport(tcp->host, tcp->port, std::chrono::seconds(5));
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "sabus run: cannot reach the device: " << e.what() << "\n";
-    return 3;
-  }
+  OpenedDevice device = open_device("run", o.device);
+  if (device.exit_code != kExitOk) return device.exit_code;
+  const Profile& profile = device.profile;
+  std::unique_ptr<Transport>& transport = device.transport;
 
   RunOptions ro;
   ro.allow_motion = o.allow_motion;
@@ -269,50 +109,91 @@ int run_run(RunCliOptions o) {
   }
   ro.stop = [] { return g_stop.load(); };
 
-  std::string json_path = o.json, junit_path = o.junit;
+  std::string json_path = o.json, junit_path = o.junit, html_path = o.html, md_path = o.md;
   if (!o.report_dir.empty()) {
-    fs::create_directories(o.report_dir);
-    if (json_path.empty()) json_path = (fs::path(o.report_dir) / "run.json").string();
-    if (junit_path.empty()) junit_path = (fs::path(o.report_dir) / "junit.xml").string();
+    std::error_code ec;
+    fs::create_directories(o.report_dir, ec);
+    if (ec) {
+      std::cerr << "sabus run: --report-dir " << o.report_dir << ": " << ec.message() << "\n";
+      return kExitUsage;
+    }
+    auto in_dir = [&](std::string& path, const char* name) {
+      if (path.empty()) path = (fs::path(o.report_dir) / name).string();
+    };
+    in_dir(json_path, "run.json");
+    in_dir(junit_path, "junit.xml");
+    in_dir(html_path, "report.html");
+    in_dir(md_path, "summary.md");
   }
   // The stored-data backup (taken before the first destructive vector).
+  // In-process, the device is gone at exit: a backup file is written only
+  // next to a report there.
   ro.backup_path = !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
                    : !json_path.empty()  ? json_path + ".backup.json"
-                                         : "sabus-backup.json";
-  JsonReport json(json_path, {{"device", transport->describe()},
-                              {"profile", profile.name},
-                              {"address", profile.address},
-                              {"faults", o.faults},
-                              {"options", {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
-                                           {"level", o.level}, {"seed", o.seed}, {"repeat", o.repeat}}}});
+                   : transport->in_process() ? ""
+                                             : "sabus-backup.json";
+
+  reports::RunDocument doc;
+  doc.generator = "sabus " SABUS_VERSION;
+  doc.started_at = reports::utc_now();
+  doc.device = transport->describe();
+  doc.profile = profile.name;
+  doc.address = profile.address;
+  doc.faults = o.device.faults;
+  doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
+                 {"level", o.level},               {"seed", o.seed},
+                 {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
+                 {"filters", o.filters},           {"excludes", o.excludes},
+                 {"known_issues", o.known_issues}, {"vectors", o.vectors}};
+  for (const auto& v : vectors) doc.planned += is_selected(ro, v.id);
+  // §3.1: who answers, asked once before the first vector.
+  doc.identity = reports::query_identity(*transport, profile.address);
+  if (!doc.identity.ok) std::cerr << "sabus run: device identity: " << doc.identity.error << "\n";
+  if (ro.pace.count() > 0) transport->pause(ro.pace);  // §4 pacing before the runner's first command
+
+  reports::JsonWriter json(json_path);
+  bool json_ok = json.start(doc);
+  if (!json_ok) std::cerr << "sabus run: " << json.error() << "\n";
+
   const bool tty = isatty(1);
-  std::size_t done = 0;
-  const std::size_t total = vectors.size();
+  reports::Progress progress;
+  progress.total = doc.planned;
+  const auto t0 = std::chrono::steady_clock::now();
   ro.on_result = [&](const VectorResult& r) {
-    ++done;
-    json.add(r);
-    if (r.verdict == Verdict::kFail || r.verdict == Verdict::kUnexpectedPass) {
-      const std::string why = r.failures.empty() ? "passed but is listed as a known issue" : r.failures.front();
-      std::cout << (tty ? "\r\033[K" : "")
-                << fmt::format("FAIL {} §{} {}: {}\n", r.id, r.paragraph, to_string(r.level), why);
-    }
-    if (tty) std::cout << fmt::format("\r[{}/{}] {}", done, total, r.id) << std::flush;
+    doc.vectors.push_back(reports::vector_record(r));
+    const reports::VectorRecord& v = doc.vectors.back();
+    if (json_ok && !(json_ok = json.add(doc))) std::cerr << "sabus run: " << json.error() << "\n";
+    ++progress.done;
+    progress.passed += v.outcome == "pass";
+    progress.failed += v.is_failure();
+    progress.skipped += v.is_skip();
+    progress.current = v.id;
+    progress.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
+    if (v.is_failure()) std::cout << (tty ? "\r\033[K" : "") << reports::failure_line(v) << "\n";
+    if (tty) std::cout << "\r\033[K" << reports::progress_line(progress) << std::flush;
   };
   std::signal(SIGINT, on_sigint);
 
   Runner runner(*transport, profile, ro);
   RunResult run = runner.run(vectors);
-  json.finish(run);
-  if (!junit_path.empty()) write_junit(junit_path, run);
+  reports::finish(doc, run, reports::utc_now());
+  if (json_ok && !json.finish(doc)) std::cerr << "sabus run: " << json.error() << "\n";
+  std::string error;
+  auto write = [&](const std::string& path, const std::string& text) {
+    if (!path.empty() && !reports::write_file(path, text, error)) std::cerr << "sabus run: " << error << "\n";
+  };
+  write(junit_path, reports::junit_xml(doc));
+  write(html_path, reports::html_report(doc));
+  write(md_path, reports::markdown_summary(doc));
   if (tty) std::cout << "\r\033[K";
+  if (doc.identity.ok)
+    std::cout << "device: controller " << doc.identity.controller_type << ", firmware " << doc.identity.firmware_version << "\n";
   for (const auto& l : run.liveness)
     if (!l.alive) std::cout << fmt::format("LIVENESS {}: {}\n", l.when, l.detail);
   if (run.backup.taken) std::cout << "stored data backed up to " << ro.backup_path << "\n";
   for (const auto& n : run.restore_notes) std::cout << "RESTORE " << n << "\n";
   if (run.aborted) std::cout << "ABORTED: " << run.abort_reason << "\n";
-  std::cout << fmt::format("{} passed, {} failed, {} skipped", run.passed, run.failed + run.unexpected, run.skipped);
-  if (run.known) std::cout << fmt::format(", {} known failures", run.known);
-  std::cout << "\n";
+  std::cout << reports::summary_line(*doc.summary) << "\n";
   return run.exit_code();
 }
 
@@ -321,16 +202,7 @@ int run_run(RunCliOptions o) {
 Command add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunCliOptions>();
   CLI::App* sub = app.add_subcommand("run", "Run the conformance vectors against a controller");
-  sub->add_flag("--sim", o->sim, "The in-process reference controller (the default)");
-  sub->add_option("--port", o->port, "A serial port");
-  sub->add_option("--tcp", o->tcp, "A TCP serial server, HOST:PORT");
-  sub->add_option("--profile", o->profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");
-  sub->add_option("--address", o->address, "Device address (49-111, or the address character)");
-  sub->add_option("--baud", o->baud, "Baud rate (default: the profile's)");
-  sub->add_option("--line", o->line, "8N1 (default: parity computed by sabus) or 7E1 (a true 7E1 port)")
-      ->check(CLI::IsMember({"8N1", "7E1"}));
-  sub->add_option("--serial-backend", o->serial_backend, "auto, libserialport or termios")
-      ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
+  add_device_options(sub, o->device);
   sub->add_option("--vectors", o->vectors, "Vector files or folders (default vectors/)");
   sub->add_option("--filter", o->filters, "Run only vectors whose id matches this glob (repeatable)");
   sub->add_option("--exclude", o->excludes, "Skip vectors whose id matches this glob (repeatable)");
@@ -341,10 +213,11 @@ Command add_run_command(CLI::App& app) {
   sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times");
   sub->add_option("--seed", o->seed, "Seed for every random choice");
   sub->add_option("--pace", o->pace_ms, "Milliseconds between commands (default 1000 on a line, 0 in-process)");
-  sub->add_option("--fault", o->faults, "With --sim: inject a named fault (sabus sim --list-faults)");
   sub->add_option("--junit", o->junit, "Write JUnit XML");
   sub->add_option("--json", o->json, "Write the JSON result (written after every vector)");
-  sub->add_option("--report-dir", o->report_dir, "Write run.json and junit.xml into DIR");
+  sub->add_option("--html", o->html, "Write the HTML report");
+  sub->add_option("--md", o->md, "Write the Markdown summary");
+  sub->add_option("--report-dir", o->report_dir, "Write run.json, junit.xml, report.html and summary.md into DIR");
   return {sub, [o] { return run_run(*o); }};
 }
 

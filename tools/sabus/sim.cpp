@@ -60,7 +60,7 @@ std::optional<std::vector<Profile>> profiles(const SimOptions& o) {
   }
   Profile base = *loaded.profile;
   if (o.remote_disabled) base.remote_enabled = false;
-  if (o.addresses.empty()) return std::vector<Profile>{base};
+  if (o.addresses.empty()) return bus_of(base);  // the profile's bus_peers (§1 multi-drop)
   std::vector<std::uint8_t> addresses;
   std::stringstream list(o.addresses);
   for (std::string item; std::getline(list, item, ',');) {

@@ -1,18 +1,27 @@
-// `sabus vectors lint|list`: checks the conformance vector suite (vectors/*.yaml)
-// and lists its vectors. The loader and linter are sabus::vectors
+// `sabus vectors lint|list|coverage`: checks the conformance vector suite
+// (vectors/*.yaml), lists its vectors and prints its coverage matrix. The loader and linter are sabus::vectors
 // (vector_loader.hpp); this file only prints.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <set>
 
 #include "commands.hpp"
+#include "sabus/harness/coverage.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
 namespace sabus::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 using harness::LoadError;
 using harness::LoadResult;
@@ -21,6 +30,9 @@ using harness::Vector;
 struct VectorsOptions {
   std::vector<std::string> paths;
   bool json = false;
+  bool missing_only = false;
+  bool summary = false;
+  std::string update, check;  // errata: the ERRATA.md to rewrite or compare
 };
 
 LoadResult load(const VectorsOptions& o) {
@@ -89,6 +101,160 @@ int run_list(const VectorsOptions& o) {
   return r.errors.empty() ? kExitOk : kExitFailed;
 }
 
+// The matrix command x form x path, one line a cell with its vector ids;
+// exit 1 when a cell the spec defines has none (CoverageMatrix::missing).
+int run_coverage(const VectorsOptions& o) {
+  LoadResult r = load(o);
+  for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  if (!r.errors.empty()) return kExitUsage;
+  const harness::CoverageMatrix m = harness::coverage(r.files);
+  const auto missing = m.missing();
+  if (o.json) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& row : m.rows) {
+      nlohmann::json cells = nlohmann::json::object();
+      for (auto p : harness::kCoveragePaths) cells[std::string(to_string(p))] = row.ids[static_cast<std::size_t>(p)];
+      rows.push_back({{"command", fmt::format("{:02X}h", row.command->code)},
+                      {"key", row.command->key},
+                      {"paragraph", row.command->paragraph},
+                      {"form", row.form ? std::string(row.form->id) : std::string()},
+                      {"cells", cells}});
+    }
+    std::cout << nlohmann::json{{"rows", rows}, {"unknown_codes", {{"nak", m.unknown_codes}}}, {"missing", missing}}.dump(2)
+              << "\n";
+  } else {
+    std::size_t covered = 0, cells = 0;
+    for (const auto& row : m.rows) {
+      for (auto p : harness::kCoveragePaths) {
+        const auto& ids = row.ids[static_cast<std::size_t>(p)];
+        ++cells;
+        covered += !ids.empty();
+        if (o.missing_only) continue;
+        std::cout << fmt::format("{:<36} §{:<5} {:<8} {:>3}  {}\n", harness::row_label(row), row.command->paragraph,
+                                 to_string(p), ids.size(), ids.empty() ? "-" : fmt::format("{}", fmt::join(ids, " ")));
+      }
+    }
+    if (!o.missing_only)
+      std::cout << fmt::format("{:<36} §{:<5} {:<8} {:>3}  {}\n", "other codes", "3", "nak", m.unknown_codes.size(),
+                               m.unknown_codes.empty() ? "-" : fmt::format("{}", fmt::join(m.unknown_codes, " ")));
+    for (const auto& line : missing) std::cout << "MISSING " << line << "\n";
+    std::cout << fmt::format("{} of {} cells covered; {} required cell(s) without a vector\n", covered, cells,
+                             missing.size());
+  }
+  return missing.empty() ? kExitOk : kExitFailed;
+}
+
+// Paragraph order: numbers by their parts (3.2 < 3.10), then the topics.
+bool paragraph_less(const std::string& a, const std::string& b) {
+  auto key = [](const std::string& p) {
+    std::vector<int> parts;
+    std::size_t at = 0;
+    while (at < p.size() && std::isdigit(static_cast<unsigned char>(p[at]))) {
+      std::size_t end = at;
+      while (end < p.size() && std::isdigit(static_cast<unsigned char>(p[end]))) ++end;
+      parts.push_back(std::stoi(p.substr(at, end - at)));
+      at = end + (end < p.size() && p[end] == '.' ? 1 : 0);
+    }
+    return std::make_pair(parts.empty(), parts.empty() ? std::vector<int>{} : parts);
+  };
+  const auto ka = key(a), kb = key(b);
+  if (ka != kb) return ka < kb;
+  return a < b;
+}
+
+// The suite by paragraph as a Markdown table: vectors/README.md carries it.
+int run_summary(const VectorsOptions& o) {
+  LoadResult r = load(o);
+  for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  struct Counts {
+    std::set<std::string> files;
+    std::size_t must = 0, should = 0, informative = 0;
+  };
+  std::map<std::string, Counts, decltype(&paragraph_less)> by(&paragraph_less);
+  Counts all;
+  for (const auto& f : r.files)
+    for (const auto& v : f.vectors)
+      for (Counts* c : {&by[v.paragraph], &all}) {
+        c->files.insert(fs::path(f.path).filename().string());
+        (v.level == harness::Level::kMust ? c->must : v.level == harness::Level::kShould ? c->should : c->informative)++;
+      }
+  std::cout << "| paragraph | file | must | should | informative | total |\n|---|---|---:|---:|---:|---:|\n";
+  auto row = [](const std::string& name, const std::string& files, const Counts& c) {
+    std::cout << fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, files, c.must, c.should, c.informative,
+                             c.must + c.should + c.informative);
+  };
+  for (const auto& [paragraph, c] : by) {
+    std::string files;
+    for (const auto& f : c.files) files += (files.empty() ? "" : ", ") + fmt::format("`{}`", f);
+    row(std::isdigit(static_cast<unsigned char>(paragraph[0])) ? "§" + paragraph : paragraph, files, c);
+  }
+  row("**all**", fmt::format("{} files", all.files.size()), all);
+  return r.errors.empty() ? kExitOk : kExitFailed;
+}
+
+// Errata entry -> the vectors whose flags rest on it (the notes' `errata`).
+std::map<std::string, std::vector<std::string>> errata_vectors(const LoadResult& r) {
+  std::map<std::string, std::vector<std::string>> out;
+  for (const auto& f : r.files)
+    for (const auto& v : f.vectors)
+      for (const auto& flag : v.flags)
+        if (auto n = f.notes.find(flag); n != f.notes.end() && !n->second.errata.empty()) {
+          auto& ids = out[n->second.errata];
+          if (std::find(ids.begin(), ids.end(), v.id) == ids.end()) ids.push_back(v.id);
+        }
+  return out;
+}
+
+// The "- **Vectors:**" line of every entry of protocol/ERRATA.md, from the
+// suite: printed, written back (--update) or compared (--check, exit 1 when
+// the file is not current).
+int run_errata(const VectorsOptions& o) {
+  LoadResult r = load(o);
+  for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  if (!r.errors.empty()) return kExitUsage;
+  const auto by_entry = errata_vectors(r);
+  const std::string path = !o.update.empty() ? o.update : o.check;
+  if (path.empty()) {
+    for (const auto& [entry, ids] : by_entry) std::cout << entry << ": " << fmt::format("{}", fmt::join(ids, " ")) << "\n";
+    return kExitOk;
+  }
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << "sabus vectors errata: cannot read " << path << "\n";
+    return kExitUsage;
+  }
+  std::string out, entry, line;
+  std::size_t stale = 0;
+  bool in_vectors_line = false;
+  while (std::getline(in, line)) {
+    if (in_vectors_line && line.rfind("  ", 0) == 0) continue;  // a wrapped continuation of the old line
+    in_vectors_line = false;
+    if (line.rfind("### E-", 0) == 0) entry = line.substr(4, line.find(':') - 4);
+    if (line.rfind("- **Vectors:**", 0) == 0) {
+      const auto it = by_entry.find(entry);
+      std::string ids;
+      if (it != by_entry.end())
+        for (const auto& id : it->second) ids += (ids.empty() ? "`" : ", `") + id + "`";
+      const std::string fresh = "- **Vectors:** " + (ids.empty() ? std::string("— (no vector yet)") : ids);
+      if (fresh != line) {
+        ++stale;
+        if (!o.check.empty()) std::cout << path << ": " << entry << ": the vector list is not current\n";
+      }
+      out += fresh + "\n";
+      in_vectors_line = true;
+      continue;
+    }
+    out += line + "\n";
+  }
+  if (!o.check.empty()) {
+    if (stale) std::cout << stale << " entr" << (stale == 1 ? "y" : "ies") << " to update: sabus vectors errata --update " << path << "\n";
+    return stale ? kExitFailed : kExitOk;
+  }
+  std::ofstream(path, std::ios::trunc) << out;
+  std::cout << "updated " << stale << " entr" << (stale == 1 ? "y" : "ies") << " of " << path << "\n";
+  return kExitOk;
+}
+
 }  // namespace
 
 Command add_vectors_command(CLI::App& app) {
@@ -101,7 +267,24 @@ Command add_vectors_command(CLI::App& app) {
   CLI::App* list = sub->add_subcommand("list", "List the vectors: id, paragraph, level, tags");
   list->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   list->add_flag("--json", opts->json, "Print JSON");
-  return {sub, [opts, lint] { return lint->parsed() ? run_lint(*opts) : run_list(*opts); }};
+  list->add_flag("--summary", opts->summary, "Print the suite by paragraph with counts per level (Markdown)");
+  CLI::App* errata = sub->add_subcommand("errata", "The vectors resting on each errata entry (their flags' notes)");
+  errata->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
+  auto* update = errata->add_option("--update", opts->update, "Rewrite the Vectors lines of this ERRATA.md");
+  errata->add_option("--check", opts->check, "Exit 1 when the Vectors lines of this ERRATA.md are not current")
+      ->excludes(update);
+  CLI::App* cov = sub->add_subcommand(
+      "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids; exit 1 when a cell "
+                  "the spec defines has no vector");
+  cov->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
+  cov->add_flag("--json", opts->json, "Print JSON");
+  cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
+  return {sub, [opts, lint, cov, errata] {
+            if (lint->parsed()) return run_lint(*opts);
+            if (cov->parsed()) return run_coverage(*opts);
+            if (errata->parsed()) return run_errata(*opts);
+            return opts->summary ? run_summary(*opts) : run_list(*opts);
+          }};
 }
 
 }  // namespace sabus::cli

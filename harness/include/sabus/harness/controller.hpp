@@ -151,6 +151,8 @@ class Bus : public LineDevice {
   void receive(ByteView wire, Bytes& out) override;
   void tick() override;
   std::string take_log() override;
+  // The names of the NAK rules applied since the last call, oldest first.
+  std::vector<std::string> take_nak_rules();
 
   std::size_t size() const { return units_.size(); }
   Controller& controller(std::size_t i);
@@ -163,6 +165,7 @@ class Bus : public LineDevice {
   std::vector<std::unique_ptr<Unit>> units_;
   Parity parity_;
   std::string log_;
+  std::vector<std::string> nak_rules_;
   std::function<void(const Controller&)> on_change_;
 };
 

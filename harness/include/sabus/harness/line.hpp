@@ -71,6 +71,9 @@ class Line {
   // "pty /dev/pts/3 (link /tmp/rc3000)", "serial /dev/ttyUSB0 9600 8N1
   // (libserialport)", "tcp 127.0.0.1:4001".
   virtual std::string describe() const = 0;
+  // The file descriptor to poll() for input alongside others (`sabus proxy`
+  // waits on two lines at once); -1 when there is none.
+  virtual int poll_fd() const { return -1; }
 };
 
 // Small POSIX helpers the backends share; usable by tests too.
@@ -135,6 +138,7 @@ class FdLine : public Line {
   // How long write() waits for the other side to take more bytes before it
   // gives up with LineError (a pty client that never reads, a stuck socket).
   void set_write_timeout(std::chrono::milliseconds t) { write_timeout_ = t; }
+  int poll_fd() const override { return fd_.get(); }
 
  protected:
   enum class Kind { tty, pty_master, socket };
@@ -209,6 +213,7 @@ class LibSerialPortLine final : public Line {
   void write(ByteView bytes) override;
   void drain() override;
   std::string describe() const override;
+  int poll_fd() const override { return fd_; }
 
  private:
   LibSerialPortLine(UniqueFd lock, sp_port* port, std::string path, std::string resolved, int baud,

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string_view>
 
 namespace sabus::harness {
@@ -61,5 +63,10 @@ enum class NakRule : std::uint8_t {
 
 std::string_view paragraph(NakRule rule);
 std::string_view description(NakRule rule);
+// The rule's name as vectors write it (`expect: {reply: nak, rule: StoreListFull}`):
+// its id without the leading 'k'.
+std::string_view name(NakRule rule);
+std::optional<NakRule> find_nak_rule(std::string_view name);
+std::span<const NakRule> all_nak_rules();
 
 }  // namespace sabus::harness

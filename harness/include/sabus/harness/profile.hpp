@@ -77,12 +77,23 @@ struct TrackProfile {
   bool dual_band = false;
 };
 
+// Alarms active at power-on: for the drive reset sequence (§3.7 'R').
+struct AlarmProfile {
+  // §3.2 bytes 36-38 XXXX per axis: 0 none, 8 off axis, 9 sensor direction,
+  // 10 runaway, 11 jammed, 12 drive.
+  std::uint8_t az = 0, el = 0, pol = 0;
+  std::uint8_t code = 0;  // §3.2 byte 39 A5..A0, 0-63 (2 Azimuth Jammed, ...)
+};
+
 struct Profile {
   std::string name = "rc3000-1.59";
   std::string source;                       // the file it was read from, if any
 
   // CONFIG-REMOTE (§2 Communications Parameters).
   std::uint8_t address = '2';               // 49-111 (0x31-0x6f)
+  // Other controllers on the same RS-422 line (§1 multi-drop), each a copy
+  // of this profile at its own address; bus_of() makes the whole bus.
+  std::vector<std::uint8_t> bus_peers;
   bool remote_enabled = true;
   int baud = 9600;                          // 300 ... 9600 (READING-NOTES 2)
 
@@ -109,6 +120,7 @@ struct Profile {
   std::vector<Signpost> signposts;          // 1-20
   Navigation navigation;
   TrackProfile track;
+  AlarmProfile alarms;
 
   // Errata switches (protocol/ERRATA.md), defaults = the errata's decisions.
   bool stx_restarts_in_data = true;                        // E-7
@@ -124,5 +136,8 @@ struct Profile {
 // Controllers on one RS-422 bus (sabus sim --address 50,51,60): one profile
 // per address, the rest shared.
 std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint8_t>& addresses);
+// The controllers of a profile's line: the profile itself, then one per
+// bus_peers address (multi_drop); just the profile when it has no peers.
+std::vector<Profile> bus_of(const Profile& profile);
 
 }  // namespace sabus::harness

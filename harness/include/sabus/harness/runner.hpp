@@ -45,10 +45,15 @@ struct TranscriptEntry {
   bool sent = false;       // true: to the device; false: from it
   Bytes bytes;             // 7-bit characters (sent: before parity; received: as decoded)
   std::string note;        // decoded summary, or what was ignored
+  // Sent frames of a vector's send or poll step: the reply path the step
+  // expects ("ack", "nak", "offline", "silence", "any"); "" for frames the
+  // runner sends on its own (liveness, stop, backup).
+  std::string expect;
 };
 
 struct VectorResult {
   std::string id, paragraph, file;
+  std::string quote, comment;  // the spec quote the vector checks, and what and why (reports)
   Level level = Level::kMust;
   Verdict verdict = Verdict::kPass;
   std::vector<std::string> failures;   // one line each
@@ -63,6 +68,7 @@ struct VectorResult {
 struct LivenessResult {
   std::string when;   // "before the first vector", "after 3.2-..."
   bool alive = true;
+  bool heard = false;   // some bytes came back: reachable, if not alive
   std::string detail;
 };
 
@@ -107,10 +113,15 @@ struct RunResult {
   StoredDataBackup backup;
   std::vector<std::string> restore_notes;  // what was restored, and what could not be
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
-  // 0: every must-level vector that ran passed; 1: otherwise; 3: the device
-  // could not be reached (the first liveness check failed).
+  // 0: every must-level vector that ran passed; 1: otherwise (a liveness
+  // check failed on a device that sends bytes, too); 3: the device could not
+  // be reached (nothing came back to the first liveness check).
   int exit_code() const;
 };
+
+// Whether a vector id is part of a run with these filters and excludes
+// (the runner passes over the others without a result).
+bool is_selected(const RunOptions& options, const std::string& id);
 
 class Runner {
  public:

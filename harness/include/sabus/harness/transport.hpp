@@ -5,9 +5,11 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sabus/harness/clock.hpp"
 #include "sabus/protocol/bytes.hpp"
@@ -49,6 +51,10 @@ class Transport {
   virtual TimePoint now() const = 0;
 
   virtual bool in_process() const { return false; }
+  // The names of the NAK rules (nak_rules.hpp) the device applied since the
+  // last call, oldest first; nullopt when the device cannot tell (every real
+  // line). The reference controller knows why it NAKs.
+  virtual std::optional<std::vector<std::string>> take_nak_rules() { return std::nullopt; }
   virtual bool can_send_parity_errors() const = 0;
   // Whether bit 7 of received bytes carries the even-parity bit (see
   // receive()). True for software parity, the project's default.

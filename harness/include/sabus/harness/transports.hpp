@@ -49,6 +49,7 @@ class InProcessTransport final : public Transport {
   TimePoint now() const override { return clock_.now(); }
 
   bool in_process() const override { return true; }
+  std::optional<std::vector<std::string>> take_nak_rules() override { return bus_.take_nak_rules(); }
   bool can_send_parity_errors() const override { return true; }
   bool parity_in_bit7() const override { return true; }
   int baud() const override { return 0; }

@@ -84,6 +84,11 @@ struct Expectation {
   Kind kind = Kind::kAck;
   std::optional<RawBytes> bytes;    // the whole reply, exactly
   std::vector<FieldMatcher> fields;
+  // nak: the reference controller's rule that must have fired (nak_rules.hpp,
+  // "StoreListFull"). A device on a line cannot say why it NAKs; the check
+  // holds against the reference controller only, so that a vector written
+  // for one rule cannot pass by tripping another (a wrong length, say).
+  std::string nak_rule;
   SourceLocation where;
 };
 

@@ -27,7 +27,8 @@ struct LoadResult {
 
 LoadResult load_vector_text(const std::string& yaml, const std::string& name);
 LoadResult load_vector_file(const std::string& path);
-// Files, or directories searched recursively for *.yaml (except profiles/ and examples/).
+// Files, or directories searched recursively for *.yaml (except the folders
+// profiles/, examples/ and regression/ below a directory given).
 LoadResult load_vectors(const std::vector<std::string>& paths);
 
 // Suite-wide checks beyond one file: unique ids, every flag defined in its
@@ -42,6 +43,15 @@ std::string default_vectors_dir();
 // placeholder, a capture not in `captures`, a byte above 7Fh.
 Expected<Bytes> expand_raw_bytes(std::string_view hex, std::uint8_t address,
                                  const std::map<std::string, std::string>& captures = {});
+
+// The command bytes a send or poll step puts on the wire before its
+// modifiers: the structured command built by the codecs, or the raw template
+// expanded. With `blank_missing_captures`, a capture not in `captures` is one
+// blank (20h) instead of an error: for static analysis (coverage, seeds),
+// where values captured at run time are not known.
+Expected<Bytes> step_bytes(const Step& step, std::uint8_t address,
+                           const std::map<std::string, std::string>& captures = {},
+                           bool blank_missing_captures = false);
 
 // Whether a device profile meets every requirement (each key's value is one
 // of the requirement's values; values are compared as to_yaml writes them).

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sabus/protocol/fields.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/messages.hpp"
 
@@ -35,6 +36,7 @@ struct FieldDescription {
   std::string raw;        // "0x45" for one byte, "\"-152.5\"" for text
   std::string meaning;
   bool ok = true;
+  fields::Kind kind = fields::Kind::kHeader;  // the codec that read it
   std::string line() const;
 };
 
@@ -50,5 +52,15 @@ FrameDescription describe_frame(ByteView frame_bytes);
 
 // The catalog form of a request ("2A", "E", "R", "preset"; "" if none).
 std::string_view form_of(const Request& request);
+
+// The command and form of the command frame that ends a byte sequence (the
+// frame from its last STX: READING-NOTES 7), however damaged: the request's
+// form when it decodes, else the form the selector byte picks, else none.
+// For coverage matrices and reports; `info` is null for an unknown code.
+struct CommandForm {
+  const CommandInfo* info = nullptr;
+  const FormInfo* form = nullptr;
+};
+CommandForm classify_command(ByteView bytes);
 
 }  // namespace sabus

@@ -266,6 +266,33 @@ struct Opaque {
   std::string meaning(const value_type& v) const;
 };
 
+// The kind of each field codec above, so that tools can treat a described
+// field by what it is (`sabus record` masks positions, AGC and the display by
+// kind: vectors/README.md "Recorded regression vectors"). One row per codec.
+#define SABUS_FIELD_CODECS(X)                                                                              \
+  X(Text) X(Fill) X(Reserved) X(Digits) X(SignedDigits) X(ZeroPaddedDecimal) X(Position) X(Azimuth)        \
+  X(RightDecimal) X(LeftDecimal) X(Bits) X(TrackByte) X(Choice) X(AnyChar) X(SlotIndex) X(PresetIndex)    \
+  X(EnumByte) X(NavAngle) X(Version) X(Opaque)
+
+enum class Kind : std::uint8_t {
+  kHeader,       // start, address, command, ETX, check byte, the offline 'F'
+  kUndescribed,  // bytes no layout describes (a frame of the wrong length)
+#define SABUS_X(T) k##T,
+  SABUS_FIELD_CODECS(SABUS_X)
+#undef SABUS_X
+};
+std::string_view to_string(Kind kind);  // "header", "undescribed", "Position", ...
+
+template <class C>
+struct KindOf;
+#define SABUS_X(T)                                 \
+  template <>                                      \
+  struct KindOf<T> {                               \
+    static constexpr Kind value = Kind::k##T;      \
+  };
+SABUS_FIELD_CODECS(SABUS_X)
+#undef SABUS_X
+
 // Shared formatting: 1234 with 1 decimal -> "123.4"; -5 -> "-0.5".
 std::string format_scaled(std::int64_t value, int decimals);
 

@@ -1,0 +1,51 @@
+// The coverage matrix of a vector suite: catalog command x form x path
+// (ack / nak / offline / ignore) -> the vectors that send such a frame and
+// expect such an answer. `sabus vectors coverage` prints it and fails when a
+// cell the spec defines has no vector.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/vector.hpp"
+#include "sabus/protocol/catalog.hpp"
+
+namespace sabus::harness {
+
+// What a step expects back, as the matrix counts it.
+enum class CoveragePath : std::uint8_t { kAck, kNak, kOffline, kIgnore };
+inline constexpr std::array<CoveragePath, 4> kCoveragePaths = {CoveragePath::kAck, CoveragePath::kNak,
+                                                               CoveragePath::kOffline, CoveragePath::kIgnore};
+std::string_view to_string(CoveragePath path);
+
+// One row: a command form of the catalog, or (form == nullptr) the frames of
+// the command whose form cannot be told (damaged, truncated).
+struct CoverageRow {
+  const CommandInfo* command = nullptr;
+  const FormInfo* form = nullptr;
+  std::array<std::vector<std::string>, 4> ids;  // by CoveragePath, each id once
+};
+
+struct CoverageMatrix {
+  std::vector<CoverageRow> rows;            // catalog order, then the unclassified row of a command
+  std::vector<std::string> unknown_codes;   // vectors sending codes outside the catalog (§3 NAK, E-9)
+  // The cells the spec defines that no vector covers, one line each:
+  // "32h auto_move 2A: ack". Required: an ACK vector for every form of every
+  // command (§3.1-§3.25; 38h/3Dh/3Eh on a profile that implements them), and
+  // for every command a NAK vector (§3 NAK Reply: a wrong length is NAKed
+  // for any code), an offline vector (§3 Online/Offline Reply) and an ignore
+  // vector (§1: a damaged frame of that command gets no reply), in any form;
+  // and a NAK vector for a code outside the catalog.
+  std::vector<std::string> missing() const;
+};
+
+// Every send and poll step of every vector (setup, steps, teardown) that
+// expects ack, nak, offline or silence; `any` counts nowhere.
+CoverageMatrix coverage(const std::vector<VectorFile>& files);
+
+// "32h auto_move" and "32h auto_move 2A" (the form when the command has several).
+std::string command_label(const CommandInfo& command);
+std::string row_label(const CoverageRow& row);
+
+}  // namespace sabus::harness

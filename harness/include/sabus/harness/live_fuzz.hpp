@@ -1,0 +1,304 @@
+// The live fuzzer (`sabus fuzz`): generates and damages command frames from
+// the catalog, sends them to a device through a Transport, judges every
+// answer against the spec's rules (§1 ignore paths, §3 NAK and offline
+// replies, the catalog's reply lengths), probes liveness, minimizes each
+// finding by delta debugging and writes it as a conformance vector.
+//
+// Small parts, each with its own tests:
+//   - is_safe_to_send: the bench-safety gate (READING-NOTES 26, E-26);
+//   - Generator: frames from the catalog, and damage to them;
+//   - Oracle: which replies a frame may draw, from a reference §1 receiver;
+//   - ddmin: delta debugging over a sequence;
+//   - Session: one device, the exchange loop, findings;
+//   - finding_vector_yaml: a finding as a vector `sabus run` replays.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/profile.hpp"
+#include "sabus/harness/transport.hpp"
+#include "sabus/protocol/frame.hpp"
+#include "sabus/protocol/receiver.hpp"
+
+namespace sabus::harness::live_fuzz {
+
+// One write to the line: 7-bit characters, the indexes sent with the wrong
+// parity bit (READING-NOTES 1), and what the generator did, for reports.
+struct FuzzFrame {
+  Bytes chars;
+  std::vector<std::size_t> wrong_parity;
+  std::string what;
+  bool operator==(const FuzzFrame&) const = default;
+};
+
+// ---- safety -------------------------------------------------------------------
+
+// Whether `chars` can be put on a bench line: no frame in it (any start byte
+// followed by an address byte, as the vector lint reads frames) carries a
+// command that moves the antenna or changes stored data per the catalog,
+// unless allowed. The form selector decides when it is present (36h 'R' is
+// safe); otherwise the command's effects in any form. `before`: the last
+// bytes of the previous write, so a frame split across writes is seen.
+bool is_safe_to_send(ByteView chars, bool allow_motion, bool allow_destructive, ByteView before = {},
+                     std::string* why = nullptr);
+
+// The liveness probe: a device type query (§3.1), which every SAbus slave
+// answers (§1 Command Restrictions).
+FuzzFrame liveness_probe(std::uint8_t address);
+
+// ---- generator ----------------------------------------------------------------
+
+struct GeneratorOptions {
+  std::uint8_t address = '2';
+  bool allow_motion = false;
+  bool allow_destructive = false;
+  bool parity_errors = true;  // the transport can send a wrong parity bit
+};
+
+// The mutation kinds, one table: id, name (in reports and vector comments).
+#define SABUS_LIVE_FUZZ_MUTATIONS(X)                                    \
+  X(kValid, "valid")                                                    \
+  X(kFieldValue, "boundary or out-of-range field value")                \
+  X(kExtraData, "extra data bytes")                                     \
+  X(kMissingData, "missing data bytes")                                 \
+  X(kTruncated, "truncated")                                            \
+  X(kBadLrc, "bad LRC")                                                 \
+  X(kParityFlip, "parity flip")                                         \
+  X(kForeignAddress, "foreign address")                                 \
+  X(kInvalidAddress, "invalid address")                                 \
+  X(kControlInBody, "control character in the body")                    \
+  X(kUnknownCommand, "unknown command code")                            \
+  X(kJunkPrefix, "junk before the frame")                               \
+  X(kStxRestart, "STX restart inside a frame")                          \
+  X(kBurst, "burst of frames")
+
+enum class Mutation : std::uint8_t {
+#define SABUS_X(id, name) id,
+  SABUS_LIVE_FUZZ_MUTATIONS(SABUS_X)
+#undef SABUS_X
+  kCount
+};
+std::string_view to_string(Mutation m);
+
+// Frames from the catalog (every command the options allow, each form), as
+// the structured builder makes them with its default fields.
+std::vector<Bytes> base_frames(const GeneratorOptions& options);
+
+class Generator {
+ public:
+  Generator(GeneratorOptions options, std::uint64_t seed);
+  // The next write. Always passes is_safe_to_send for the options.
+  FuzzFrame next();
+  // One mutation of a random base frame (for tests).
+  FuzzFrame make(Mutation m);
+
+ private:
+  Bytes pick_base();
+  std::uint8_t pick(std::initializer_list<std::uint8_t> bytes);
+  GeneratorOptions options_;
+  std::vector<Bytes> bases_;
+  std::mt19937_64 rng_;
+};
+
+// ---- oracle -------------------------------------------------------------------
+
+// What the device answered one write with, as the master-side receiver read it.
+struct Observation {
+  std::vector<Frame> replies;
+  std::vector<std::string> garbage;  // discarded runs: bytes that are no reply frame
+  std::optional<std::chrono::microseconds> first_byte_after;  // request end -> first reply byte
+};
+
+// The finding kinds, one table: id, name, the spec paragraph of the rule it
+// breaks and a verbatim quote of it (for the vector a finding is written as).
+#define SABUS_LIVE_FUZZ_FINDINGS(X)                                                                                  \
+  X(kReplyToIgnored, "reply-to-ignored-frame", "1",                                                                  \
+    "A remote device ignores all commands that contain parity or checksum errors, protocol errors, a wrong address, " \
+    "or message overrun errors.")                                                                                    \
+  X(kNoReply, "no-reply", "1",                                                                                       \
+    "A slave will send an appropriate response message to a master-controller after receiving the last character "  \
+    "of the message.")                                                                                               \
+  X(kWrongReply, "wrong-reply", "3",                                                                                 \
+    "If an unrecognized command arrives (one whose command code is either unknown or whose length is not compatible " \
+    "with the given command code, but which has the correct address and checksum), a NAK reply is sent to the host.") \
+  X(kWrongAddress, "reply-from-wrong-address", "1",                                                                  \
+    "carries out the requested commands, and then replies with a response message containing its own address")      \
+  X(kMalformedReply, "malformed-reply", "1",                                                                         \
+    "Response messages are identical to command messages in format (but not content)")                              \
+  X(kLateReply, "late-reply", "1",                                                                                   \
+    "A slave will send an appropriate response message to a master-controller after receiving the last character "  \
+    "of the message.")                                                                                               \
+  X(kDead, "device-dead", "1",                                                                                       \
+    "A slave will send an appropriate response message to a master-controller after receiving the last character "  \
+    "of the message.")                                                                                               \
+  X(kReset, "device-reset", "3.1",                                                                                   \
+    "The SA Bus specification requires that command character 30h must trigger the return of the six character "    \
+    "device type string.")
+
+enum class FindingKind : std::uint8_t {
+#define SABUS_X(id, name, paragraph, quote) id,
+  SABUS_LIVE_FUZZ_FINDINGS(SABUS_X)
+#undef SABUS_X
+};
+std::string_view to_string(FindingKind k);
+std::string_view paragraph_of(FindingKind k);
+std::string_view quote_of(FindingKind k);
+
+struct Verdict {
+  FindingKind kind;
+  std::string message;
+};
+
+// The spec's answer rules for one device profile. It keeps a reference §1
+// receiver (the project's readings, no faults) fed with everything sent, so a
+// frame cut short in one write and completed in the next is read as the
+// device must read it.
+class Oracle {
+ public:
+  explicit Oracle(const Profile& profile);
+  // The frames the device must accept from this write (§1 State 5), in order.
+  std::vector<Frame> accept(const FuzzFrame& frame);
+  // Why `reply` is not an acceptable answer to `request` (an accepted
+  // frame), or nullopt: the catalog's reply (ACK, its length, every field
+  // decoding), a NAK (§3), or the offline reply with remote control disabled.
+  std::optional<Verdict> judge(const Frame& request, const Frame& reply) const;
+  // Judges a whole write: one acceptable reply per accepted frame, in order;
+  // silence for a write with none; no garbage.
+  std::optional<Verdict> judge(const std::vector<Frame>& accepted, const Observation& seen) const;
+  void reset();
+
+ private:
+  struct Sink;
+  Profile profile_;
+  Receiver receiver_;
+};
+
+// The longest reply `accepted` can draw (catalog lengths; the longest reply of
+// the catalog when a length is unknown), for reply windows.
+std::size_t expected_reply_bytes(const std::vector<Frame>& accepted);
+
+// ---- minimizer ----------------------------------------------------------------
+
+// Zeller's ddmin: a 1-minimal subsequence of `items` for which `fails` holds
+// (fails(items) must hold). `max_tests` bounds the work.
+template <class T>
+std::vector<T> ddmin(std::vector<T> items, const std::function<bool(const std::vector<T>&)>& fails,
+                     std::size_t max_tests = 2000) {
+  std::size_t n = 2, tests = 0;
+  while (items.size() >= 2 && tests < max_tests) {
+    const std::size_t chunk = (items.size() + n - 1) / n;
+    bool reduced = false;
+    // Try each subset, then each complement.
+    for (std::size_t start = 0; start < items.size() && !reduced && tests < max_tests; start += chunk) {
+      std::vector<T> subset(items.begin() + static_cast<std::ptrdiff_t>(start),
+                            items.begin() + static_cast<std::ptrdiff_t>(std::min(items.size(), start + chunk)));
+      ++tests;
+      if (fails(subset)) {
+        items = std::move(subset);
+        n = 2;
+        reduced = true;
+      }
+    }
+    for (std::size_t start = 0; start < items.size() && !reduced && n > 2 && tests < max_tests; start += chunk) {
+      std::vector<T> complement(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(start));
+      complement.insert(complement.end(), items.begin() + static_cast<std::ptrdiff_t>(std::min(items.size(), start + chunk)),
+                        items.end());
+      ++tests;
+      if (fails(complement)) {
+        items = std::move(complement);
+        n = std::max<std::size_t>(n - 1, 2);
+        reduced = true;
+      }
+    }
+    if (!reduced) {
+      if (n >= items.size()) break;
+      n = std::min(items.size(), 2 * n);
+    }
+  }
+  return items;
+}
+
+// ---- the session ----------------------------------------------------------------
+
+struct SessionOptions {
+  bool allow_motion = false;       // the safety gate (is_safe_to_send)
+  bool allow_destructive = false;
+  std::chrono::milliseconds pace{0};                   // §4: at least this long between writes
+  std::chrono::milliseconds turnaround_allowance{50};  // beyond the profile's turnaround: late
+  std::size_t liveness_every = 50;                     // a device type query every N writes
+};
+
+struct Counts {
+  std::size_t writes = 0, bytes_sent = 0, bytes_received = 0;
+  std::size_t ack = 0, nak = 0, offline = 0, silence = 0, garbage = 0, probes = 0, refused = 0;
+};
+
+struct Finding {
+  FindingKind kind;
+  std::string message;
+  std::vector<FuzzFrame> history;    // every write up to the one that showed it
+  std::vector<FuzzFrame> reproducer; // minimized (empty until minimized)
+  bool reproduced = false;           // the reproducer shows the finding again
+};
+
+// One device: sends writes, judges answers, probes liveness.
+class Session {
+ public:
+  Session(Transport& transport, const Profile& profile, SessionOptions options);
+  // Sends one write and judges the answer; a finding, or nullopt.
+  std::optional<Verdict> step(const FuzzFrame& frame);
+  // A device type query (§3.1); a finding when it is not answered, or
+  // answered differently from the first one (the device reset or changed).
+  std::optional<Verdict> probe();
+  // Whether the writes show a finding of `kind` (fresh oracle; the device as it is).
+  bool shows(const std::vector<FuzzFrame>& frames, FindingKind kind);
+  // Whether the reference receiver would accept no frame of this write (the
+  // oracle's state is not changed): the caller may append a probe frame, so
+  // that the ignore path is checked without waiting out a silence window.
+  bool would_be_ignored(const FuzzFrame& frame) const;
+  const Counts& counts() const { return counts_; }
+  Transport& transport() { return transport_; }
+
+ private:
+  Observation exchange(const FuzzFrame& frame, std::size_t expected_replies, std::size_t reply_bytes);
+  Transport& transport_;
+  Profile profile_;
+  SessionOptions options_;
+  Oracle oracle_;
+  Counts counts_;
+  TimePoint last_write_{};
+  std::optional<Frame> first_device_type_;
+  Bytes tail_;
+};
+
+// A fresh device for each minimization trial (the in-process controller), or
+// nullptr: replay on the same device after a liveness probe.
+using DeviceFactory = std::function<std::unique_ptr<Transport>()>;
+
+// Minimizes `finding.history` to `finding.reproducer` (the last `window`
+// writes first, the whole history if they do not reproduce).
+void minimize(Finding& finding, const Profile& profile, const SessionOptions& options, const DeviceFactory& fresh,
+              Session* same_device, std::size_t window = 64);
+
+// ---- findings as vectors -----------------------------------------------------------
+
+struct FindingContext {
+  std::uint64_t seed = 0;
+  std::string command_line;
+  std::size_t number = 1;  // of the run's findings
+};
+
+// The reproducer as a vector file (vectors/README.md) in paragraph `framing`:
+// one raw send per accepted frame, expectations from the reference
+// controller with the same profile, the spec paragraph and quote of the rule
+// the finding broke, and a comment with the seed and the command line.
+std::string finding_vector_yaml(const Finding& finding, const Profile& profile, const FindingContext& context);
+
+}  // namespace sabus::harness::live_fuzz

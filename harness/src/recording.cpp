@@ -1,0 +1,389 @@
+// Regression vectors from a capture (recording.hpp).
+#include "sabus/harness/recording.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "sabus/harness/runner.hpp"
+#include "sabus/protocol/catalog.hpp"
+#include "sabus/protocol/frame.hpp"
+#include "sabus/protocol/lrc.hpp"
+
+namespace sabus::harness {
+
+using fields::Kind;
+
+// THE table of what changes between runs of one controller (vectors/README.md
+// "Recorded regression vectors" explains it). Everything else is recorded as
+// it came and must come back the same.
+constexpr MaskRule kMaskRules[] = {
+    {Kind::kAzimuth, "", Mask::kAny, "", "azimuth position or compass heading: follows the mount (§3.2 bytes 14-19)"},
+    {Kind::kPosition, "", Mask::kAny, "", "elevation, polarization and jog positions: follow the mount (§3.2, §3.24)"},
+    {Kind::kRightDecimal, "agc", Mask::kRegex, "^(  [0-9]| [0-9][0-9]|[0-9][0-9][0-9])$",
+     "AGC level: the signal varies; its form (0-999, right-justified) does not (§3.2 bytes 41-43)"},
+    {Kind::kDigits, "azimuth count|elevation count|az hundredths|el hundredths", Mask::kAny, "",
+     "pulse counts and hundredths of a degree: follow the mount (§3.16, §3.17 bytes 49-50)"},
+    {Kind::kBits, "az status|el status|pol status", Mask::kAny, "",
+     "drive status: movement in progress and its direction (§3.2 bytes 36-38)"},
+    {Kind::kBits, "az limits|el limits|pol limits", Mask::kAny, "", "limit switches: depend on where the mount is (§3.2 bytes 32-34)"},
+    {Kind::kEnumByte, "current mode|current state|last exited mode|exit status", Mask::kAny, "",
+     "mode and state: change as moves start and end (§3.17 bytes 45-48)"},
+    {Kind::kText, "row 1|row 2|row 3|row 4", Mask::kAny, "", "display text: shows positions and the clock (§3.8)"},
+    {Kind::kDigits, "cursor row|cursor column", Mask::kAny, "", "display cursor: moves with the display (§3.8)"},
+    {Kind::kChoice, "cursor status", Mask::kAny, "", "display cursor blinking (§3.8)"},
+};
+
+std::span<const MaskRule> mask_rules() { return kMaskRules; }
+
+namespace {
+
+bool name_listed(std::string_view names, std::string_view name) {
+  while (!names.empty()) {
+    const auto bar = names.find('|');
+    if (names.substr(0, bar) == name) return true;
+    if (bar == std::string_view::npos) break;
+    names.remove_prefix(bar + 1);
+  }
+  return false;
+}
+
+}  // namespace
+
+const MaskRule* mask_rule_for(const FieldDescription& field) {
+  for (const auto& r : kMaskRules)
+    if (r.kind == field.kind && (r.names.empty() || name_listed(r.names, field.name))) return &r;
+  return nullptr;
+}
+
+namespace {
+
+// Vector files name their paragraph; these do not test one paragraph.
+constexpr std::string_view kCrossCutting[] = {"framing", "ignore", "nak", "offline", "parity", "multidrop", "timing", "pacing"};
+// The quote of a recording that covers several commands (§1 Message Format).
+constexpr std::string_view kFramingQuote =
+    "Response messages are identical to command messages in format (but not content)";
+
+struct Exchange {
+  Bytes request;                  // 7-bit characters sent in one write (run JSON) or one frame (proxy log)
+  std::vector<Bytes> replies;     // frames
+  std::size_t ignored_replies = 0;
+  double t_ms = 0;
+};
+
+struct RecordedVector {
+  std::string source_id;          // run JSON: the vector's id
+  std::string comment;
+  std::vector<Exchange> steps;
+};
+
+std::string yaml_text(std::string_view s) { return nlohmann::json(std::string(s)).dump(); }
+
+std::string id_part(std::string_view s) {
+  std::string out;
+  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '-';
+  return out;
+}
+
+// The single well-formed frame `chars` is, if it is one.
+std::optional<Frame> one_frame(const Bytes& chars) {
+  auto f = decode_frame(chars);
+  if (!f) return std::nullopt;
+  return std::move(f).value();
+}
+
+// Byte 0 of the last frame of a send: the last start byte followed by an
+// address byte, as the vector linter reads a raw send (vectors/README.md
+// "Lengths"; a send may restart a frame, 02 02 A 31 03 LRC).
+std::optional<std::size_t> last_frame_start(const Bytes& chars) {
+  for (std::size_t i = chars.size(); i-- > 0;)
+    if ((chars[i] == STX || chars[i] == ACK || chars[i] == NAK) && i + 1 < chars.size() && is_valid_address(chars[i + 1]))
+      return i;
+  return std::nullopt;
+}
+
+// The command of a send's last frame, when its command byte can be read.
+const CommandInfo* request_command(const Bytes& chars) {
+  const auto start = last_frame_start(chars);
+  return start && *start + 2 < chars.size() ? find_command(chars[*start + 2]) : nullptr;
+}
+
+// Whether the linter's length rule needs `length_mismatch: true`: the last
+// frame is not the catalog's request length (not checked for unknown codes
+// and TBD lengths).
+bool length_mismatch(const Bytes& chars) {
+  const CommandInfo* info = request_command(chars);
+  if (!info || !info->request_length) return false;
+  return chars.size() - *last_frame_start(chars) != *info->request_length;
+}
+
+// A raw template: one good frame to the session's address is written with
+// {addr} and {lrc} (so the vector follows the profile's address); anything
+// else exactly as it was sent.
+std::string raw_template(const Bytes& chars, std::uint8_t session_address) {
+  auto f = one_frame(chars);
+  if (!f || f->kind != FrameKind::kCommand || f->address != session_address) return to_hex(chars);
+  Bytes middle{f->command};
+  middle.insert(middle.end(), f->data.begin(), f->data.end());
+  return "02 {addr} " + to_hex(middle) + " 03 {lrc}";
+}
+
+// Effects of a send as the catalog tells them from its last frame's form
+// byte (READING-NOTES 26), or of the command when the form cannot be told:
+// the reading the linter enforces.
+Effects effects_of(const Bytes& chars) {
+  const CommandInfo* info = request_command(chars);
+  if (!info) return {};
+  const std::size_t start = *last_frame_start(chars);
+  if (info->form_selector_offset && start + *info->form_selector_offset < chars.size())
+    if (const FormInfo* form = info->form_for_selector(chars[start + *info->form_selector_offset])) return form->effects;
+  return info->effects();
+}
+
+// The expectation of one exchange, as YAML lines at `indent`.
+std::string expectation(const Exchange& x, const std::string& indent, std::vector<std::string>& notes) {
+  if (x.replies.empty()) return indent + "expect: silence\n";
+  if (x.replies.size() > 1) {
+    notes.push_back(fmt::format("t={:.1f} ms: {} frames answered one request; recorded as `any`", x.t_ms, x.replies.size()));
+    return indent + "expect: any\n";
+  }
+  const Bytes& reply = x.replies.front();
+  auto frame = one_frame(reply);
+  const CommandInfo* asked = request_command(x.request);
+  if (frame && frame->kind == FrameKind::kNak && reply.size() == kNakReplyLength) return indent + "expect: nak\n";
+  if (frame && is_offline_reply(*frame)) return indent + "expect: offline\n";
+  const FrameDescription d = describe_frame(reply);
+  if (!frame || frame->kind != FrameKind::kAck || d.error || !asked || frame->command != asked->code ||
+      !asked->reply_length || reply.size() != *asked->reply_length) {
+    notes.push_back(fmt::format("t={:.1f} ms: the reply is not the command's normal reply ({}); recorded as `any`",
+                                x.t_ms, d.summary));
+    return indent + "expect: any\n";
+  }
+  // Field name -> the texts of every field of that name, in order.
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const FieldDescription*>> by_name;
+  for (const auto& f : d.fields) {
+    if (f.kind == Kind::kHeader || f.kind == Kind::kUndescribed) continue;  // `ack` checks the frame itself
+    if (!by_name.count(f.name)) order.push_back(f.name);
+    by_name[f.name].push_back(&f);
+  }
+  std::string out = indent + "expect:\n" + indent + "  reply: ack\n";
+  if (order.empty()) return out;
+  out += indent + "  fields:\n";
+  for (const auto& name : order) {
+    const auto& list = by_name[name];
+    out += indent + "    " + yaml_text(name) + ": ";
+    if (const MaskRule* rule = mask_rule_for(*list.front())) {
+      out += rule->mask == Mask::kAny ? "any" : "{regex: " + yaml_text(rule->regex) + "}";
+      out += "\n";
+      continue;
+    }
+    std::vector<std::string> texts;
+    for (const auto* f : list)
+      if (std::find(texts.begin(), texts.end(), matcher_text(*f)) == texts.end()) texts.push_back(matcher_text(*f));
+    if (texts.size() == 1) {
+      out += "{eq: " + yaml_text(texts[0]) + "}\n";
+    } else {
+      std::string items;
+      for (const auto& t : texts) items += (items.empty() ? "" : ", ") + yaml_text(t);
+      out += "{one_of: [" + items + "]}\n";
+    }
+  }
+  return out;
+}
+
+std::vector<RecordedVector> from_proxy_log(const Capture& c, std::vector<std::string>& notes) {
+  std::vector<RecordedVector> out;
+  std::map<std::uint64_t, std::size_t> by_seq;
+  std::size_t ignored_requests = 0, unpaired = 0;
+  for (const auto& item : c.segments.front().items) {
+    if (item.dir == Direction::kToDevice) {
+      if (item.ignored || !item.seq) {
+        ++ignored_requests;
+        continue;
+      }
+      RecordedVector v;
+      v.steps.push_back({item.chars, {}, 0, item.t_ms});
+      by_seq[*item.seq] = out.size();
+      out.push_back(std::move(v));
+      continue;
+    }
+    auto it = item.reply_to ? by_seq.find(*item.reply_to) : by_seq.end();
+    if (it == by_seq.end()) {
+      ++unpaired;
+      continue;
+    }
+    Exchange& x = out[it->second].steps.front();
+    if (item.ignored) ++x.ignored_replies;
+    else x.replies.push_back(item.chars);
+  }
+  if (ignored_requests)
+    notes.push_back(fmt::format("{} run(s) of request bytes the receiver ignored are not recorded (only frames are)", ignored_requests));
+  if (unpaired) notes.push_back(fmt::format("{} device frame(s) or run(s) before the first request are not recorded", unpaired));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Exchange& x = out[i].steps.front();
+    out[i].comment = fmt::format("Exchange {} of the recorded session, at {:.1f} ms: {}", i + 1, x.t_ms,
+                                 describe_frame(x.request).summary);
+  }
+  return out;
+}
+
+std::vector<RecordedVector> from_run_json(const Capture& c, std::vector<std::string>& notes) {
+  std::vector<RecordedVector> out;
+  for (const auto& s : c.segments) {
+    RecordedVector v;
+    v.source_id = s.id;
+    for (const auto& item : s.items) {
+      if (item.dir == Direction::kToDevice) {
+        v.steps.push_back({item.chars, {}, 0, item.t_ms});
+      } else if (!v.steps.empty()) {
+        if (item.ignored) ++v.steps.back().ignored_replies;
+        else v.steps.back().replies.push_back(item.chars);
+      }
+    }
+    if (v.steps.empty()) {
+      notes.push_back(s.id + ": nothing was sent (" + (s.outcome.empty() ? "no transcript" : s.outcome) + "); not recorded");
+      continue;
+    }
+    v.comment = fmt::format("Recorded from run vector {} (§{}, {}, outcome {}).", s.id, s.paragraph, s.level, s.outcome);
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+bool is_cross_cutting(std::string_view p) {
+  return std::find(std::begin(kCrossCutting), std::end(kCrossCutting), p) != std::end(kCrossCutting);
+}
+
+bool is_paragraph(std::string_view p) {
+  if (p == "1" || p == "2" || p == "3" || p == "4") return true;
+  for (const auto& c : catalog())
+    if (c.paragraph == p) return true;
+  return false;
+}
+
+// The §3 Command Set table row of a command ("31 Device Status Poll"): a
+// verbatim quote for every command (the table spaces the jog's slashes).
+std::string command_quote(const CommandInfo& c) {
+  std::string name;
+  for (char ch : c.name) name += ch == '/' ? std::string(" / ") : std::string(1, ch);
+  return fmt::format("{:02X} {}", c.code, name);
+}
+
+const CommandInfo* command_of_paragraph(std::string_view p) {
+  for (const auto& c : catalog())
+    if (c.paragraph == p) return &c;
+  return nullptr;
+}
+
+// The one command every step of `v` sends, if there is one.
+const CommandInfo* single_command(const std::vector<Exchange>& steps) {
+  const CommandInfo* one = nullptr;
+  for (const auto& x : steps) {
+    const CommandInfo* c = request_command(x.request);
+    if (!c || (one && one != c)) return nullptr;
+    one = c;
+  }
+  return one;
+}
+
+}  // namespace
+
+std::optional<Recording> record_vectors(const Capture& capture, const RecordOptions& options, std::string& error) {
+  Recording rec;
+  if (options.name.empty() || id_part(options.name) != options.name) {
+    error = "the name \"" + options.name + "\" must be letters, digits, '.', '-', '_'";
+    return std::nullopt;
+  }
+  std::vector<RecordedVector> vectors = capture.source == Capture::Source::kProxyLog
+                                            ? from_proxy_log(capture, rec.notes)
+                                            : from_run_json(capture, rec.notes);
+  if (vectors.empty()) {
+    error = "no request/reply exchange to record in the " + std::string(to_string(capture.source));
+    return std::nullopt;
+  }
+  // The session's address: that of the first well-formed request.
+  std::optional<std::uint8_t> address;
+  std::vector<Exchange> all;
+  for (const auto& v : vectors)
+    for (const auto& x : v.steps) {
+      all.push_back(x);
+      if (auto f = one_frame(x.request); f && f->kind == FrameKind::kCommand && !address) address = f->address;
+    }
+
+  // The file's paragraph: the command's for a recording of one command,
+  // otherwise `framing` (vectors/README.md).
+  if (!options.paragraph.empty()) {
+    if (!is_paragraph(options.paragraph) && !is_cross_cutting(options.paragraph)) {
+      error = "--paragraph \"" + options.paragraph + "\" is neither a spec paragraph (3.2) nor a cross-cutting topic (framing, ...)";
+      return std::nullopt;
+    }
+    rec.paragraph = options.paragraph;
+  } else {
+    const CommandInfo* one = single_command(all);
+    rec.paragraph = one ? std::string(one->paragraph) : "framing";
+  }
+  const bool cross = is_cross_cutting(rec.paragraph);
+
+  std::string y;
+  y += "# Regression vectors recorded by `sabus record` from " + (options.source.empty() ? std::string("a capture") : options.source) +
+       " (" + std::string(to_string(capture.source)) + (capture.device.empty() ? "" : ", device " + capture.device) + ").\n";
+  y += "# What that controller answered then; fields that change between runs are masked\n";
+  y += "# (vectors/README.md, \"Recorded regression vectors\"). Schema: vectors/README.md.\n";
+  y += "paragraph: " + yaml_text(rec.paragraph) + "\n";
+  y += "title: " + yaml_text("Regression " + options.name + ": " + std::to_string(vectors.size()) + " recorded " +
+                          (capture.source == Capture::Source::kProxyLog ? "exchange(s)" : "vector(s)")) + "\n";
+  if (address) y += fmt::format("requires: {{address: {}}}\n", *address);
+  y += "vectors:\n";
+
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < vectors.size(); ++i) {
+    const RecordedVector& v = vectors[i];
+    std::string id = rec.paragraph + "-" + options.name + "-" +
+                     (v.source_id.empty() ? fmt::format("{:03}", i + 1) : id_part(v.source_id));
+    if (!ids.insert(id).second) id += fmt::format("-{}", i + 1);
+    const CommandInfo* one = single_command(v.steps);
+    std::string spec_paragraph = rec.paragraph, quote;
+    if (cross) {
+      spec_paragraph = one ? std::string(one->paragraph) : "1";
+      quote = one ? command_quote(*one) : std::string(kFramingQuote);
+    } else if (const CommandInfo* c = command_of_paragraph(rec.paragraph)) {
+      quote = command_quote(*c);
+    } else {
+      quote = kFramingQuote;
+    }
+    Effects e;
+    for (const auto& x : v.steps) {
+      const Effects one_e = effects_of(x.request);
+      e.moves_antenna |= one_e.moves_antenna;
+      e.changes_stored_data |= one_e.changes_stored_data;
+    }
+    y += "  - id: " + yaml_text(id) + "\n";
+    y += "    comment: " + yaml_text(v.comment) + "\n";
+    y += "    spec: {paragraph: " + yaml_text(spec_paragraph) + ", quote: " + yaml_text(quote) + "}\n";
+    y += "    level: must\n";
+    std::vector<std::string> tags;
+    if (e.moves_antenna) tags.push_back("motion");
+    if (e.changes_stored_data) tags.push_back("destructive");
+    if (!tags.empty()) {
+      std::string t;
+      for (const auto& s : tags) t += (t.empty() ? "" : ", ") + s;
+      y += "    tags: [" + t + "]\n";
+    }
+    y += "    steps:\n";
+    for (const auto& x : v.steps) {
+      y += "      - send: {raw: " + yaml_text(raw_template(x.request, address.value_or(0))) + "}\n";
+      if (length_mismatch(x.request)) y += "        length_mismatch: true\n";
+      y += expectation(x, "        ", rec.notes);
+      ++rec.steps;
+    }
+    ++rec.vectors;
+  }
+  rec.yaml = std::move(y);
+  return rec;
+}
+
+}  // namespace sabus::harness

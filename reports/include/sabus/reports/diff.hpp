@@ -1,0 +1,50 @@
+// `sabus diff OLD.json NEW.json`: what changed between two runs (two firmware
+// releases, or a run before and after a change).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sabus/reports/document.hpp"
+
+namespace sabus::reports {
+
+// A duration change counts as a timing shift when it exceeds this: an
+// absolute number of milliseconds ("50ms", "50") or a share of the old
+// duration ("20%").
+struct TimingThreshold {
+  double value = 100;
+  bool percent = false;
+  bool exceeded(double old_ms, double new_ms) const;
+};
+std::optional<TimingThreshold> parse_timing_threshold(std::string_view text);
+
+struct DiffEntry {
+  std::string id, paragraph, level, old_outcome, new_outcome;
+  std::string detail;  // the new failure's difference, the changed reply field, the durations
+};
+
+struct RunDiff {
+  std::vector<std::string> run_changes;    // identity, status: one line each
+  bool new_run_incomplete = false;         // NEW is aborted or still running: a regression
+  std::vector<DiffEntry> new_failures;     // not failing before, failing now (regression)
+  std::vector<DiffEntry> now_missing;      // passed before, absent now (regression)
+  std::vector<DiffEntry> must_now_skipped; // a must vector passed before and is skipped now (regression)
+  std::vector<DiffEntry> fixes;            // failing before, passing now
+  std::vector<DiffEntry> added;            // not in OLD
+  std::vector<DiffEntry> other_changes;    // any other change of outcome
+  std::vector<DiffEntry> replies_changed;  // passes in both, but a reply differs
+  std::vector<DiffEntry> timing_shifts;    // ran in both, duration moved beyond the threshold
+  bool regressed() const {
+    return new_run_incomplete || !new_failures.empty() || !now_missing.empty() || !must_now_skipped.empty();
+  }
+};
+
+RunDiff diff_runs(const RunDocument& old_run, const RunDocument& new_run, const TimingThreshold& threshold);
+
+std::string diff_text(const RunDiff& diff);
+std::string diff_markdown(const RunDiff& diff);
+
+}  // namespace sabus::reports

@@ -1,0 +1,125 @@
+// The run document: one in-memory model of a conformance run that every
+// report is written from. `sabus run` builds it as vectors finish and writes
+// it as JSON after each one; `sabus report` and `sabus diff` read the JSON
+// back into it. The JSON is the source of truth; its schema is
+// reports/SCHEMA.md ("sabus-run", version 2).
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/runner.hpp"
+
+namespace sabus::reports {
+
+inline constexpr int kSchemaVersion = 2;
+inline constexpr const char* kSchemaName = "sabus-run";
+
+// One named field of a frame with its byte range (protocol describe_frame).
+struct Field {
+  std::size_t first = 0, last = 0;  // byte offsets in the frame, inclusive
+  std::string name, raw, meaning;
+  bool ok = true;
+};
+
+// One frame sent or received (or a discard note) in a vector's transcript.
+struct FrameRecord {
+  double t_ms = 0;       // since the start of the run
+  std::string dir;       // "tx" (to the device) or "rx" (from it)
+  std::string hex;       // 7-bit characters; "" for an "ignored ..." note
+  std::string note;      // decoded summary
+  std::string command;   // catalog key of the frame's command byte ("status"); "" if none
+  std::string form;      // tx: catalog form id chosen by the selector byte; "" if none
+  std::string expect;    // tx: the step's expected path (ack, nak, offline, silence, any)
+  std::string path;      // tx: the path taken for the coverage matrix: ack, nak, offline, ignore
+  std::vector<Field> fields;
+};
+
+struct VectorRecord {
+  std::string id, paragraph, file, level, outcome;  // outcome: harness to_string(Verdict)
+  std::vector<std::string> failures;
+  std::string skip_reason, known_issue, quote, comment;
+  double duration_ms = 0;
+  int repeats = 0, repeat_failures = 0;
+  std::vector<FrameRecord> transcript;
+
+  bool is_failure() const { return outcome == "fail" || outcome == "unexpected pass"; }
+  bool is_skip() const { return outcome == "skip" || outcome == "known failure"; }
+  // The decoded difference in one line: the first failure, or why an
+  // unexpected pass fails the run.
+  std::string difference() const;
+};
+
+// The controller's answer to a device type query (30h, §3.1), asked once at
+// the start of the run.
+struct Identity {
+  bool ok = false;
+  std::string controller_type, firmware_version, reply_hex;
+  std::string error;  // why there is no identity
+};
+
+struct Liveness {
+  std::string when;
+  bool alive = true;
+  std::string detail;
+};
+
+struct Summary {
+  std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
+  int exit_code = 0;
+};
+
+struct RunDocument {
+  int schema_version = kSchemaVersion;
+  std::string generator = "sabus";
+  std::string started_at, finished_at;   // UTC, ISO 8601
+  std::string status = "running";        // running, complete, aborted
+  std::string abort_reason;
+  std::string device;                    // the transport ("in-process reference controller", a port)
+  Identity identity;
+  std::string profile;
+  int address = 0;
+  std::vector<std::string> faults;
+  nlohmann::json options = nlohmann::json::object();
+  std::size_t planned = 0;               // vectors selected for the run
+  std::vector<VectorRecord> vectors;
+  std::optional<Summary> summary;        // set when the run ends
+  std::vector<Liveness> liveness;
+  std::vector<std::string> restore;
+  nlohmann::json traffic = nlohmann::json::object();
+
+  // Counts from the vectors (the summary may be absent in an aborted run).
+  Summary counts() const;
+  // "PASS", "FAIL" or "ABORTED" / "INCOMPLETE".
+  std::string verdict() const;
+};
+
+// ---- building from the runner ----------------------------------------------------
+
+FrameRecord frame_record(const harness::TranscriptEntry& entry);
+VectorRecord vector_record(const harness::VectorResult& result);
+// Sets the paths of the tx frames: the expected path, or for "any" the
+// reply that came (ack, nak, offline; ignore when nothing came).
+void assign_paths(std::vector<FrameRecord>& transcript);
+// Fills status, summary, liveness, restore notes and traffic at the end.
+void finish(RunDocument& doc, const harness::RunResult& run, std::string finished_at);
+
+// ---- JSON ------------------------------------------------------------------------
+
+nlohmann::json to_json(const FrameRecord& f);
+nlohmann::json to_json(const VectorRecord& v);
+nlohmann::json header_json(const RunDocument& doc);  // everything except "vectors"
+nlohmann::json to_json(const RunDocument& doc);
+
+// Reads a run document; on a bad document sets `error` (what and where) and
+// returns nullopt. Accepts schema versions 1 and 2 (v1 lacks the fields v2 added).
+std::optional<RunDocument> from_json(const nlohmann::json& j, std::string& error);
+std::optional<RunDocument> read_run_file(const std::string& path, std::string& error);
+
+// The time now, UTC, as "2024-05-01T12:00:00Z".
+std::string utc_now();
+
+}  // namespace sabus::reports

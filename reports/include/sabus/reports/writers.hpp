@@ -1,0 +1,107 @@
+// One writer per report format, each working from the run document.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <fstream>
+#include <map>
+#include <vector>
+#include <optional>
+#include <string>
+
+#include "sabus/harness/transport.hpp"
+#include "sabus/reports/document.hpp"
+
+namespace sabus::reports {
+
+// ---- JSON, written incrementally -------------------------------------------------
+
+// Rewrites the whole document after every vector (to PATH.tmp, renamed over
+// PATH), so a crash, a SIGINT or a lost port keeps every finished vector and
+// the file is always complete JSON. Each vector is serialized once.
+class JsonWriter {
+ public:
+  explicit JsonWriter(std::string path) : path_(std::move(path)) {}
+  // Writes the header and every vector; returns false and sets error() when
+  // the file cannot be written.
+  bool start(const RunDocument& doc);
+  bool add(const RunDocument& doc);   // after doc.vectors.push_back(...)
+  bool finish(const RunDocument& doc);
+  const std::string& error() const { return error_; }
+
+ private:
+  bool write(const RunDocument& doc);
+  std::string path_, error_;
+  std::vector<std::string> vectors_;  // serialized vectors, in order
+};
+
+std::string json_text(const RunDocument& doc);  // the whole document, as JsonWriter writes it
+
+// ---- device identity -------------------------------------------------------------
+
+// Asks the device type (30h, §3.1) once through the transport; on failure
+// says why (no answer, NAK, offline, a reply that does not decode, lost port).
+Identity query_identity(harness::Transport& transport, std::uint8_t address);
+
+// ---- console ---------------------------------------------------------------------
+
+struct Progress {
+  std::size_t done = 0, total = 0, passed = 0, failed = 0, skipped = 0;
+  std::chrono::milliseconds elapsed{0};
+  std::string current;  // the id of the last vector
+};
+// "[ 12/310] 10 pass 1 fail 1 skip  0:04 elapsed  ~1:40 left  3.3-form2A-basic"
+// (remaining time: elapsed per vector so far times the vectors left).
+std::string progress_line(const Progress& p, std::size_t width = 100);
+// "FAIL 3.2-status-length §3.2 must: expected 52 bytes, got 51"
+std::string failure_line(const VectorRecord& v);
+// "N passed, N failed, N skipped" (and ", N known failures" when there are any).
+std::string summary_line(const Summary& s);
+// "m:ss" or "h:mm:ss".
+std::string clock_text(std::chrono::milliseconds d);
+
+// ---- files -----------------------------------------------------------------------
+
+// JUnit XML as Jenkins and GitLab read it (reports/junit.xsd): one testsuite
+// per spec paragraph, one testcase per vector.
+std::string junit_xml(const RunDocument& doc);
+// One self-contained HTML page: no scripts or assets from the network; every
+// string from the device or the vectors is escaped.
+std::string html_report(const RunDocument& doc);
+// A short Markdown summary for a merge request or a release note.
+std::string markdown_summary(const RunDocument& doc);
+
+std::string xml_escape(std::string_view s);  // also for HTML text and attributes
+
+// Writes text to a file; false with `error` set when it cannot.
+bool write_file(const std::string& path, const std::string& text, std::string& error);
+
+}  // namespace sabus::reports
+
+namespace sabus::reports {
+
+// ---- tables shared by the HTML and Markdown reports ------------------------------
+
+struct Tally {
+  std::size_t passed = 0, failed = 0, skipped = 0, known = 0;  // failed counts unexpected passes
+  void add(const VectorRecord& v);
+  std::size_t total() const { return passed + failed + skipped + known; }
+};
+
+// Per spec paragraph (in paragraph order: "3.2" before "3.10"), per level.
+std::map<std::string, std::map<std::string, Tally>, bool (*)(const std::string&, const std::string&)> paragraph_levels(
+    const RunDocument& doc);
+bool paragraph_less(const std::string& a, const std::string& b);
+
+// The coverage matrix: command × form × path (ack, nak, offline, ignore),
+// each cell counting the vectors that sent such a frame, by outcome. Rows
+// are every catalog command and each of its forms ("" for a command without
+// forms, or a frame whose selector picks none).
+struct CoverageRow {
+  std::string command, name, paragraph, form;
+  std::map<std::string, Tally> paths;  // "ack", "nak", "offline", "ignore"
+};
+inline constexpr const char* kPaths[] = {"ack", "nak", "offline", "ignore"};
+std::vector<CoverageRow> coverage(const RunDocument& doc);
+
+}  // namespace sabus::reports

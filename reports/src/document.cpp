@@ -1,0 +1,352 @@
+// The run document: building it from runner results, and its JSON form
+// (reports/SCHEMA.md).
+#include "sabus/reports/document.hpp"
+
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "sabus/protocol/catalog.hpp"
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/frame.hpp"
+
+namespace sabus::reports {
+
+using nlohmann::json;
+
+std::string VectorRecord::difference() const {
+  if (!failures.empty()) return failures.front();
+  if (outcome == "unexpected pass") return "passed but is listed as a known issue (" + known_issue + ")";
+  return "";
+}
+
+Summary RunDocument::counts() const {
+  Summary s;
+  for (const auto& v : vectors) {
+    if (v.outcome == "pass") ++s.passed;
+    else if (v.outcome == "fail") ++s.failed;
+    else if (v.outcome == "skip") ++s.skipped;
+    else if (v.outcome == "known failure") ++s.known;
+    else if (v.outcome == "unexpected pass") ++s.unexpected;
+  }
+  s.exit_code = summary ? summary->exit_code : 1;
+  return s;
+}
+
+std::string RunDocument::verdict() const {
+  if (status == "aborted") return "ABORTED";
+  if (status != "complete") return "INCOMPLETE";
+  return summary && summary->exit_code == 0 ? "PASS" : "FAIL";
+}
+
+namespace {
+
+// The command byte and form selector of a frame: after the last STX, ACK or
+// NAK that is followed by an address byte (READING-NOTES 7: a resync).
+struct FrameCommand {
+  const CommandInfo* info = nullptr;
+  const FormInfo* form = nullptr;
+};
+
+FrameCommand frame_command(const Bytes& b) {
+  FrameCommand out;
+  std::size_t start = b.size();
+  for (std::size_t i = b.size(); i-- > 0;)
+    if ((b[i] == STX || b[i] == ACK || b[i] == NAK) && i + 2 < b.size() && b[i + 1] >= 0x31 && b[i + 1] <= 0x6F) {
+      start = i;
+      break;
+    }
+  if (start + 2 >= b.size()) return out;
+  out.info = find_command(b[start + 2]);
+  if (out.info && b[start] == STX && out.info->form_selector_offset) {
+    const std::size_t at = start + *out.info->form_selector_offset;
+    if (at < b.size()) out.form = out.info->form_for_selector(b[at]);
+  }
+  return out;
+}
+
+std::string reply_path(const FrameRecord& rx) {
+  if (rx.hex.empty()) return "";
+  const auto bytes = parse_hex(rx.hex);
+  if (!bytes || bytes->empty()) return "";
+  auto decoded = decode_frame(*bytes);
+  if (decoded && is_offline_reply(decoded.value())) return "offline";
+  return (*bytes)[0] == NAK ? "nak" : (*bytes)[0] == ACK ? "ack" : "";
+}
+
+}  // namespace
+
+FrameRecord frame_record(const harness::TranscriptEntry& e) {
+  FrameRecord f;
+  f.t_ms = e.t_ms;
+  f.dir = e.sent ? "tx" : "rx";
+  f.hex = to_hex(e.bytes);
+  f.note = e.note;
+  f.expect = e.expect;
+  if (!e.bytes.empty()) {
+    const FrameDescription d = describe_frame(e.bytes);
+    for (const auto& fd : d.fields) f.fields.push_back({fd.first, fd.last, fd.name, fd.raw, fd.meaning, fd.ok});
+    const FrameCommand c = frame_command(e.bytes);
+    if (c.info) f.command = std::string(c.info->key);
+    if (c.form && e.sent) f.form = std::string(c.form->id);
+  }
+  return f;
+}
+
+void assign_paths(std::vector<FrameRecord>& t) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i].dir != "tx" || t[i].expect.empty()) continue;
+    if (t[i].expect == "silence") {
+      t[i].path = "ignore";
+    } else if (t[i].expect != "any") {
+      t[i].path = t[i].expect;
+    } else {
+      std::string seen;
+      for (std::size_t j = i + 1; j < t.size() && t[j].dir == "rx" && seen.empty(); ++j) seen = reply_path(t[j]);
+      t[i].path = seen.empty() ? "ignore" : seen;
+    }
+  }
+}
+
+VectorRecord vector_record(const harness::VectorResult& r) {
+  VectorRecord v;
+  v.id = r.id;
+  v.paragraph = r.paragraph;
+  v.file = r.file;
+  v.level = std::string(harness::to_string(r.level));
+  v.outcome = std::string(harness::to_string(r.verdict));
+  v.failures = r.failures;
+  v.skip_reason = r.skip_reason;
+  v.known_issue = r.known_issue_reason;
+  v.quote = r.quote;
+  v.comment = r.comment;
+  v.duration_ms = r.duration_ms;
+  v.repeats = r.repeats;
+  v.repeat_failures = r.repeat_failures;
+  for (const auto& e : r.transcript) v.transcript.push_back(frame_record(e));
+  assign_paths(v.transcript);
+  return v;
+}
+
+void finish(RunDocument& doc, const harness::RunResult& run, std::string finished_at) {
+  doc.status = run.aborted ? "aborted" : "complete";
+  doc.abort_reason = run.abort_reason;
+  doc.finished_at = std::move(finished_at);
+  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code()};
+  doc.liveness.clear();
+  for (const auto& l : run.liveness) doc.liveness.push_back({l.when, l.alive, l.detail});
+  doc.restore = run.restore_notes;
+  doc.traffic = {{"bytes_sent", run.bytes_sent},
+                 {"bytes_received", run.bytes_received},
+                 {"silence_windows", run.silence_windows},
+                 {"silence_listened_ms", run.silence_listened.count() / 1000.0},
+                 {"measured_turnaround_ms", run.measured_turnaround.count() / 1000.0}};
+}
+
+// ---- JSON ------------------------------------------------------------------------
+
+json to_json(const FrameRecord& f) {
+  json fields = json::array();
+  for (const auto& x : f.fields)
+    fields.push_back({{"first", x.first}, {"last", x.last}, {"name", x.name}, {"raw", x.raw}, {"meaning", x.meaning}, {"ok", x.ok}});
+  json j = {{"t_ms", f.t_ms}, {"dir", f.dir}, {"hex", f.hex}, {"note", f.note}, {"command", f.command}, {"fields", fields}};
+  if (f.dir == "tx") {
+    j["form"] = f.form;
+    j["expect"] = f.expect;
+    j["path"] = f.path;
+  }
+  return j;
+}
+
+json to_json(const VectorRecord& v) {
+  json transcript = json::array();
+  for (const auto& f : v.transcript) transcript.push_back(to_json(f));
+  return {{"id", v.id},
+          {"paragraph", v.paragraph},
+          {"file", v.file},
+          {"level", v.level},
+          {"outcome", v.outcome},
+          {"failures", v.failures},
+          {"skip_reason", v.skip_reason},
+          {"known_issue", v.known_issue},
+          {"quote", v.quote},
+          {"comment", v.comment},
+          {"duration_ms", v.duration_ms},
+          {"repeats", v.repeats},
+          {"repeat_failures", v.repeat_failures},
+          {"transcript", transcript}};
+}
+
+json header_json(const RunDocument& d) {
+  json j = {{"schema", kSchemaName},
+            {"schema_version", d.schema_version},
+            {"generator", d.generator},
+            {"started_at", d.started_at},
+            {"finished_at", d.finished_at},
+            {"status", d.status},
+            {"abort_reason", d.abort_reason},
+            {"device", d.device},
+            {"identity",
+             {{"ok", d.identity.ok},
+              {"controller_type", d.identity.controller_type},
+              {"firmware_version", d.identity.firmware_version},
+              {"reply_hex", d.identity.reply_hex},
+              {"error", d.identity.error}}},
+            {"profile", d.profile},
+            {"address", d.address},
+            {"faults", d.faults},
+            {"options", d.options},
+            {"planned", d.planned}};
+  if (d.summary)
+    j["summary"] = {{"passed", d.summary->passed},   {"failed", d.summary->failed},
+                    {"skipped", d.summary->skipped}, {"known", d.summary->known},
+                    {"unexpected", d.summary->unexpected}, {"exit_code", d.summary->exit_code}};
+  json live = json::array();
+  for (const auto& l : d.liveness) live.push_back({{"when", l.when}, {"alive", l.alive}, {"detail", l.detail}});
+  j["liveness"] = live;
+  j["restore"] = d.restore;
+  j["traffic"] = d.traffic;
+  return j;
+}
+
+json to_json(const RunDocument& d) {
+  json j = header_json(d);
+  json vectors = json::array();
+  for (const auto& v : d.vectors) vectors.push_back(to_json(v));
+  j["vectors"] = vectors;
+  return j;
+}
+
+namespace {
+
+template <class T>
+T get(const json& j, const char* key, T fallback) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return fallback;
+  return it->get<T>();
+}
+
+}  // namespace
+
+std::optional<RunDocument> from_json(const json& j, std::string& error) {
+  if (!j.is_object()) {
+    error = "not a JSON object";
+    return std::nullopt;
+  }
+  if (get<std::string>(j, "schema", "") != kSchemaName) {
+    error = "schema: expected \"sabus-run\", got " + (j.contains("schema") ? j["schema"].dump() : std::string("nothing"));
+    return std::nullopt;
+  }
+  RunDocument d;
+  std::string where = "header";
+  try {
+    d.schema_version = get<int>(j, "schema_version", 0);
+    if (d.schema_version < 1 || d.schema_version > kSchemaVersion) {
+      error = "schema_version: " + std::to_string(d.schema_version) + " is not 1 or 2";
+      return std::nullopt;
+    }
+    d.generator = get<std::string>(j, "generator", "sabus");
+    d.started_at = get<std::string>(j, "started_at", "");
+    d.finished_at = get<std::string>(j, "finished_at", "");
+    d.status = get<std::string>(j, "status", "running");
+    d.abort_reason = get<std::string>(j, "abort_reason", "");
+    d.device = get<std::string>(j, "device", "");
+    if (auto it = j.find("identity"); it != j.end() && it->is_object()) {
+      where = "identity";
+      d.identity.ok = get<bool>(*it, "ok", false);
+      d.identity.controller_type = get<std::string>(*it, "controller_type", "");
+      d.identity.firmware_version = get<std::string>(*it, "firmware_version", "");
+      d.identity.reply_hex = get<std::string>(*it, "reply_hex", "");
+      d.identity.error = get<std::string>(*it, "error", "");
+    } else {
+      d.identity.error = "not recorded (schema version 1)";
+    }
+    where = "header";
+    d.profile = get<std::string>(j, "profile", "");
+    d.address = get<int>(j, "address", 0);
+    d.faults = get<std::vector<std::string>>(j, "faults", {});
+    d.options = get<json>(j, "options", json::object());
+    d.planned = get<std::size_t>(j, "planned", 0);
+    if (auto it = j.find("summary"); it != j.end() && it->is_object()) {
+      where = "summary";
+      d.summary = Summary{get<std::size_t>(*it, "passed", 0), get<std::size_t>(*it, "failed", 0),
+                          get<std::size_t>(*it, "skipped", 0), get<std::size_t>(*it, "known", 0),
+                          get<std::size_t>(*it, "unexpected", 0), get<int>(*it, "exit_code", 1)};
+    }
+    for (const auto& l : get<json>(j, "liveness", json::array())) {
+      where = "liveness";
+      d.liveness.push_back({get<std::string>(l, "when", ""), get<bool>(l, "alive", true), get<std::string>(l, "detail", "")});
+    }
+    d.restore = get<std::vector<std::string>>(j, "restore", {});
+    d.traffic = get<json>(j, "traffic", json::object());
+    const json vectors = get<json>(j, "vectors", json::array());
+    for (std::size_t i = 0; i < vectors.size(); ++i) {
+      const json& v = vectors[i];
+      where = "vectors[" + std::to_string(i) + "]";
+      VectorRecord r;
+      r.id = v.at("id").get<std::string>();
+      where += " (" + r.id + ")";
+      r.paragraph = get<std::string>(v, "paragraph", "");
+      r.file = get<std::string>(v, "file", "");
+      r.level = get<std::string>(v, "level", "");
+      r.outcome = v.at("outcome").get<std::string>();
+      r.failures = get<std::vector<std::string>>(v, "failures", {});
+      r.skip_reason = get<std::string>(v, "skip_reason", "");
+      r.known_issue = get<std::string>(v, "known_issue", "");
+      r.quote = get<std::string>(v, "quote", "");
+      r.comment = get<std::string>(v, "comment", "");
+      r.duration_ms = get<double>(v, "duration_ms", 0);
+      r.repeats = get<int>(v, "repeats", 0);
+      r.repeat_failures = get<int>(v, "repeat_failures", 0);
+      for (const auto& t : get<json>(v, "transcript", json::array())) {
+        FrameRecord f;
+        f.t_ms = get<double>(t, "t_ms", 0);
+        f.dir = get<std::string>(t, "dir", "");
+        f.hex = get<std::string>(t, "hex", "");
+        f.note = get<std::string>(t, "note", "");
+        f.command = get<std::string>(t, "command", "");
+        f.form = get<std::string>(t, "form", "");
+        f.expect = get<std::string>(t, "expect", "");
+        f.path = get<std::string>(t, "path", "");
+        for (const auto& x : get<json>(t, "fields", json::array()))
+          f.fields.push_back({get<std::size_t>(x, "first", 0), get<std::size_t>(x, "last", 0), get<std::string>(x, "name", ""),
+                              get<std::string>(x, "raw", ""), get<std::string>(x, "meaning", ""), get<bool>(x, "ok", true)});
+        r.transcript.push_back(std::move(f));
+      }
+      d.vectors.push_back(std::move(r));
+    }
+  } catch (const json::exception& e) {
+    error = where + ": " + e.what();
+    return std::nullopt;
+  }
+  return d;
+}
+
+std::optional<RunDocument> read_run_file(const std::string& path, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot read";
+    return std::nullopt;
+  }
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    error = path + ": not JSON: " + e.what();
+    return std::nullopt;
+  }
+  auto d = from_json(j, error);
+  if (!d) error = path + ": " + error;
+  return d;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace sabus::reports

@@ -1,0 +1,61 @@
+// The Markdown summary: short, for a merge request or a release note.
+#include <fmt/format.h>
+
+#include "sabus/reports/writers.hpp"
+
+namespace sabus::reports {
+
+namespace {
+
+// Table cells and list items: no pipes, no HTML, no line breaks.
+std::string md(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '|': out += "\\|"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '`': out += "'"; break;
+      case '\n': case '\r': out += ' '; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+constexpr std::size_t kMaxListed = 25;
+
+}  // namespace
+
+std::string markdown_summary(const RunDocument& d) {
+  const Summary c = d.counts();
+  std::string out = fmt::format("### SAbus conformance: **{}**\n\n", d.verdict());
+  const std::string who = d.identity.ok ? "controller " + md(d.identity.controller_type) + ", firmware " +
+                                              md(d.identity.firmware_version)
+                                        : "identity unknown (" + md(d.identity.error) + ")";
+  out += fmt::format("{} · {} · profile {} · {}\n\n", who, md(d.device), md(d.profile), md(d.started_at));
+  out += summary_line(c) + "\n\n";
+  if (!d.abort_reason.empty()) out += "Aborted: " + md(d.abort_reason) + "\n\n";
+  out += "| Level | passed | failed | known | skipped |\n|---|---:|---:|---:|---:|\n";
+  std::map<std::string, Tally> levels;
+  for (const auto& v : d.vectors) levels[v.level].add(v);
+  for (const char* level : {"must", "should", "informative"})
+    if (auto it = levels.find(level); it != levels.end())
+      out += fmt::format("| {} | {} | {} | {} | {} |\n", level, it->second.passed, it->second.failed, it->second.known,
+                         it->second.skipped);
+  std::vector<const VectorRecord*> failures;
+  for (const auto& v : d.vectors)
+    if (v.is_failure()) failures.push_back(&v);
+  if (!failures.empty()) {
+    out += "\n**Failures**\n\n";
+    for (std::size_t i = 0; i < failures.size() && i < kMaxListed; ++i)
+      out += fmt::format("- `{}` §{} {}: {}\n", md(failures[i]->id), md(failures[i]->paragraph), md(failures[i]->level),
+                         md(failures[i]->difference()));
+    if (failures.size() > kMaxListed) out += fmt::format("- … and {} more\n", failures.size() - kMaxListed);
+  }
+  if (c.known) out += fmt::format("\n{} known failure(s) listed in the known-issues file.\n", c.known);
+  return out;
+}
+
+}  // namespace sabus::reports

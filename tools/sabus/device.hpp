@@ -1,0 +1,43 @@
+// The device options `sabus run` and `sabus fuzz` share: which controller to
+// reach (the in-process reference, a serial port, a TCP serial server), its
+// profile, address, baud rate and line mode, and faults to inject with --sim.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/faults.hpp"
+#include "sabus/harness/profile.hpp"
+#include "sabus/harness/transport.hpp"
+
+namespace sabus::cli {
+
+struct DeviceOptions {
+  bool sim = false;
+  std::string port, tcp, profile, address;
+  std::string line = "8N1", serial_backend = "auto";
+  std::vector<std::string> faults;
+  int baud = 0;
+};
+
+// Registers --sim, --port, --tcp, --profile, --address, --baud, --line,
+// --serial-backend and --fault on `sub`.
+void add_device_options(CLI::App* sub, DeviceOptions& o);
+
+// The device, ready to use: the profile (with --address and --baud applied),
+// the faults and the transport. `exit_code` is 0 when it worked, kExitUsage
+// for bad options, 3 when the device cannot be reached; the error is
+// printed as "sabus TOOL: ...".
+struct OpenedDevice {
+  int exit_code = 0;
+  harness::Profile profile;
+  harness::FaultSet faults;
+  std::unique_ptr<harness::Transport> transport;
+};
+// With none of --sim, --port, --tcp: the in-process reference controller.
+OpenedDevice open_device(const std::string& tool, DeviceOptions o);
+
+}  // namespace sabus::cli

@@ -1,0 +1,193 @@
+// `sabus fuzz`: the live fuzzer against the in-process reference controller
+// (default), a serial port or a TCP serial server. The engine is
+// sabus::harness::live_fuzz (harness/include/sabus/harness/live_fuzz.hpp).
+#include <fmt/format.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <set>
+
+#include "commands.hpp"
+#include "device.hpp"
+#include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/transports.hpp"
+
+namespace sabus::cli {
+namespace {
+
+using namespace sabus::harness;
+using namespace sabus::harness::live_fuzz;
+namespace fs = std::filesystem;
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_fuzz_sigint(int) { g_stop = true; }
+
+struct FuzzCliOptions {
+  DeviceOptions device;
+  std::optional<std::uint64_t> seed;
+  std::size_t max_frames = 0, liveness_every = 50, max_findings = 8;
+  double max_time = 0;
+  long pace_ms = -1;
+  std::string findings = "fuzz-findings";
+  bool allow_motion = false, allow_destructive = false;
+};
+
+// How the run can be repeated: the options that change what is sent.
+std::string command_line(const FuzzCliOptions& o, std::uint64_t seed) {
+  std::string s = "sabus fuzz";
+  if (!o.device.port.empty()) s += " --port " + o.device.port;
+  else if (!o.device.tcp.empty()) s += " --tcp " + o.device.tcp;
+  else s += " --sim";
+  for (const auto& f : o.device.faults) s += " --fault " + f;
+  if (!o.device.profile.empty()) s += " --profile " + o.device.profile;
+  if (!o.device.address.empty()) s += " --address " + o.device.address;
+  s += " --seed " + std::to_string(seed);
+  if (o.max_frames) s += " --max-frames " + std::to_string(o.max_frames);
+  if (o.liveness_every != 50) s += " --liveness-every " + std::to_string(o.liveness_every);
+  if (o.allow_motion) s += " --allow-motion";
+  if (o.allow_destructive) s += " --allow-destructive";
+  return s;
+}
+
+int run_fuzz(const FuzzCliOptions& o) {
+  OpenedDevice device = open_device("fuzz", o.device);
+  if (device.exit_code != kExitOk) return device.exit_code;
+  Transport& transport = *device.transport;
+  const Profile& profile = device.profile;
+  const std::uint64_t seed = o.seed ? *o.seed : std::random_device{}();
+
+  SessionOptions so;
+  so.allow_motion = o.allow_motion;
+  so.allow_destructive = o.allow_destructive;
+  so.liveness_every = o.liveness_every;
+  // §4: no more than one request a second on a line (READING-NOTES 3, E-3).
+  so.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
+  Session session(transport, profile, so);
+  Generator generator({profile.address, o.allow_motion, o.allow_destructive, transport.can_send_parity_errors()}, seed);
+  DeviceFactory fresh;
+  if (transport.in_process()) {
+    const FaultSet faults = device.faults;
+    fresh = [profile, faults]() -> std::unique_ptr<Transport> { return make_in_process_transport({profile}, faults); };
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  std::cout << fmt::format("sabus fuzz: {}, seed {}\n", transport.describe(), seed) << std::flush;
+  std::optional<Verdict> first;
+  try {
+    first = session.probe();
+    if (first && first->kind == FindingKind::kDead) {
+      std::cerr << "sabus fuzz: the device does not answer: " << first->message << "\n";
+      return 3;
+    }
+  } catch (const TransportLost& e) {
+    std::cerr << "sabus fuzz: the device is lost: " << e.what() << "\n";
+    return 3;
+  }
+  std::signal(SIGINT, on_fuzz_sigint);
+
+  std::vector<Finding> findings;
+  std::vector<std::string> written;
+  std::set<FindingKind> seen_kinds;
+  std::vector<FuzzFrame> history;
+  constexpr std::size_t kHistory = 512;
+  std::string aborted;
+  std::size_t frames = 0;
+  const FuzzFrame status_probe{encode_frame({FrameKind::kCommand, profile.address, 0x31, {}}), {}, "status poll after it"};
+
+  auto record = [&](const Verdict& v) {
+    if (seen_kinds.count(v.kind)) return;  // one reproducer a kind
+    seen_kinds.insert(v.kind);
+    Finding f{v.kind, v.message, history, {}, false};
+    std::cout << fmt::format("FINDING {} after {} writes: {}\n", to_string(v.kind), frames, v.message) << std::flush;
+    minimize(f, profile, so, fresh, fresh ? nullptr : &session);
+    fs::create_directories(o.findings);
+    const fs::path file = fs::path(o.findings) / fmt::format("fuzz-{}-{}-{}.yaml", seed, findings.size() + 1, to_string(v.kind));
+    std::ofstream(file) << finding_vector_yaml(f, profile, {seed, command_line(o, seed), findings.size() + 1});
+    std::cout << fmt::format("  {} {} write(s) -> {}\n", f.reproduced ? "minimized to" : "NOT reproduced; kept",
+                             f.reproducer.size(), file.string())
+              << std::flush;
+    written.push_back(file.string());
+    findings.push_back(std::move(f));
+  };
+
+  if (first) {  // answered, but wrongly: a finding already
+    history.push_back(liveness_probe(profile.address));
+    record(*first);
+  }
+  try {
+    while (!g_stop && (o.max_frames == 0 || frames < o.max_frames) && (o.max_time <= 0 || elapsed() < o.max_time) &&
+           findings.size() < o.max_findings) {
+      FuzzFrame f = generator.next();
+      // A frame the device must ignore is followed by a status poll in the
+      // same write: the reply sequence shows whether the ignored frame drew
+      // an answer, without waiting out a silence window.
+      // A second one when the first is lost too (its STX taken as the check
+      // byte of a frame left open, E-7).
+      for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+        f.chars.insert(f.chars.end(), status_probe.chars.begin(), status_probe.chars.end());
+        f.what += " + " + status_probe.what;
+      }
+      history.push_back(f);
+      if (history.size() > kHistory) history.erase(history.begin());
+      ++frames;
+      auto v = session.step(f);
+      if (v) record(*v);
+      if (v || (so.liveness_every > 0 && frames % so.liveness_every == 0)) {
+        // The probe is a write like the others: a replay needs it (it may
+        // complete or cut a frame the last write left open).
+        history.push_back(liveness_probe(profile.address));
+        if (auto p = session.probe()) {
+          record(*p);
+          if (p->kind == FindingKind::kDead) {
+            aborted = "the device stopped answering";
+            break;
+          }
+        }
+      }
+    }
+  } catch (const TransportLost& e) {
+    aborted = std::string("the device is lost: ") + e.what();
+  }
+  if (g_stop) aborted = "stopped by SIGINT";
+
+  const Counts& c = session.counts();
+  const double wall = elapsed();
+  const double wire_s = transport.baud() > 0 ? (c.bytes_sent + c.bytes_received) * 10.0 / transport.baud() : 0.0;
+  std::cout << fmt::format("{} writes ({} liveness probes) in {:.1f} s, seed {}\n", c.writes, c.probes, wall, seed);
+  std::cout << fmt::format("replies: {} ack, {} nak, {} offline, {} silence, {} garbage; {} refused by the safety gate\n",
+                           c.ack, c.nak, c.offline, c.silence, c.garbage, c.refused);
+  std::cout << fmt::format("traffic: bytes_sent={} bytes_received={} wall_s={:.3f} baud={}", c.bytes_sent, c.bytes_received,
+                           wall, transport.baud());
+  if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
+  std::cout << "\n";
+  if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
+  std::cout << fmt::format("{} finding(s)\n", findings.size());
+  for (std::size_t i = 0; i < findings.size(); ++i)
+    std::cout << fmt::format("  {} {}: {}\n", written[i], to_string(findings[i].kind), findings[i].message);
+  return findings.empty() ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+Command add_fuzz_command(CLI::App& app) {
+  auto o = std::make_shared<FuzzCliOptions>();
+  CLI::App* sub = app.add_subcommand("fuzz", "Fuzz a controller live: damaged frames, an oracle from the spec, minimized findings");
+  add_device_options(sub, o->device);
+  sub->add_option("--seed", o->seed, "Seed of the generator (default: random, printed)");
+  sub->add_option("--max-frames", o->max_frames, "Stop after N writes (default: no limit)");
+  sub->add_option("--max-time", o->max_time, "Stop after S seconds (default: no limit)");
+  sub->add_option("--max-findings", o->max_findings, "Stop after N findings (default 8; one per kind)");
+  sub->add_option("--findings", o->findings, "Write each finding as a vector file into DIR (default fuzz-findings)");
+  sub->add_option("--liveness-every", o->liveness_every, "A device type query every N writes (default 50; 0: only after findings)");
+  sub->add_option("--pace", o->pace_ms, "Milliseconds between writes (default 1000 on a line, §4; 0 in-process)");
+  sub->add_flag("--allow-motion", o->allow_motion, "Also send commands that move the antenna");
+  sub->add_flag("--allow-destructive", o->allow_destructive, "Also send commands that change stored data");
+  return {sub, [o] { return run_fuzz(*o); }};
+}
+
+}  // namespace sabus::cli

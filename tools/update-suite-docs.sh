@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Rewrites the generated parts of the suite's documents after vectors change:
+# the table by paragraph in vectors/README.md (sabus vectors list --summary)
+# and the Vectors line of every entry of protocol/ERRATA.md. Tests check both.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+sabus=${SABUS:-build/tools/sabus}
+table=$(mktemp)
+trap 'rm -f "$table"' EXIT
+"$sabus" vectors list --summary >"$table"
+awk -v table="$table" '
+  /<!-- suite-summary:begin -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+  /<!-- suite-summary:end -->/ { skip = 0 }
+  !skip { print }
+' vectors/README.md >vectors/README.md.new
+mv vectors/README.md.new vectors/README.md
+"$sabus" vectors errata --update protocol/ERRATA.md
