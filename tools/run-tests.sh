@@ -35,6 +35,8 @@ run_ctest() {
 }
 
 run_ctest "release build" --test-dir build
+# The vector suite's gates (ctest -L gate): their figures, from ctest's log.
+grep -hE "^(mutation score:|suite gates:|[0-9]+ of [0-9]+ cells covered)" build/Testing/Temporary/LastTest.log || true
 run_ctest "sanitizer build (ASan+UBSan)" --test-dir build-sanitize
 if command -v clang++-14 >/dev/null; then
   bash tools/build.sh fuzz

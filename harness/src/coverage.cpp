@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/codec.hpp"
 
@@ -42,6 +43,7 @@ CoverageMatrix coverage(const std::vector<VectorFile>& files) {
     for (const FormInfo& f : c.forms) m.rows.push_back({&c, &f, {}});
     if (c.forms.size() > 1) m.rows.push_back({&c, nullptr, {}});
   }
+  for (NakRule rule : all_nak_rules()) m.nak_rules[std::string(name(rule))];
   auto add = [](std::vector<std::string>& ids, const std::string& id) {
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   };
@@ -50,6 +52,7 @@ CoverageMatrix coverage(const std::vector<VectorFile>& files) {
       for (const auto* list : {&v.setup, &v.steps, &v.teardown})
         for (const Step& s : *list) {
           if (s.kind == Step::Kind::kWait) continue;
+          if (!s.expect.nak_rule.empty()) add(m.nak_rules[s.expect.nak_rule], v.id);
           const auto path = path_of(s.expect.kind);
           // Captured values are not known before a run: a blank keeps the command byte.
           const auto bytes = step_bytes(s, kAnyAddress, {}, true);
@@ -91,6 +94,8 @@ std::vector<std::string> CoverageMatrix::missing() const {
       if (!command_has[static_cast<std::size_t>(p)]) out.push_back(command_label(c) + ": " + std::string(to_string(p)));
   }
   if (unknown_codes.empty()) out.push_back("a code outside 30h-48h: nak");
+  for (const auto& [rule, ids] : nak_rules)
+    if (ids.empty()) out.push_back("NAK rule " + rule + " (§" + std::string(paragraph(*find_nak_rule(rule))) + "): no vector names it");
   return out;
 }
 

@@ -305,6 +305,7 @@ struct Handlers {
     if (axis != 'A' && axis != 'E' && axis != 'P') return nak(c, 0x36, NakRule::kMiscResetAxis);
     if (axis == 'P' && c.profile_.pol_type == PolType::kCircular) return nak(c, 0x36, NakRule::kMiscResetPolNoFeed);
     const AxisId a = axis == 'A' ? AxisId::kAz : axis == 'E' ? AxisId::kEl : AxisId::kPol;
+    if (c.faults_.has(Fault::kDriveResetKeepsAlarm)) return status(c, 0x36, std::string("drive reset ") + axis + " (alarm kept: fault)");
     c.axis(a).alarm = 0;
     // The alarm code of byte 39 belongs to the axis reset (§3.2 byte 39 list).
     const std::uint8_t code = c.state_.alarm_code;

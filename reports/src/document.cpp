@@ -41,30 +41,6 @@ std::string RunDocument::verdict() const {
 
 namespace {
 
-// The command byte and form selector of a frame: after the last STX, ACK or
-// NAK that is followed by an address byte (READING-NOTES 7: a resync).
-struct FrameCommand {
-  const CommandInfo* info = nullptr;
-  const FormInfo* form = nullptr;
-};
-
-FrameCommand frame_command(const Bytes& b) {
-  FrameCommand out;
-  std::size_t start = b.size();
-  for (std::size_t i = b.size(); i-- > 0;)
-    if ((b[i] == STX || b[i] == ACK || b[i] == NAK) && i + 2 < b.size() && b[i + 1] >= 0x31 && b[i + 1] <= 0x6F) {
-      start = i;
-      break;
-    }
-  if (start + 2 >= b.size()) return out;
-  out.info = find_command(b[start + 2]);
-  if (out.info && b[start] == STX && out.info->form_selector_offset) {
-    const std::size_t at = start + *out.info->form_selector_offset;
-    if (at < b.size()) out.form = out.info->form_for_selector(b[at]);
-  }
-  return out;
-}
-
 std::string reply_path(const FrameRecord& rx) {
   if (rx.hex.empty()) return "";
   const auto bytes = parse_hex(rx.hex);
@@ -86,9 +62,16 @@ FrameRecord frame_record(const harness::TranscriptEntry& e) {
   if (!e.bytes.empty()) {
     const FrameDescription d = describe_frame(e.bytes);
     for (const auto& fd : d.fields) f.fields.push_back({fd.first, fd.last, fd.name, fd.raw, fd.meaning, fd.ok});
-    const FrameCommand c = frame_command(e.bytes);
-    if (c.info) f.command = std::string(c.info->key);
-    if (c.form && e.sent) f.form = std::string(c.form->id);
+    if (e.sent) {
+      // The command frame the device answers, and its form (one classifier
+      // for reports and `sabus vectors coverage`).
+      const CommandForm c = classify_command(e.bytes);
+      if (c.info) f.command = std::string(c.info->key);
+      if (c.form) f.form = std::string(c.form->id);
+    } else if (e.bytes.size() >= 3) {
+      // A reply: ACK/NAK, address, the command it answers.
+      if (const CommandInfo* info = find_command(e.bytes[2])) f.command = std::string(info->key);
+    }
   }
   return f;
 }

@@ -680,6 +680,7 @@ TEST(Faults, EveryFaultChangesTheWire) {
       {Fault::kDropsReplyByte, none, poll},
       {Fault::kDeviceTypeNoDot, none, wire(DeviceTypeQuery{}, '2')},
       {Fault::kRemoteDisabledAnswers, disabled, poll},
+      {Fault::kDriveResetKeepsAlarm, [](Profile& p) { p.alarms.az = 11; }, wire(Misc{'R', 'A'}, '2')},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {

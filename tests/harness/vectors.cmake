@@ -38,3 +38,6 @@ add_test(NAME gate.suite_summary_current
          COMMAND ${CMAKE_COMMAND} -DSABUS=$<TARGET_FILE:sabus> -DREADME=${PROJECT_SOURCE_DIR}/vectors/README.md
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/suite_summary_current.cmake)
 set_tests_properties(gate.errata_vector_lists gate.suite_summary_current PROPERTIES LABELS gate)
+
+sabus_add_test(coverage_tests unit ${CMAKE_CURRENT_SOURCE_DIR}/harness/coverage_test.cpp)
+target_link_libraries(coverage_tests PRIVATE sabus::vectors)

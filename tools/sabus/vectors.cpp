@@ -16,6 +16,7 @@
 
 #include "commands.hpp"
 #include "sabus/harness/coverage.hpp"
+#include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
 namespace sabus::cli {
@@ -120,7 +121,11 @@ int run_coverage(const VectorsOptions& o) {
                       {"form", row.form ? std::string(row.form->id) : std::string()},
                       {"cells", cells}});
     }
-    std::cout << nlohmann::json{{"rows", rows}, {"unknown_codes", {{"nak", m.unknown_codes}}}, {"missing", missing}}.dump(2)
+    std::cout << nlohmann::json{{"rows", rows},
+                                {"unknown_codes", {{"nak", m.unknown_codes}}},
+                                {"nak_rules", m.nak_rules},
+                                {"missing", missing}}
+                     .dump(2)
               << "\n";
   } else {
     std::size_t covered = 0, cells = 0;
@@ -137,6 +142,11 @@ int run_coverage(const VectorsOptions& o) {
     if (!o.missing_only)
       std::cout << fmt::format("{:<36} §{:<5} {:<8} {:>3}  {}\n", "other codes", "3", "nak", m.unknown_codes.size(),
                                m.unknown_codes.empty() ? "-" : fmt::format("{}", fmt::join(m.unknown_codes, " ")));
+    if (!o.missing_only)
+      for (const auto& [rule, ids] : m.nak_rules)
+        std::cout << fmt::format("{:<36} §{:<5} {:<8} {:>3}  {}\n", "NAK rule " + rule,
+                                 harness::paragraph(*harness::find_nak_rule(rule)), "nak", ids.size(),
+                                 ids.empty() ? "-" : fmt::format("{}", fmt::join(ids, " ")));
     for (const auto& line : missing) std::cout << "MISSING " << line << "\n";
     std::cout << fmt::format("{} of {} cells covered; {} required cell(s) without a vector\n", covered, cells,
                              missing.size());

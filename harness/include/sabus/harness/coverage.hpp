@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,13 +31,17 @@ struct CoverageRow {
 struct CoverageMatrix {
   std::vector<CoverageRow> rows;            // catalog order, then the unclassified row of a command
   std::vector<std::string> unknown_codes;   // vectors sending codes outside the catalog (§3 NAK, E-9)
+  // Every NAK rule of the reference controller (nak_rules.hpp) -> the
+  // vectors whose nak expectation names it.
+  std::map<std::string, std::vector<std::string>> nak_rules;
   // The cells the spec defines that no vector covers, one line each:
   // "32h auto_move 2A: ack". Required: an ACK vector for every form of every
   // command (§3.1-§3.25; 38h/3Dh/3Eh on a profile that implements them), and
   // for every command a NAK vector (§3 NAK Reply: a wrong length is NAKed
   // for any code), an offline vector (§3 Online/Offline Reply) and an ignore
   // vector (§1: a damaged frame of that command gets no reply), in any form;
-  // and a NAK vector for a code outside the catalog.
+  // and a NAK vector for a code outside the catalog; and, for every NAK rule
+  // of the reference controller, a vector naming it.
   std::vector<std::string> missing() const;
 };
 
