@@ -10,7 +10,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2) return 0;
-  const auto& info = sabus::catalog()[data[0] % sabus::catalog().size()];
+  const auto& info = sabus::catalog()[(data[0] & 0x7F) % sabus::catalog().size()];
   sabus::Frame f{(data[0] & 0x80) ? sabus::FrameKind::kNak : sabus::FrameKind::kAck, '2', info.code, {}};
   for (std::size_t i = 2; i < size; ++i) {
     const std::uint8_t c = data[i] & 0x7F;

@@ -1,15 +1,43 @@
-// Generates the seed corpora of the fuzz targets from the codecs and the
-// manual's examples, so seeds follow the layouts instead of being copied by
-// hand: `fuzz_seed_generator OUTDIR` writes OUTDIR/<target>/<name>.
+// Generates the seed corpora and dictionaries of the fuzz targets, so seeds
+// follow the codecs and the vector suite instead of being copied by hand:
+//   fuzz_seed_generator OUTDIR VECTORS_DIR
+// writes OUTDIR/<target>/<name> and OUTDIR/<target>.dict:
+//  - one seed per conformance vector (whatever vectors/ holds when it runs)
+//    for the receiver, the whole-controller and the differential targets:
+//    its send and poll steps (setup, steps, teardown) encoded as the runner
+//    encodes them (step_bytes, then apply_modifiers, parity and parity flips);
+//  - one seed per reply type (the codecs' defaults) and per vector reply
+//    given as bytes, for the reply decoders;
+//  - each vector file and each device profile, for the loaders;
+//  - dictionaries from the catalog (fuzz_support.cpp dictionary_tokens) and,
+//    for the YAML loaders, every key the seed files use.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 
+#include "fuzz_support.hpp"
+#include "sabus/harness/runner.hpp"
+#include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/structured.hpp"
 
 namespace fs = std::filesystem;
 using sabus::Bytes;
+namespace harness = sabus::harness;
+
+namespace sabus::fuzz {
+struct EmbeddedProfile {
+  const char* name;
+  const char* yaml;
+};
+extern const EmbeddedProfile kEmbeddedProfiles[];
+extern const std::size_t kEmbeddedProfileCount;
+}  // namespace sabus::fuzz
 
 namespace {
 
@@ -23,6 +51,12 @@ Bytes cat(std::initializer_list<Bytes> parts) {
   Bytes out;
   for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
   return out;
+}
+
+std::string file_name(const std::string& id) {
+  std::string s;
+  for (char c : id) s.push_back(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_');
+  return s;
 }
 
 // One of each reply type, as the codecs encode them.
@@ -53,19 +87,113 @@ void request_seeds(const fs::path& dir, std::index_sequence<I...>) {
     char name[32];
     std::snprintf(name, sizeof name, "request-%02x", T::kCode);
     write(dir, std::string(name) + "-chars", cat({{0x06, 0x00}, frame}));
-    write(dir, std::string(name) + "-wire", cat({{0x07, 0x03}, sabus::add_even_parity(frame)}));
+    write(dir, std::string(name) + "-wire", cat({{0x07, 0x00}, sabus::add_even_parity(frame)}));
   };
   (one(std::type_identity<std::variant_alternative_t<I, sabus::Request>>{}), ...);
+}
+
+// The seeds of one vector.
+struct VectorSeeds {
+  Bytes wire;          // every send, as the runner puts it on the line
+  Bytes structured;    // the differential target's encoding of its structured commands
+  std::vector<Bytes> replies;  // expected replies given as bytes, for the decoders
+};
+
+std::size_t catalog_index(const sabus::CommandInfo* info) {
+  return static_cast<std::size_t>(info - sabus::catalog().data());
+}
+
+VectorSeeds vector_seeds(const harness::Vector& v, std::uint8_t address) {
+  VectorSeeds out;
+  auto add_step = [&](const harness::Step& s) {
+    if (s.kind == harness::Step::Kind::kWait) return;
+    // The runner's step encoding: step_bytes (captured values, unknown
+    // here, are blanks), then apply_modifiers, parity and parity flips as
+    // the runner's exchange sends them.
+    const auto chars = harness::step_bytes(s, address, {}, true);
+    if (!chars) return;
+    if (s.command) {
+      const auto* info = sabus::find_command(s.command->command);
+      if (info && sabus::build_request(*info, s.command->form, s.command->fields)) {
+        // The differential target: command, form, then each field's value.
+        out.structured.push_back(static_cast<std::uint8_t>(catalog_index(info)));
+        std::size_t form = 0;
+        for (std::size_t i = 0; i < info->forms.size(); ++i)
+          if (info->forms[i].id == s.command->form) form = i;
+        out.structured.push_back(static_cast<std::uint8_t>(form));
+        for (const auto& name : sabus::request_field_names(*info, s.command->form)) {
+          auto it = s.command->fields.find(name);
+          if (it == s.command->fields.end() || it->second.size() >= 0x80) {
+            out.structured.push_back(0x80);
+          } else {
+            out.structured.push_back(static_cast<std::uint8_t>(it->second.size()));
+            out.structured.insert(out.structured.end(), it->second.begin(), it->second.end());
+          }
+        }
+      }
+    }
+    Bytes wire = sabus::add_even_parity(harness::apply_modifiers(chars.value(), s.modifiers));
+    for (auto p : s.modifiers.parity_flip)
+      if (p < wire.size()) wire[p] ^= 0x80;
+    out.wire.insert(out.wire.end(), wire.begin(), wire.end());
+    if (s.expect.bytes) {
+      auto r = harness::expand_raw_bytes(s.expect.bytes->hex, address);
+      if (r && r.value().size() >= 5) out.replies.push_back(r.value());
+    }
+  };
+  for (const auto* list : {&v.setup, &v.steps, &v.teardown})
+    for (const auto& s : *list) add_step(s);
+  return out;
+}
+
+// Keys ("name:") of YAML text, for the loaders' dictionary.
+void yaml_keys(const std::string& text, std::set<std::string>& keys) {
+  static const std::regex key(R"(([A-Za-z_][A-Za-z0-9_]*):)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), key); it != std::sregex_iterator(); ++it)
+    keys.insert((*it)[1].str() + ":");
+}
+
+std::string dict_escape(const Bytes& b) {
+  std::string s;
+  char buf[8];
+  for (std::uint8_t c : b) {
+    if (c >= 0x20 && c < 0x7F && c != '"' && c != '\\') {
+      s.push_back(static_cast<char>(c));
+    } else {
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      s += buf;
+    }
+  }
+  return s;
+}
+
+void write_dict(const fs::path& file, const std::vector<sabus::fuzz::Token>& tokens) {
+  std::ofstream out(file);
+  out << "# Generated by fuzz_seed_generator; do not edit.\n";
+  std::set<std::string> seen;
+  for (const auto& t : tokens) {
+    const std::string entry = dict_escape(t.bytes);
+    if (!seen.insert(entry).second) continue;
+    out << "# " << t.comment << "\n\"" << entry << "\"\n";
+  }
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: fuzz_seed_generator OUTDIR\n");
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: fuzz_seed_generator OUTDIR VECTORS_DIR\n");
     return 2;
   }
   const fs::path out = argv[1];
+  const fs::path vectors_dir = argv[2];
   reply_seeds(out / "fuzz_reply_decoders", std::make_index_sequence<std::variant_size_v<sabus::Reply>>{});
   request_seeds(out / "fuzz_receiver", std::make_index_sequence<std::variant_size_v<sabus::Request>>{});
   // Framing cases for the receiver: bad LRC, STX STX, a check byte of 02h.
@@ -75,6 +203,62 @@ int main(int argc, char** argv) {
   write(out / "fuzz_receiver", "framing-bad-lrc", cat({{0x06, 0x00}, bad, poll}));
   write(out / "fuzz_receiver", "framing-stx-stx", cat({{0x06, 0x00}, {sabus::STX}, poll}));
   write(out / "fuzz_receiver", "framing-noise", cat({{0x06, 0x02}, {0x41, 0x42, 0x03, 0x7f}, poll}));
-  std::printf("seed corpora written to %s\n", out.c_str());
+
+  // One seed per vector of the suite, whatever it holds now. A file that
+  // does not load is reported and left out; the rest still give seeds.
+  const auto& profiles = sabus::fuzz::profiles();
+  const auto loaded = harness::load_vectors({vectors_dir.string()});
+  for (const auto& e : loaded.errors) std::fprintf(stderr, "seed generator: skipped: %s\n", e.text().c_str());
+  std::size_t vectors = 0, replies = 0;
+  std::set<std::string> keys;
+  for (const auto& file : loaded.files) {
+    const std::string text = read_text(file.path);
+    write(out / "fuzz_vector_loader", file_name(fs::path(file.path).filename().string()), Bytes(text.begin(), text.end()));
+    yaml_keys(text, keys);
+    for (const auto& v : file.vectors) {
+      // The first profile (by name) the vector can run on, as the runner would pick.
+      std::size_t p = 0;
+      while (p < profiles.size() && !harness::requirements_hold(profiles[p], v.requires_)) ++p;
+      if (p == profiles.size()) p = 0;
+      const std::uint8_t address = profiles[p].address;
+      const VectorSeeds s = vector_seeds(v, address);
+      const std::string name = file_name(v.id);
+      if (!s.wire.empty()) {
+        write(out / "fuzz_controller", name, cat({{static_cast<std::uint8_t>(p), 5}, s.wire}));
+        const std::uint8_t addr_knob = address == '2' ? 0 : address == 0x31 ? 1 : address == 0x6F ? 2 : 3;
+        write(out / "fuzz_receiver", "vector-" + name, cat({{0x07, addr_knob}, s.wire}));
+      }
+      if (!s.structured.empty()) write(out / "fuzz_differential", name, cat({{static_cast<std::uint8_t>(p)}, s.structured}));
+      for (std::size_t i = 0; i < s.replies.size(); ++i) {
+        const Bytes& r = s.replies[i];
+        const auto* info = sabus::find_command(r[2]);
+        if (!info) continue;
+        Bytes seed = {static_cast<std::uint8_t>((info->code - sabus::kFirstCommand) | (r[0] == sabus::NAK ? 0x80 : 0)), 0};
+        seed.insert(seed.end(), r.begin() + 3, r.end() - 2);
+        write(out / "fuzz_reply_decoders", name + "-reply" + std::to_string(i), seed);
+        ++replies;
+      }
+      ++vectors;
+    }
+  }
+  for (std::size_t i = 0; i < sabus::fuzz::kEmbeddedProfileCount; ++i) {
+    const std::string text = sabus::fuzz::kEmbeddedProfiles[i].yaml;
+    write(out / "fuzz_profile_loader", file_name(sabus::fuzz::kEmbeddedProfiles[i].name), Bytes(text.begin(), text.end()));
+    yaml_keys(text, keys);
+  }
+  // The differential target needs at least one seed even with no vectors.
+  write(out / "fuzz_differential", "status-poll", {0, 1, 0});
+
+  const auto tokens = sabus::fuzz::dictionary_tokens();
+  for (const char* t : {"fuzz_receiver", "fuzz_controller", "fuzz_reply_decoders", "fuzz_differential"})
+    write_dict(out / (std::string(t) + ".dict"), tokens);
+  std::vector<sabus::fuzz::Token> yaml;
+  for (const auto& k : keys) yaml.push_back({"key", Bytes(k.begin(), k.end())});
+  for (const char* s : {"- ", "{", "}", "[", "]", "\"", "'", "&a", "*a", "!!str", "---", "|", ">", "#", "0x"})
+    yaml.push_back({"YAML syntax", Bytes(s, s + std::char_traits<char>::length(s))});
+  write_dict(out / "fuzz_vector_loader.dict", yaml);
+  write_dict(out / "fuzz_profile_loader.dict", yaml);
+  std::printf("seed corpora written to %s: %zu vectors, %zu vector replies, %zu files skipped\n", out.c_str(), vectors,
+              replies, loaded.errors.size());
   return 0;
 }

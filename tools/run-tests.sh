@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Every test: installs what is missing, builds the release and the sanitizer
 # (ASan+UBSan) flavours, and runs the whole ctest suite in both; with clang
-# present it also builds the libFuzzer targets and runs each for FUZZ_SECONDS.
+# present it also builds the libFuzzer targets, runs each for FUZZ_SECONDS
+# (default 30) from its seed corpus, and builds them as ClusterFuzzLite does
+# (fuzz/build_like_ossfuzz.sh).
 # Ends with one line "tests: N passed, N failed" over all runs, and exits
 # non-zero when any test failed.
 set -euo pipefail
@@ -38,7 +40,7 @@ grep -hE "^(mutation score:|suite gates:|[0-9]+ of [0-9]+ cells covered)" build/
 run_ctest "sanitizer build (ASan+UBSan)" --test-dir build-sanitize
 if command -v clang++-14 >/dev/null; then
   bash tools/build.sh fuzz
-  run_ctest "libFuzzer build, ${FUZZ_SECONDS:-10} s per target" --test-dir build-fuzz -L fuzz
+  run_ctest "libFuzzer build, ${FUZZ_SECONDS:-30} s per target, and the ClusterFuzzLite build" --test-dir build-fuzz -L fuzz
 fi
 echo "tests: $passed passed, $failed failed"
 if ((failed > 0)); then status=1; fi

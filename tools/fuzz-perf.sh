@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Prints the fuzz targets' speed on one core and what the whole-controller
+# target reaches in a given time (figures are printed, never asserted):
+#   tools/fuzz-perf.sh [SECONDS]
+# 1. every target runs EXEC_SECONDS (default 20; 0 skips this) from its seed corpus, pinned
+#    to one core (taskset -c 0): libFuzzer's exec/s, and executions per
+#    CPU-second of the process (the same figure on a machine shared with
+#    other jobs, where wall-clock exec/s understates the target);
+# 2. fuzz_controller runs SECONDS (default 300) from its seed corpus on one
+#    core: its final edge coverage, then fuzz_handler_report replays the
+#    resulting corpus and lists the command handlers (and forms, and NAK
+#    rules) the corpus reaches.
+# BUILD (default build-fuzz-perf): the build tree of the targets. Made here
+# when missing: libFuzzer without sanitizers (-fsanitize=fuzzer through
+# SABUS_FUZZ_ENGINE), the engine's own speed. BUILD=build-fuzz measures the
+# ASan+UBSan flavour the tests run (tools/build.sh fuzz).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-300}
+exec_seconds=${EXEC_SECONDS:-20}
+build=${BUILD:-build-fuzz-perf}
+if [[ ! -f $build/build.ninja ]]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" -DSABUS_FUZZ_ENGINE=-fsanitize=fuzzer \
+    -DSABUS_BUILD_TESTS=OFF -DSABUS_BUILD_BENCHMARKS=OFF -DSABUS_BUILD_TOOLS=OFF >/dev/null
+fi
+cmake --build "$build" --target all_fuzzers fuzz_handler_report fuzz_seeds >/dev/null
+fuzz=$build/fuzz
+work=$(mktemp -d "${TMPDIR:-/tmp}/sabus-fuzz-perf.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+# libFuzzer flags of a target's .options file (the dictionary by path).
+flags_of() {
+  local t=$1 line key value
+  while IFS= read -r line; do
+    [[ $line =~ ^[[:space:]]*([a-z_]+)[[:space:]]*=[[:space:]]*(.*[^[:space:]])[[:space:]]*$ ]] || continue
+    key=${BASH_REMATCH[1]} value=${BASH_REMATCH[2]}
+    if [[ $key == dict ]]; then echo "-dict=$fuzz/seeds/$value"; else echo "-$key=$value"; fi
+  done <"$fuzz/$t.options"
+}
+
+echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+echo
+printf "%-22s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
+((exec_seconds > 0)) && targets=$(cat "$fuzz/fuzz_targets.txt") || targets=""
+for t in $targets; do
+  corpus=$work/$t
+  mkdir -p "$corpus"
+  cp "$fuzz/seeds/$t"/* "$corpus/"
+  mapfile -t flags < <(flags_of "$t")
+  /usr/bin/time -f "%U %S" -o "$work/$t.time" taskset -c 0 "$fuzz/$t" "${flags[@]}" -max_total_time="$exec_seconds" \
+    -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/$t.log" 2>&1 || {
+    echo "$t failed:"; tail -20 "$work/$t.log"; exit 1; }
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$t.log")
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$t.log")
+  cpu=$(awk '{printf "%.1f", $1 + $2}' "$work/$t.time")
+  printf "%-22s %12s %14s %10s %16s\n" "$t" "$rate" "$runs" "$cpu" "$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')"
+done
+
+echo
+echo "fuzz_controller for $seconds s on one core, from its seed corpus:"
+corpus=$work/controller-long
+mkdir -p "$corpus"
+cp "$fuzz/seeds/fuzz_controller"/* "$corpus/"
+mapfile -t flags < <(flags_of fuzz_controller)
+/usr/bin/time -f "%U %S" -o "$work/long.time" taskset -c 0 "$fuzz/fuzz_controller" "${flags[@]}" \
+  -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/long.log" 2>&1 || {
+  echo "fuzz_controller failed:"; tail -30 "$work/long.log"; exit 1; }
+grep -E "^#[0-9]+[[:space:]]" "$work/long.log" | tail -1 | sed "s/^/  /" || true
+grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)" "$work/long.log" | sed 's/^/  /'
+echo "  CPU seconds: $(awk '{printf "%.1f", $1 + $2}' "$work/long.time")  (cov: = edges covered, ft: = features)"
+echo
+"$fuzz/fuzz_handler_report" "$corpus"
