@@ -72,12 +72,17 @@ CoverageMatrix coverage(const std::vector<VectorFile>& files) {
 std::string command_label(const CommandInfo& c) {
   char code[8];
   std::snprintf(code, sizeof code, "%02Xh ", c.code);
-  return code + std::string(c.key);
+  std::string s = code;
+  s.append(c.key);
+  return s;
 }
 
 std::string row_label(const CoverageRow& r) {
   std::string s = command_label(*r.command);
-  if (r.command->forms.size() > 1) s += " " + (r.form ? std::string(r.form->id) : std::string("(form unknown)"));
+  if (r.command->forms.size() > 1) {
+    s.push_back(' ');
+    s.append(r.form ? r.form->id : std::string_view("(form unknown)"));
+  }
   return s;
 }
 

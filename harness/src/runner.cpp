@@ -175,15 +175,16 @@ std::string_view to_string(Verdict v) {
   return "?";
 }
 
-bool VectorResult::counts_as_failure() const {
-  return (verdict == Verdict::kFail && level == Level::kMust) || verdict == Verdict::kUnexpectedPass;
+bool VectorResult::counts_as_failure(bool strict) const {
+  return (verdict == Verdict::kFail && (level == Level::kMust || (strict && level == Level::kShould))) ||
+         verdict == Verdict::kUnexpectedPass;
 }
 
 int RunResult::exit_code() const {
   if (!liveness.empty() && !liveness.front().alive) return liveness.front().heard ? 1 : 3;
   if (aborted) return 1;
   for (const auto& v : vectors)
-    if (v.counts_as_failure()) return 1;
+    if (v.counts_as_failure(strict)) return 1;
   return 0;
 }
 
@@ -342,6 +343,7 @@ Runner::Runner(Transport& transport, const Profile& profile, RunOptions options)
 
 RunResult Runner::run(const std::vector<Vector>& vectors) {
   RunResult result;
+  result.strict = options_.strict;
   Context ctx(*this);
   const std::uint8_t address = profile_.address;
 

@@ -184,6 +184,18 @@ TEST(Runner, PassFailSkipAndLiveness) {
   EXPECT_FALSE(r.vectors[0].transcript.empty());
 }
 
+TEST(Runner, AShouldFailureFailsTheRunOnlyWhenStrict) {
+  Vector v = vector_with("should-wrong", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak)});
+  v.level = Level::kShould;
+  const RunResult lenient = run_in_process({v});
+  ASSERT_EQ(lenient.vectors.size(), 1u);
+  EXPECT_EQ(lenient.vectors[0].verdict, Verdict::kFail);
+  EXPECT_EQ(lenient.exit_code(), 0) << "should warns";
+  RunOptions o;
+  o.strict = true;
+  EXPECT_EQ(run_in_process({v}, {}, o).exit_code(), 1) << "--strict: should fails the run";
+}
+
 TEST(Runner, MotionRunsWithPermissionAndEndsWithAStop) {
   auto jog = send_command("jog", "W", {{"speed", "S"}, {"duration", "9999"}}, Expectation::Kind::kAck);
   RunOptions o;

@@ -38,7 +38,7 @@ struct RunCliOptions {
   int repeat = 0;
   long pace_ms = -1;
   std::uint64_t seed = 0;
-  bool allow_motion = false, allow_destructive = false;
+  bool allow_motion = false, allow_destructive = false, strict = false;
 };
 
 std::optional<Level> parse_level(const std::string& s) {
@@ -96,6 +96,7 @@ int run_run(RunCliOptions o) {
   ro.filters = o.filters;
   ro.excludes = o.excludes;
   ro.repeat = o.repeat;
+  ro.strict = o.strict;
   ro.seed = o.seed;
   // §4: no more than one status request a second, and wait for ACK/NAK.
   ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport->in_process() ? 0 : 1000));
@@ -143,6 +144,7 @@ int run_run(RunCliOptions o) {
   doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
                  {"level", o.level},               {"seed", o.seed},
                  {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
+                 {"strict", o.strict},
                  {"filters", o.filters},           {"excludes", o.excludes},
                  {"known_issues", o.known_issues}, {"vectors", o.vectors}};
   for (const auto& v : vectors) doc.planned += is_selected(ro, v.id);
@@ -212,6 +214,7 @@ Command add_run_command(CLI::App& app) {
   sub->add_flag("--allow-destructive", o->allow_destructive, "Run vectors that change stored data");
   sub->add_option("--known-issues", o->known_issues, "Vector ids expected to fail, with reasons");
   sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times");
+  sub->add_flag("--strict", o->strict, "A should-level failure fails the run too (exit 1)");
   sub->add_option("--seed", o->seed, "Seed for every random choice");
   sub->add_option("--pace", o->pace_ms, "Milliseconds between commands (default 1000 on a line, 0 in-process)");
   sub->add_option("--junit", o->junit, "Write JUnit XML");

@@ -62,7 +62,7 @@ struct VectorResult {
   std::vector<TranscriptEntry> transcript;
   double duration_ms = 0;
   int repeats = 0, repeat_failures = 0;  // --repeat on a failure
-  bool counts_as_failure() const;        // a must/should failure that fails the run (should: only if strict)
+  bool counts_as_failure(bool strict = false) const;  // a must failure (and with strict a should one) fails the run
 };
 
 struct LivenessResult {
@@ -80,6 +80,7 @@ struct RunOptions {
   std::vector<std::string> excludes;          // id globs to skip
   std::map<std::string, std::string> known_issues;  // id -> reason
   int repeat = 0;                             // re-run each failing vector N times
+  bool strict = false;                        // should-level failures fail the run (h2spec's --strict)
   std::uint64_t seed = 0;
   std::chrono::milliseconds pace{0};          // at least this long between commands (§4); 0: none
   std::chrono::milliseconds turnaround_allowance{50};
@@ -116,6 +117,7 @@ struct RunResult {
   // 0: every must-level vector that ran passed; 1: otherwise (a liveness
   // check failed on a device that sends bytes, too); 3: the device could not
   // be reached (nothing came back to the first liveness check).
+  bool strict = false;  // RunOptions::strict: should-level failures fail the run too
   int exit_code() const;
 };
 
