@@ -57,29 +57,29 @@ void Bus::receive(ByteView wire, Bytes& out) {
     u->recent.insert(u->recent.end(), wire.begin(), wire.end());
     u->receiver.feed(wire, *u);
     for (const Discard& d : u->discards) {
-      log_ += "ignored " + d.message() + "\n";
+      if (transcript_) log_ += "ignored " + d.message() + "\n";
       if (d.reason == DiscardReason::kBadLrc && u->controller.faults().has(Fault::kNakBadCheckByte)) {
         const Bytes b = u->discarded_bytes(d);
         if (b.size() >= 3 && b[1] == u->controller.profile().address) {
           Bytes nak = encode_frame(nak_reply(b[1], b[2]));
           Bytes w = parity_ == Parity::kNone ? nak : add_even_parity(nak);
           out.insert(out.end(), w.begin(), w.end());
-          log_ += "reply " + to_hex(nak) + " (NAK for a bad check byte)\n";
+          if (transcript_) log_ += "reply " + to_hex(nak) + " (NAK for a bad check byte)\n";
         }
       }
     }
     u->discards.clear();
     for (const Frame& f : u->frames) {
       const Bytes in = encode_frame(f);
-      log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
+      if (transcript_) log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
       Outcome o = u->controller.execute(f);
       if (o.nak && nak_rules_.size() < 64) nak_rules_.emplace_back(name(*o.nak));
       if (o.reply) {
         Bytes w = parity_ == Parity::kNone ? *o.reply : add_even_parity(*o.reply);
         out.insert(out.end(), w.begin(), w.end());
-        log_ += "reply " + to_hex(*o.reply) + "  " + o.note + "\n";
+        if (transcript_) log_ += "reply " + to_hex(*o.reply) + "  " + o.note + "\n";
       } else {
-        log_ += "no reply: " + o.note + "\n";
+        if (transcript_) log_ += "no reply: " + o.note + "\n";
       }
       if (o.stored_data_changed && on_change_) on_change_(u->controller);
     }
