@@ -5,6 +5,7 @@
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/transports.hpp"
+#include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
 
@@ -91,22 +92,6 @@ std::vector<std::string> reference_expectations(const std::vector<FuzzFrame>& st
   return out;
 }
 
-constexpr bool is_start_byte(std::uint8_t b) { return b == STX || b == ACK || b == NAK; }
-
-// The lint's reading of a raw send (vectors/README.md "Lengths"): its last
-// frame starts at the last start byte followed by an address byte.
-bool length_mismatch(const Bytes& b) {
-  std::size_t start = 0;
-  for (std::size_t i = b.size(); i-- > 0;)
-    if (is_start_byte(b[i]) && i + 1 < b.size() && is_valid_address(b[i + 1])) {
-      start = i;
-      break;
-    }
-  if (b.empty() || b[start] != STX || start + 2 >= b.size()) return false;
-  const CommandInfo* c = find_command(b[start + 2]);
-  return c && c->request_length && b.size() - start != *c->request_length;
-}
-
 }  // namespace
 
 std::string finding_vector_yaml(const Finding& finding, const Profile& profile, const FindingContext& context) {
@@ -155,7 +140,7 @@ std::string finding_vector_yaml(const Finding& finding, const Profile& profile, 
       for (std::size_t k = 0; k < s.wrong_parity.size(); ++k) y << (k ? ", " : "") << s.wrong_parity[k];
       y << "]}\n";
     }
-    if (length_mismatch(s.chars)) y << "        length_mismatch: true\n";
+    if (needs_length_mismatch(s.chars)) y << "        length_mismatch: true\n";
     y << "        expect: " << expect[i] << "\n";
   }
   return y.str();

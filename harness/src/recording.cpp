@@ -9,6 +9,7 @@
 #include <set>
 
 #include "sabus/harness/runner.hpp"
+#include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/lrc.hpp"
@@ -95,29 +96,10 @@ std::optional<Frame> one_frame(const Bytes& chars) {
   return std::move(f).value();
 }
 
-// Byte 0 of the last frame of a send: the last start byte followed by an
-// address byte, as the vector linter reads a raw send (vectors/README.md
-// "Lengths"; a send may restart a frame, 02 02 A 31 03 LRC).
-std::optional<std::size_t> last_frame_start(const Bytes& chars) {
-  for (std::size_t i = chars.size(); i-- > 0;)
-    if ((chars[i] == STX || chars[i] == ACK || chars[i] == NAK) && i + 1 < chars.size() && is_valid_address(chars[i + 1]))
-      return i;
-  return std::nullopt;
-}
-
 // The command of a send's last frame, when its command byte can be read.
 const CommandInfo* request_command(const Bytes& chars) {
   const auto start = last_frame_start(chars);
   return start && *start + 2 < chars.size() ? find_command(chars[*start + 2]) : nullptr;
-}
-
-// Whether the linter's length rule needs `length_mismatch: true`: the last
-// frame is not the catalog's request length (not checked for unknown codes
-// and TBD lengths).
-bool length_mismatch(const Bytes& chars) {
-  const CommandInfo* info = request_command(chars);
-  if (!info || !info->request_length) return false;
-  return chars.size() - *last_frame_start(chars) != *info->request_length;
 }
 
 // A raw template: one good frame to the session's address is written with
@@ -376,7 +358,7 @@ std::optional<Recording> record_vectors(const Capture& capture, const RecordOpti
     y += "    steps:\n";
     for (const auto& x : v.steps) {
       y += "      - send: {raw: " + yaml_text(raw_template(x.request, address.value_or(0))) + "}\n";
-      if (length_mismatch(x.request)) y += "        length_mismatch: true\n";
+      if (needs_length_mismatch(x.request)) y += "        length_mismatch: true\n";
       y += expectation(x, "        ", rec.notes);
       ++rec.steps;
     }

@@ -210,15 +210,9 @@ std::optional<std::string> parse_template(std::string_view hex, std::vector<Elem
   }
 }
 
-constexpr bool is_start_byte(std::uint8_t b) { return b == STX || b == ACK || b == NAK; }
-
-// Byte 0 of the frame that ends at `end` (READING-NOTES 7): the last STX, ACK
-// or NAK before `end` that is followed by an address byte; 0 when none.
+// Byte 0 of the frame that ends at `end` (READING-NOTES 7); 0 when none.
 std::size_t frame_start(ByteView bytes, std::size_t end) {
-  end = std::min(end, bytes.size());
-  for (std::size_t i = end; i-- > 0;)
-    if (is_start_byte(bytes[i]) && i + 1 < end && is_valid_address(bytes[i + 1])) return i;
-  return 0;
+  return last_frame_start(bytes.first(std::min(end, bytes.size()))).value_or(0);
 }
 
 Expected<Bytes> expand(const std::vector<Element>& elements, std::uint8_t address,
@@ -786,6 +780,12 @@ Send read_send(const YAML::Node& v, const At& at, StepContext& cx) {
   return s;
 }
 
+// Whether the length rule below applies to a send: a complete command frame
+// of a code whose request length the catalog knows.
+bool has_checked_length(const FrameSketch& k) {
+  return k.complete && k.command && k.command->request_length && !k.bytes.empty() && k.bytes[k.start] == STX;
+}
+
 // §3 table: a raw command frame has its command's catalog length unless the
 // step says `length_mismatch: true`. modify.extra_data_bytes and truncate
 // make a wrong length out of a right frame and need no flag.
@@ -795,7 +795,7 @@ void check_length(const Send& s, const std::optional<At>& mismatch_at) {
     return;
   }
   const FrameSketch& k = s.sketch;
-  if (!k.complete || !k.command || !k.command->request_length || k.bytes.empty() || k.bytes[k.start] != STX) return;
+  if (!has_checked_length(k)) return;
   const std::size_t got = k.bytes.size() - k.start, want = *k.command->request_length;
   const std::string key(k.command->key);
   if (got != want && !mismatch_at)
@@ -1476,6 +1476,11 @@ Expected<Bytes> step_bytes(const Step& s, std::uint8_t address, const std::map<s
   auto r = build_request(*info, s.command->form, s.command->fields);
   if (!r) return r.error();
   return encode_request(r.value(), s.command->address.value_or(address));
+}
+
+bool needs_length_mismatch(ByteView raw_send) {
+  const FrameSketch k = sketch_of(Bytes(raw_send.begin(), raw_send.end()), true);
+  return has_checked_length(k) && k.bytes.size() - k.start != *k.command->request_length;
 }
 
 }  // namespace sabus::harness

@@ -81,6 +81,12 @@ bool is_offline_reply(const Frame& f) {
   return f.kind == FrameKind::kAck && f.data.size() == 1 && f.data[0] == kOfflineMarker;
 }
 
+std::optional<std::size_t> last_frame_start(ByteView b) {
+  for (std::size_t i = b.size(); i-- > 0;)
+    if ((b[i] == STX || b[i] == ACK || b[i] == NAK) && i + 1 < b.size() && is_valid_address(b[i + 1])) return i;
+  return std::nullopt;
+}
+
 }  // namespace sabus
 
 namespace sabus {

@@ -100,5 +100,13 @@ TEST(Hex, ParsesCommonSpellings) {
   EXPECT_EQ(to_hex(hex("02 ab")), "02 ab");
 }
 
+TEST(Frame, LastFrameStartIsTheLastStartByteBeforeAnAddress) {
+  EXPECT_EQ(last_frame_start(hex("02 32 31 03 02")), 0u) << "a check byte of 02h starts nothing";
+  EXPECT_EQ(last_frame_start(hex("02 02 32 31 03 00")), 1u) << "STX STX: the second one (READING-NOTES 7)";
+  EXPECT_EQ(last_frame_start(hex("02 32 31 03 02 15 33 30 03 00")), 5u) << "an ACK or NAK starts a reply frame";
+  EXPECT_EQ(last_frame_start(hex("02 20 31 03 11")), std::nullopt) << "20h is no address";
+  EXPECT_EQ(last_frame_start(hex("")), std::nullopt);
+}
+
 }  // namespace
 }  // namespace sabus

@@ -53,6 +53,11 @@ Expected<Bytes> step_bytes(const Step& step, std::uint8_t address,
                            const std::map<std::string, std::string>& captures = {},
                            bool blank_missing_captures = false);
 
+// Whether the linter asks `length_mismatch: true` of a raw send of these
+// bytes: its last frame (last_frame_start) is a command frame whose length
+// is not the catalog's request length. For tools that write vectors.
+bool needs_length_mismatch(ByteView raw_send);
+
 // Whether a device profile meets every requirement (each key's value is one
 // of the requirement's values; values are compared as to_yaml writes them).
 bool requirements_hold(const Profile& profile, const std::vector<Requirement>& requirements);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "sabus/protocol/bytes.hpp"
@@ -42,6 +43,12 @@ Frame nak_reply(std::uint8_t address, std::uint8_t command);
 Frame offline_reply(std::uint8_t address, std::uint8_t command);
 bool is_offline_reply(const Frame& frame);
 inline constexpr std::uint8_t kOfflineMarker = 'F';
+
+// Byte 0 of the last frame in a byte sequence (READING-NOTES 7): the last
+// STX, ACK or NAK that is followed by an address byte (31h-6Fh), so a send
+// that restarts a frame (02 02 A 31 03 LRC) has its second STX; nullopt when
+// there is none. The vector linter, `{lrc}` and the recorders read sends so.
+std::optional<std::size_t> last_frame_start(ByteView bytes);
 
 }  // namespace sabus
 
