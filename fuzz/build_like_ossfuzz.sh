@@ -48,5 +48,8 @@ for t in $targets; do
   fi
 done
 if ((n == 0)); then echo "no targets listed"; exit 1; fi
+# The service's CXXFLAGS instrument everything; the targets still get
+# coverage from their code under test only (fuzz/README.md).
+bash "$root/fuzz/check_instrumentation.sh" "$OUT/fuzz_receiver" 100 2000 || missing=1
 if ((missing)); then echo "build_like_ossfuzz: FAILED"; exit 1; fi
 echo "build_like_ossfuzz: $n targets, each with its seed corpus zip, .dict and .options in $OUT"

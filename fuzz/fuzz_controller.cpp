@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <vector>
 
 #include "fuzz_support.hpp"
 #include "sabus/harness/controller.hpp"
@@ -104,7 +105,17 @@ struct Direct : sabus::ReceiverSink {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   sabus::fuzz::ControllerInput in;
   if (!sabus::fuzz::parse_controller_input(data, size, in)) return 0;
-  sabus::harness::VirtualClock clock;
+  // One controller per profile, built once at power-on; every input starts
+  // from a copy of it, with the clock back at zero. Building one (its enum
+  // lookups by name, the receiver's byte tables) cost more than a short input.
+  static sabus::harness::VirtualClock clock;
+  static const std::vector<Direct> powered_on = [] {
+    std::vector<Direct> v;
+    v.reserve(sabus::fuzz::profiles().size());
+    for (const auto& p : sabus::fuzz::profiles()) v.emplace_back(p, clock);
+    return v;
+  }();
+  clock.set({});
   // Byte 0 bit 7: through the Bus, exactly as `sabus sim` runs it; otherwise
   // the same parts without its transcript (fuzz_handler_report checks on a
   // whole corpus that the two give the same bytes).
@@ -117,7 +128,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // hex text of every frame) cost more than the rest of the Bus.
     bus->set_transcript(false);
   }
-  else direct.emplace(*in.profile, clock);
+  else direct.emplace(powered_on[static_cast<std::size_t>(in.profile - sabus::fuzz::profiles().data())]);
   const sabus::ByteView stream(data + sabus::fuzz::kControllerHeader, size - sabus::fuzz::kControllerHeader);
   const std::uint8_t address = in.profile->address;
   std::size_t at = 0;

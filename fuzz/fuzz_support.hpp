@@ -37,7 +37,7 @@ struct StreamFormat {
 // form, delete, duplicate, swap) and fields (command code, address, form
 // selector, key code, digits, length), and then repairs the check byte and
 // parity of every frame most of the time, so inputs get past the LRC into the
-// command handlers. One in five mutations is libFuzzer's byte-level one.
+// command handlers. One mutation in ten is libFuzzer's byte-level one.
 std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_size, unsigned seed,
                           const StreamFormat& format);
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Prints the fuzz targets' speed on one core and what the whole-controller
 # target reaches in a given time (figures are printed, never asserted):
-#   tools/fuzz-perf.sh [SECONDS]
+#   tools/fuzz-perf.sh [SECONDS]     (SECONDS=0: only step 1)
 # 1. every target runs EXEC_SECONDS (default 20; 0 skips this) from its seed corpus, pinned
 #    to one core (taskset -c 0): libFuzzer's exec/s, and executions per
 #    CPU-second of the process (the same figure on a machine shared with
@@ -10,6 +10,9 @@
 #    core: its final edge coverage, then fuzz_handler_report replays the
 #    resulting corpus and lists the command handlers (and forms, and NAK
 #    rules) the corpus reaches.
+# Step 1 also runs the floors (fuzz/perf_floor.cpp): libFuzzer with a target
+# that does nothing, the receiver fed once and the controller executing
+# frames, both without an oracle -- what the targets' speeds compare with.
 # BUILD (default build-fuzz-perf): the build tree of the targets. Made here
 # when missing: libFuzzer without sanitizers (-fsanitize=fuzzer through
 # SABUS_FUZZ_ENGINE), the engine's own speed. BUILD=build-fuzz measures the
@@ -24,7 +27,7 @@ if [[ ! -f $build/build.ninja ]]; then
     -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" -DSABUS_FUZZ_ENGINE=-fsanitize=fuzzer \
     -DSABUS_BUILD_TESTS=OFF -DSABUS_BUILD_BENCHMARKS=OFF -DSABUS_BUILD_TOOLS=OFF >/dev/null
 fi
-cmake --build "$build" --target all_fuzzers fuzz_handler_report fuzz_seeds >/dev/null
+cmake --build "$build" --target all_fuzzers fuzz_handler_report fuzz_seeds fuzz_floors >/dev/null
 fuzz=$build/fuzz
 work=$(mktemp -d "${TMPDIR:-/tmp}/sabus-fuzz-perf.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -39,24 +42,43 @@ flags_of() {
   done <"$fuzz/$t.options"
 }
 
-echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
-echo
-printf "%-22s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
-((exec_seconds > 0)) && targets=$(cat "$fuzz/fuzz_targets.txt") || targets=""
-for t in $targets; do
-  corpus=$work/$t
+# One row of the table: runs BINARY for EXEC_SECONDS on core 0 from a copy
+# of SEEDS with FLAGS; prints libFuzzer's exec/s and executions per CPU-second.
+row() {
+  local label=$1 binary=$2 seeds=$3
+  shift 3
+  local corpus=$work/$label rate runs cpu
   mkdir -p "$corpus"
-  cp "$fuzz/seeds/$t"/* "$corpus/"
-  mapfile -t flags < <(flags_of "$t")
-  /usr/bin/time -f "%U %S" -o "$work/$t.time" taskset -c 0 "$fuzz/$t" "${flags[@]}" -max_total_time="$exec_seconds" \
-    -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/$t.log" 2>&1 || {
-    echo "$t failed:"; tail -20 "$work/$t.log"; exit 1; }
-  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$t.log")
-  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$t.log")
-  cpu=$(awk '{printf "%.1f", $1 + $2}' "$work/$t.time")
-  printf "%-22s %12s %14s %10s %16s\n" "$t" "$rate" "$runs" "$cpu" "$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')"
-done
+  cp "$seeds"/* "$corpus/"
+  /usr/bin/time -f "%U %S" -o "$work/$label.time" taskset -c 0 "$binary" "$@" -max_total_time="$exec_seconds" \
+    -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/$label.log" 2>&1 || {
+    echo "$label failed:"; tail -20 "$work/$label.log"; exit 1; }
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$label.log")
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$label.log")
+  cpu=$(awk '{printf "%.1f", $1 + $2}' "$work/$label.time")
+  printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" \
+    "$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')"
+}
 
+echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+if ((exec_seconds > 0)); then
+  echo
+  printf "%-22s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
+  for t in $(cat "$fuzz/fuzz_targets.txt"); do
+    mapfile -t flags < <(flags_of "$t")
+    row "$t" "$fuzz/$t" "$fuzz/seeds/$t" "${flags[@]}"
+  done
+  # The floors (fuzz/perf_floor.cpp), with the max_len and entropic setting
+  # of the matching target and libFuzzer's own mutator.
+  echo "floors: libFuzzer with no oracle, its own mutator, the same instrumentation:"
+  for floor in empty:fuzz_receiver receiver:fuzz_receiver controller:fuzz_controller; do
+    f=fuzz_floor_${floor%%:*} t=${floor#*:}
+    mapfile -t flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
+    row "$f" "$fuzz/$f" "$fuzz/seeds/$t" "${flags[@]}"
+  done
+fi
+
+((seconds > 0)) || exit 0
 echo
 echo "fuzz_controller for $seconds s on one core, from its seed corpus:"
 corpus=$work/controller-long
