@@ -1171,14 +1171,7 @@ std::string squeezed(std::string_view s) {
   return out;
 }
 
-std::string spec_text_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
-
-std::optional<std::string> read_spec_text() {
-  std::string error;
-  auto text = read_capped(spec_text_path(), 4 << 20, error);
-  if (!text) return std::nullopt;
-  return squeezed(*text);
-}
+std::string spec_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
 
 // A quote is verbatim, or verbatim parts joined by "…" that appear in order.
 bool quote_found(const std::string& spec, const std::string& quote) {
@@ -1295,7 +1288,7 @@ void lint_vector(const VectorFile& f, const Vector& v, const std::optional<std::
   lint_step_list(v, v.steps, "steps", errors);
   lint_step_list(v, v.teardown, "teardown", errors);
   if (spec && !quote_found(*spec, v.quote))
-    errors.push_back(vector_error(v, "spec.quote", "not found verbatim in the spec text (" + spec_text_path() +
+    errors.push_back(vector_error(v, "spec.quote", "not found verbatim in the spec text (" + spec_path() +
                                                        "; line breaks may be blanks, parts may be joined by \"\xE2\x80\xA6\")"));
 }
 
@@ -1394,11 +1387,23 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
   return result;
 }
 
+std::string spec_text_path() { return spec_path(); }
+
+std::optional<std::string> read_spec_text() {
+  std::string error;
+  return read_capped(spec_path(), 4 << 20, error);
+}
+
 std::vector<LoadError> lint(const std::vector<VectorFile>& files) {
+  if (files.empty()) return {};  // the errata and the spec text are read only when there is something to check
+  return lint(files, read_spec_text());
+}
+
+std::vector<LoadError> lint(const std::vector<VectorFile>& files, const std::optional<std::string>& spec_text) {
   std::vector<LoadError> errors;
-  if (files.empty()) return errors;  // the errata and the spec text are read only when there is something to check
+  if (files.empty()) return errors;
   const ErrataIndex errata = read_errata();
-  const std::optional<std::string> spec = read_spec_text();
+  const std::optional<std::string> spec = spec_text ? std::optional(squeezed(*spec_text)) : std::nullopt;
   std::map<std::string, SourceLocation> first;
   for (const auto& f : files) {
     lint_notes(f, errata, errors);

@@ -60,6 +60,8 @@ int run_lint(const VectorsOptions& o) {
   const auto more = harness::lint(r.files);
   errors.insert(errors.end(), more.begin(), more.end());
   for (const auto& e : errors) std::cout << e.text() << "\n";
+  if (!r.files.empty() && !harness::read_spec_text())
+    std::cout << "spec quotes not checked: no spec text at " << harness::spec_text_path() << "\n";
   std::cout << fmt::format("{} files, {} vectors, {} errors\n", file_count(r), vector_count(r), errors.size());
   return errors.empty() ? kExitOk : kExitFailed;
 }
