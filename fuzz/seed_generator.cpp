@@ -30,15 +30,6 @@ namespace fs = std::filesystem;
 using sabus::Bytes;
 namespace harness = sabus::harness;
 
-namespace sabus::fuzz {
-struct EmbeddedProfile {
-  const char* name;
-  const char* yaml;
-};
-extern const EmbeddedProfile kEmbeddedProfiles[];
-extern const std::size_t kEmbeddedProfileCount;
-}  // namespace sabus::fuzz
-
 namespace {
 
 void write(const fs::path& dir, const std::string& name, const Bytes& bytes) {

@@ -42,20 +42,30 @@ flags_of() {
   done <"$fuzz/$t.options"
 }
 
-# One row of the table: runs BINARY for EXEC_SECONDS on core 0 from a copy
-# of SEEDS with FLAGS; prints libFuzzer's exec/s and executions per CPU-second.
+# fuzz_on_core LABEL BINARY SECONDS SEEDS FLAGS...: runs BINARY for SECONDS on
+# core 0 from a copy of SEEDS (left in $work/LABEL) with FLAGS; its output
+# goes to $work/LABEL.log, its user and system CPU time to $work/LABEL.time.
+fuzz_on_core() {
+  local label=$1 binary=$2 limit=$3 seeds=$4
+  shift 4
+  mkdir -p "$work/$label"
+  cp "$seeds"/* "$work/$label/"
+  /usr/bin/time -f "%U %S" -o "$work/$label.time" taskset -c 0 "$binary" "$@" -max_total_time="$limit" \
+    -print_final_stats=1 -artifact_prefix="$work/" "$work/$label" >"$work/$label.log" 2>&1 || {
+    echo "$label failed:"; tail -30 "$work/$label.log"; exit 1; }
+}
+
+cpu_seconds() { awk '{printf "%.1f", $1 + $2}' "$work/$1.time"; }
+
+# row LABEL BINARY SEEDS FLAGS...: one row of the table, EXEC_SECONDS of
+# BINARY: libFuzzer's exec/s and executions per CPU-second.
 row() {
-  local label=$1 binary=$2 seeds=$3
+  local label=$1 binary=$2 seeds=$3 rate runs cpu
   shift 3
-  local corpus=$work/$label rate runs cpu
-  mkdir -p "$corpus"
-  cp "$seeds"/* "$corpus/"
-  /usr/bin/time -f "%U %S" -o "$work/$label.time" taskset -c 0 "$binary" "$@" -max_total_time="$exec_seconds" \
-    -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/$label.log" 2>&1 || {
-    echo "$label failed:"; tail -20 "$work/$label.log"; exit 1; }
+  fuzz_on_core "$label" "$binary" "$exec_seconds" "$seeds" "$@"
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$label.log")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$label.log")
-  cpu=$(awk '{printf "%.1f", $1 + $2}' "$work/$label.time")
+  cpu=$(cpu_seconds "$label")
   printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" \
     "$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')"
 }
@@ -81,15 +91,10 @@ fi
 ((seconds > 0)) || exit 0
 echo
 echo "fuzz_controller for $seconds s on one core, from its seed corpus:"
-corpus=$work/controller-long
-mkdir -p "$corpus"
-cp "$fuzz/seeds/fuzz_controller"/* "$corpus/"
 mapfile -t flags < <(flags_of fuzz_controller)
-/usr/bin/time -f "%U %S" -o "$work/long.time" taskset -c 0 "$fuzz/fuzz_controller" "${flags[@]}" \
-  -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix="$work/" "$corpus" >"$work/long.log" 2>&1 || {
-  echo "fuzz_controller failed:"; tail -30 "$work/long.log"; exit 1; }
+fuzz_on_core long "$fuzz/fuzz_controller" "$seconds" "$fuzz/seeds/fuzz_controller" "${flags[@]}"
 grep -E "^#[0-9]+[[:space:]]" "$work/long.log" | tail -1 | sed "s/^/  /" || true
 grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)" "$work/long.log" | sed 's/^/  /'
-echo "  CPU seconds: $(awk '{printf "%.1f", $1 + $2}' "$work/long.time")  (cov: = edges covered, ft: = features)"
+echo "  CPU seconds: $(cpu_seconds long)  (cov: = edges covered, ft: = features)"
 echo
-"$fuzz/fuzz_handler_report" "$corpus"
+"$fuzz/fuzz_handler_report" "$work/long"

@@ -1171,8 +1171,6 @@ std::string squeezed(std::string_view s) {
   return out;
 }
 
-std::string spec_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
-
 // A quote is verbatim, or verbatim parts joined by "…" that appear in order.
 bool quote_found(const std::string& spec, const std::string& quote) {
   static constexpr std::string_view kEllipsis = "\xE2\x80\xA6";
@@ -1288,7 +1286,7 @@ void lint_vector(const VectorFile& f, const Vector& v, const std::optional<std::
   lint_step_list(v, v.steps, "steps", errors);
   lint_step_list(v, v.teardown, "teardown", errors);
   if (spec && !quote_found(*spec, v.quote))
-    errors.push_back(vector_error(v, "spec.quote", "not found verbatim in the spec text (" + spec_path() +
+    errors.push_back(vector_error(v, "spec.quote", "not found verbatim in the spec text (" + spec_text_path() +
                                                        "; line breaks may be blanks, parts may be joined by \"\xE2\x80\xA6\")"));
 }
 
@@ -1387,11 +1385,11 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
   return result;
 }
 
-std::string spec_text_path() { return spec_path(); }
+std::string spec_text_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
 
 std::optional<std::string> read_spec_text() {
   std::string error;
-  return read_capped(spec_path(), 4 << 20, error);
+  return read_capped(spec_text_path(), 4 << 20, error);
 }
 
 std::vector<LoadError> lint(const std::vector<VectorFile>& files) {
