@@ -2,7 +2,7 @@
  * ptyshim: a test-only LD_PRELOAD library that lets libserialport 0.1.1 open a
  * pseudo-terminal, so the libserialport line backend runs in CI without
  * serial hardware. Never link it into anything; tests preload it into one
- * test executable (tests/harness/line.cmake).
+ * test executable (tests/harness/line/CMakeLists.txt).
  *
  * What stops libserialport 0.1.1 (Debian 12) on a pty, and what this answers,
  * found by experiment with LIBSERIALPORT_DEBUG=1:
@@ -40,7 +40,7 @@
  * 8N1, no flow control, DTR/RTS on), sp_flush, sp_nonblocking_write,
  * sp_blocking_write, sp_nonblocking_read, sp_blocking_read and sp_drain all
  * succeed on /dev/pts/N, and bytes 00h-FFh pass both ways unchanged
- * (tests/harness/line_test.cpp, LibSerialPortOverPty). sp_list_ports still
+ * (tests/harness/line/line_test.cpp, LibSerialPortOverPty). sp_list_ports still
  * lists no ptys (it walks /sys/class/tty, which the shim does not add to).
  * A pty still refuses 7 data bits or parity (TOOLCHAIN-NOTES). The name
  * given to libserialport must be under /dev/; LibSerialPortLine hands it the

@@ -1,6 +1,6 @@
 // `sabus fuzz`: the live fuzzer against the in-process reference controller
 // (default), a serial port or a TCP serial server. The engine is
-// sabus::harness::live_fuzz (harness/include/sabus/harness/live_fuzz.hpp).
+// sabus::harness::live_fuzz (harness/live_fuzz/include/sabus/harness/live_fuzz.hpp).
 #include <fmt/format.h>
 
 #include <atomic>

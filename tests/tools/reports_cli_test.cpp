@@ -1,0 +1,174 @@
+// `sabus run`, `sabus report` and `sabus diff` as processes: every report
+// from one run and from its JSON, a run interrupted half-way, a regression
+// between two runs of the in-process controller.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "process.hpp"
+
+namespace sabus::reports {
+namespace {
+
+using test::Process;
+using namespace std::chrono_literals;
+namespace fs = std::filesystem;
+
+struct Output {
+  int status = -1;
+  std::string out;
+};
+
+// Runs a shell command line; its stdout and exit status.
+Output shell(const std::string& command) {
+  Output o;
+  FILE* p = popen(command.c_str(), "r");
+  if (!p) return o;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) o.out.append(buf, n);
+  const int status = pclose(p);
+  o.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class ReportsCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("sabus-reports-test-" + std::to_string(getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+const std::string kSabus = SABUS_BIN;
+
+TEST_F(ReportsCli, EveryReportFromOneRunAndFromItsJson) {
+  const std::string known = path("known.txt");
+  std::ofstream(known) << "3.2-status-track-byte: short status reply in this release\n";
+  const Output run = shell(kSabus + " run --sim --fault short-status --known-issues " + known + " --report-dir " +
+                           path("run") + " 2>/dev/null");
+  EXPECT_EQ(run.status, 1);
+  for (const char* f : {"run.json", "junit.xml", "report.html", "summary.md"})
+    ASSERT_TRUE(fs::exists(dir_ / "run" / f)) << f;
+  const Output again = shell(kSabus + " report " + path("run/run.json") + " --html " + path("again.html") + " --junit " +
+                             path("again.xml") + " --md " + path("again.md"));
+  EXPECT_EQ(again.status, 0) << again.out;
+  EXPECT_EQ(slurp(dir_ / "run/report.html"), slurp(path("again.html")));
+  EXPECT_EQ(slurp(dir_ / "run/junit.xml"), slurp(path("again.xml")));
+  EXPECT_EQ(slurp(dir_ / "run/summary.md"), slurp(path("again.md")));
+  EXPECT_NE(slurp(path("again.html")).find("3.2-status-track-byte"), std::string::npos);
+
+  const auto doc = nlohmann::json::parse(slurp(dir_ / "run/run.json"));
+  EXPECT_EQ(doc["schema_version"], 2);
+  EXPECT_EQ(doc["status"], "complete");
+  EXPECT_EQ(doc["identity"]["controller_type"], "3K");
+  EXPECT_EQ(doc["identity"]["firmware_version"], "1.59");
+  bool known_failure = false, has_fields = false, has_quote = false;
+  for (const auto& v : doc["vectors"]) {
+    known_failure |= v["id"] == "3.2-status-track-byte" && v["outcome"] == "known failure";
+    has_quote |= !v["quote"].get<std::string>().empty();
+    for (const auto& t : v["transcript"]) {
+      for (const char* key : {"t_ms", "dir", "hex", "note"}) EXPECT_TRUE(t.contains(key)) << key;
+      has_fields |= !t["fields"].empty();
+    }
+  }
+  EXPECT_TRUE(known_failure);
+  EXPECT_TRUE(has_fields);
+  EXPECT_TRUE(has_quote);
+}
+
+TEST_F(ReportsCli, ReportRejectsABadFile) {
+  std::ofstream(path("bad.json")) << "{\"schema\": \"sabus-run\", \"schema_version\": 2, \"vectors\": [{}]}";
+  EXPECT_EQ(shell(kSabus + " report " + path("bad.json") + " --md " + path("x.md") + " 2>/dev/null").status, 2);
+  EXPECT_EQ(shell(kSabus + " report " + path("none.json") + " --md " + path("x.md") + " 2>/dev/null").status, 2);
+  EXPECT_EQ(shell(kSabus + " report " + path("bad.json") + " 2>/dev/null").status, 2) << "no report asked for";
+}
+
+TEST_F(ReportsCli, PlainConsoleLinesWhenNotATerminal) {
+  const Output run = shell(kSabus + " run --sim --fault short-status --json " + path("plain.json") + " 2>/dev/null");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.out.find('\r'), std::string::npos);
+  EXPECT_EQ(run.out.find('\033'), std::string::npos);
+  EXPECT_NE(run.out.find("\nFAIL 3.2-status-track-byte §3.2 must: "), std::string::npos) << run.out;
+  // The closing line counts what the JSON of the same run counts.
+  const auto summary = nlohmann::json::parse(slurp(path("plain.json")))["summary"];
+  ASSERT_GT(summary["failed"].get<int>(), 0);
+  const std::string last = run.out.substr(run.out.rfind('\n', run.out.size() - 2) + 1);
+  EXPECT_EQ(last, std::to_string(summary["passed"].get<int>()) + " passed, " + std::to_string(summary["failed"].get<int>()) +
+                      " failed, " + std::to_string(summary["skipped"].get<int>()) + " skipped\n");
+}
+
+TEST_F(ReportsCli, DiffNamesAnInjectedFaultAsARegression) {
+  ASSERT_EQ(shell(kSabus + " run --sim --json " + path("good.json") + " >/dev/null 2>&1").status, 0);
+  ASSERT_EQ(shell(kSabus + " run --sim --fault short-status --json " + path("bad.json") + " >/dev/null 2>&1").status, 1);
+  const Output diff = shell(kSabus + " diff " + path("good.json") + " " + path("bad.json"));
+  EXPECT_EQ(diff.status, 1);
+  EXPECT_NE(diff.out.find("REGRESSION New failures"), std::string::npos) << diff.out;
+  EXPECT_NE(diff.out.find("3.2-status-reply-length §3.2 must: pass → fail"), std::string::npos) << diff.out;
+  const Output md = shell(kSabus + " diff --md " + path("good.json") + " " + path("bad.json"));
+  EXPECT_EQ(md.status, 1);
+  EXPECT_NE(md.out.find("| `3.2-status-reply-length` |"), std::string::npos) << md.out;
+  const Output back = shell(kSabus + " diff " + path("bad.json") + " " + path("good.json"));
+  EXPECT_EQ(back.status, 0) << back.out;
+  const int failed = nlohmann::json::parse(slurp(path("bad.json")))["summary"]["failed"].get<int>();
+  EXPECT_NE(back.out.find("Fixed (" + std::to_string(failed) + ")"), std::string::npos) << back.out;
+  EXPECT_EQ(shell(kSabus + " diff " + path("good.json") + " " + path("good.json")).status, 0);
+  EXPECT_EQ(shell(kSabus + " diff --timing-threshold soon " + path("good.json") + " " + path("good.json") + " 2>/dev/null").status, 2);
+}
+
+// A run over TCP with pacing takes seconds; SIGINT half-way must leave a JSON
+// marked aborted with every finished vector.
+TEST_F(ReportsCli, SigintHalfWayLeavesAnAbortedJsonWithEveryFinishedVector) {
+  Process sim({kSabus, "sim", "--tcp", "127.0.0.1:0"});
+  const std::string ready = sim.line(5s);
+  ASSERT_EQ(ready.rfind("READY tcp 127.0.0.1:", 0), 0u) << ready;
+  const std::string port = ready.substr(ready.rfind(':') + 1);
+  const std::string json = path("run.json");
+  Process run({kSabus, "run", "--tcp", "127.0.0.1:" + port, "--pace", "150", "--json", json});
+  std::size_t seen = 0;
+  std::size_t planned = 0;
+  for (int i = 0; i < 600 && seen < 2; ++i) {
+    std::this_thread::sleep_for(50ms);
+    if (!fs::exists(json)) continue;
+    const auto doc = nlohmann::json::parse(slurp(json), nullptr, false);
+    if (doc.is_discarded()) continue;
+    EXPECT_EQ(doc["status"], "running");
+    seen = doc["vectors"].size();
+    planned = doc["planned"].get<std::size_t>();
+  }
+  ASSERT_GE(seen, 2u) << "the run did not get going";
+  ASSERT_GT(planned, seen + 2) << "the run is too fast to interrupt half-way";
+  EXPECT_EQ(run.interrupt(), 1);
+  const auto doc = nlohmann::json::parse(slurp(json));
+  EXPECT_EQ(doc["status"], "aborted");
+  EXPECT_EQ(doc["abort_reason"], "stopped by SIGINT");
+  EXPECT_GE(doc["vectors"].size(), seen) << "every vector finished before the SIGINT is kept";
+  EXPECT_LT(doc["vectors"].size(), planned);
+  for (const auto& v : doc["vectors"]) {
+    EXPECT_EQ(v["outcome"], "pass") << v["id"];
+    EXPECT_FALSE(v["transcript"].empty()) << v["id"];
+  }
+  EXPECT_EQ(doc["summary"]["passed"].get<std::size_t>(), doc["vectors"].size());
+  EXPECT_EQ(sim.interrupt(), 0);
+}
+
+}  // namespace
+}  // namespace sabus::reports
