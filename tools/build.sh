@@ -11,5 +11,10 @@ case "$flavour" in
                                       -DCMAKE_CXX_COMPILER=clang++-14) ;;
   *) echo "usage: tools/build.sh [release|sanitize|fuzz]" >&2; exit 2 ;;
 esac
+# ccache, where a developer has it, shares objects between build trees and
+# worktrees; CI machines have none and build as before.
+if command -v ccache >/dev/null; then
+  args+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
 cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
 cmake --build "$dir" -j "$(nproc)"
