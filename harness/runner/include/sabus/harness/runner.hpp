@@ -131,7 +131,6 @@ class Runner {
   RunResult run(const std::vector<Vector>& vectors);
 
  private:
-  struct Context;
   Transport& transport_;
   Profile profile_;
   RunOptions options_;

@@ -1,0 +1,86 @@
+// The runner's engine for one run (private to harness/runner): the
+// transport, the profile and the options; the values the current vector
+// captured and its transcript; the device's measured turnaround and the run's
+// traffic figures. Runner::run (runner.cpp) drives it phase by phase; the
+// step engine is steps.cpp, the line exchange session.cpp, the stored-data
+// backup backup.cpp.
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sabus/harness/runner.hpp"
+#include "sabus/harness/timing.hpp"
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/receiver.hpp"
+
+namespace sabus::harness::detail {
+
+class Session : public ReceiverSink {
+ public:
+  Session(Transport& transport, const Profile& profile, const RunOptions& options);
+
+  Transport& transport;
+  const Profile& profile;
+  const RunOptions& options;
+  Captures captures;                                // this vector's captured values
+  std::vector<TranscriptEntry>* transcript = nullptr;  // where exchanges are recorded; null: nowhere
+  std::string expect;  // the expected path of the step being sent (TranscriptEntry::expect)
+  TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
+  std::size_t bytes_sent = 0, bytes_received = 0;
+  std::chrono::microseconds silence_listened{0};
+  std::size_t silence_windows = 0;
+
+  // ---- the line (session.cpp) ---------------------------------------------------
+  // Sends one frame (in chunks if the modifiers ask) and collects the frames
+  // that come back within `window`, stopping early once a frame arrived and
+  // the line went quiet. Paces commands (RunOptions::pace). Throws TransportLost.
+  std::vector<Frame> exchange(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window);
+  // The frames of the last exchange.
+  const std::vector<Frame>& last_replies() const { return frames_; }
+  // How long to wait for a reply to a command of `request_bytes` bytes, and
+  // how long silence must last to count as no reply (timing.hpp).
+  std::chrono::milliseconds reply_timeout(std::size_t request_bytes) const;
+  std::chrono::milliseconds silence_window() const;
+  // One request outside any vector (liveness, backup): the data of its single
+  // ACK reply, or nullopt (NAK, offline reply, silence).
+  std::optional<Bytes> ask(const Request& request);
+  // A device type query and a status poll (tlsfuzzer's sanity runs).
+  LivenessResult liveness(std::string when);
+  // An 'X' stop of every axis (§3.4), sent after every vector that can move the antenna.
+  void stop_motion();
+
+  // ---- the step engine (steps.cpp) --------------------------------------------
+  // Each returns the failure, if any.
+  std::optional<std::string> run_step(const Step& s);
+  std::optional<std::string> run_send(const Step& s);
+  std::optional<std::string> run_poll(const Step& s);
+
+  double t_ms() const;
+
+ private:
+  void on_frame(const FrameView& f) override { frames_.push_back(f.to_frame()); }
+  void on_discard(const Discard& d) override { ignored_.push_back(d.message()); }
+  void record(bool sent, const Bytes& bytes, std::string note);
+  void pace();
+  void send_in_chunks(const Bytes& chars, const Modifiers& m);
+
+  TimePoint start_;
+  TimePoint last_send_{};
+  std::vector<Frame> frames_;
+  std::vector<std::string> ignored_;
+};
+
+// The frame of a send that the device acts on, as a device's receiver reads
+// the bytes (§1 states 1-5; an STX in the data restarts reception under E-7):
+// its address and command, for checking the reply. nullopt when no complete
+// frame is in the bytes (a bad LRC, a truncated frame).
+struct SentFrame {
+  std::uint8_t address = 0;
+  std::uint8_t command = 0;
+};
+std::optional<SentFrame> frame_acted_on(ByteView chars, const Profile& profile);
+
+}  // namespace sabus::harness::detail
