@@ -29,6 +29,12 @@ struct AxisProfile {
   double initial_deg = 0.0;
   bool has_stow_limit = false;
   double stow_deg = 0.0;
+  // How close an auto move stops to its target, the display's 0.1 deg
+  // resolution included: vectors check arrivals within it.
+  double tolerance_deg = 0.1;
+  // Acceleration and deceleration, degrees per second squared; none: the
+  // axis reaches its speed at once. Vectors widen motion windows for it.
+  std::optional<double> accel_dps2;
 };
 
 // An entry of the STORE list (§3.6: up to 50, read by 35h, recalled by 32h form 1).
@@ -107,9 +113,9 @@ struct Profile {
   bool dvb_receiver = false;                // §3.20 / §3.21 (E-23)
   double counts_per_degree = 100.0;         // pulse/resolver sensors (§3.16)
   std::int32_t count_offset = 10000;        // counts at 0 deg
-  AxisProfile az{2.0, 0.5, -180.0, 180.0, 0.0, false, 0.0};
-  AxisProfile el{1.0, 0.25, -5.0, 90.0, 45.0, true, -5.0};
-  AxisProfile pol{5.0, 1.0, -90.0, 90.0, 0.0, false, 0.0};
+  AxisProfile az{2.0, 0.5, -180.0, 180.0, 0.0, false, 0.0, 0.1, std::nullopt};
+  AxisProfile el{1.0, 0.25, -5.0, 90.0, 45.0, true, -5.0, 0.1, std::nullopt};
+  AxisProfile pol{5.0, 1.0, -90.0, 90.0, 0.0, false, 0.0, 0.1, std::nullopt};
   double turnaround_ms = 2.0;               // reply latency on a line (sabus sim --emulate-line)
   std::uint16_t agc = 512;                  // §3.2 bytes 41-43
 

@@ -1,0 +1,503 @@
+// Profile expressions (expressions.hpp): a small evaluating parser over
+// numbers, captures ($name), symbols (az, F, presets) and the functions of
+// one table, kFunctions.
+//
+//   expr    := sum
+//   sum     := product (('+' | '-') product)*
+//   product := unary (('*' | '/') unary)*
+//   unary   := '-' unary | primary
+//   primary := number | '$' name | name '(' [expr (',' expr)*] ')' | name | '(' expr ')'
+#include "sabus/harness/expressions.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+
+#include "sabus/harness/motion.hpp"
+
+namespace sabus::harness {
+namespace {
+
+using Kind = Expansion::Kind;
+
+struct Value {
+  bool is_number = false;
+  double number = 0;
+  std::string text;  // a symbol or a text value
+};
+
+struct Result {
+  Kind kind = Kind::kValue;
+  Value value;
+  std::string message;  // the reason (kUnavailable) or the error (kError)
+  bool ok() const { return kind == Kind::kValue; }
+};
+
+Result number(double x) { return {Kind::kValue, {true, x, {}}, {}}; }
+Result text(std::string t) { return {Kind::kValue, {false, 0, std::move(t)}, {}}; }
+Result error(std::string m) { return {Kind::kError, {}, std::move(m)}; }
+Result unavailable(std::string m) { return {Kind::kUnavailable, {}, std::move(m)}; }
+
+std::optional<double> parse_double(std::string_view s) {
+  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+  if (s.empty()) return std::nullopt;
+  std::string copy(s);
+  char* end = nullptr;
+  const double v = std::strtod(copy.c_str(), &end);
+  if (end == copy.c_str()) return std::nullopt;
+  return v;
+}
+
+// ---- arguments ----------------------------------------------------------------
+
+using Args = std::vector<Value>;
+
+struct Call {
+  const ExprContext& cx;
+  const Args& args;
+  std::string_view name;
+
+  std::optional<std::string> numbers(std::initializer_list<std::size_t> at) const {
+    for (std::size_t i : at)
+      if (!args[i].is_number) return std::string(name) + ": argument " + std::to_string(i + 1) + " must be a number";
+    return std::nullopt;
+  }
+};
+
+std::optional<motion::Axis> axis_arg(const Value& v) { return v.is_number ? std::nullopt : motion::axis_named(v.text); }
+
+Result with_axis(const Call& c, const std::function<Result(motion::Axis, const AxisProfile&)>& f) {
+  const auto axis = axis_arg(c.args[0]);
+  if (!axis) return error(std::string(c.name) + ": argument 1 must be an axis: az, el or pol");
+  return f(*axis, motion::profile_of(c.cx.profile, *axis));
+}
+
+std::optional<char> speed_arg(const Value& v) {
+  if (!v.is_number && (v.text == "F" || v.text == "S")) return v.text[0];
+  return std::nullopt;
+}
+
+// The indexed lists of stored data and their slot counts (§3.10, §3.12, §3.20).
+struct SlotList {
+  std::string_view name, what;
+  int slots;
+  std::function<bool(const Profile&, int)> filled;
+};
+template <class T>
+bool has_index(const std::vector<T>& list, int i) {
+  return std::any_of(list.begin(), list.end(), [&](const T& e) { return e.index == i; });
+}
+const SlotList kSlotLists[] = {
+    {"presets", "preset satellite", 20, [](const Profile& p, int i) { return has_index(p.presets, i); }},
+    {"tles", "TLE", 10, [](const Profile& p, int i) { return has_index(p.tles, i); }},
+    {"signposts", "signpost", 20, [](const Profile& p, int i) { return has_index(p.signposts, i); }},
+};
+
+Result slot(const Call& c, bool want_filled, bool from_end) {
+  const Value& v = c.args[0];
+  const SlotList* list = nullptr;
+  for (const auto& l : kSlotLists)
+    if (!v.is_number && v.text == l.name) list = &l;
+  if (!list) return error(std::string(c.name) + ": argument 1 must be presets, tles or signposts");
+  for (int k = 0; k < list->slots; ++k) {
+    const int i = from_end ? list->slots - k : k + 1;
+    if (list->filled(c.cx.profile, i) == want_filled) return number(i);
+  }
+  return unavailable(std::string(want_filled ? "a filled " : "an empty ") + std::string(list->what) +
+                     " slot: the profile has " + (want_filled ? "none stored" : "every slot filled"));
+}
+
+Result maybe(const motion::Maybe<double>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
+Result maybe(const motion::Maybe<int>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
+
+// ---- the function table ---------------------------------------------------------
+
+struct Function {
+  ExprFunction doc;
+  std::size_t arity;
+  Result (*eval)(const Call&);
+};
+
+const Function kFunctions[] = {
+    {{"home", "axis", "where moving vectors start: the middle of the axis's range, in tenths"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(motion::home(a)); }); }},
+    {{"at", "axis, fraction", "the position a fraction 0-1 of the way from min_deg to max_deg, in tenths"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({1})) return error(*e);
+       return with_axis(c, [&](motion::Axis, const AxisProfile& a) { return number(motion::at(a, c.args[1].number)); });
+     }},
+    {{"min_deg", "axis", "the axis's lower limit position"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.min_deg); }); }},
+    {{"max_deg", "axis", "the axis's upper limit position"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.max_deg); }); }},
+    {{"initial_deg", "axis", "the axis's position at power-on"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.initial_deg); }); }},
+    {{"stow_deg", "axis", "the axis's stow limit position; unavailable without a stow limit"}, 1,
+     [](const Call& c) {
+       return with_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+         return a.has_stow_limit ? number(a.stow_deg)
+                                 : unavailable("a stow limit on the " + std::string(motion::name_of(axis)));
+       });
+     }},
+    {{"fast", "axis", "the axis's fast speed, deg/s"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.fast_dps); }); }},
+    {{"slow", "axis", "the axis's slow speed, deg/s"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.slow_dps); }); }},
+    {{"tolerance", "axis", "how close an auto move stops to its target (tolerance_deg)"}, 1,
+     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.tolerance_deg); }); }},
+    {{"jog_ms", "axis, F|S",
+      "a jog duration that, from home, surely moves the axis a measurable distance and stays off its limits"},
+     2,
+     [](const Call& c) {
+       const auto speed = speed_arg(c.args[1]);
+       if (!speed) return error("jog_ms: argument 2 must be F or S");
+       return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+         return maybe(motion::measurable_jog_ms(a, *speed, motion::name_of(axis)));
+       });
+     }},
+    {{"jog_start", "E|W|D|U|O|L, F|S, ms",
+      "a start position, nearest home, from which that jog runs at least ms before it can reach a limit"},
+     3,
+     [](const Call& c) {
+       const auto dir = c.args[0].is_number || c.args[0].text.size() != 1 ? std::nullopt
+                                                                           : motion::jog_direction(c.args[0].text[0]);
+       const auto speed = speed_arg(c.args[1]);
+       if (!dir) return error("jog_start: argument 1 must be a jog direction E, W, D, U, O or L");
+       if (!speed) return error("jog_start: argument 2 must be F or S");
+       if (auto e = c.numbers({2})) return error(*e);
+       const AxisProfile& a = motion::profile_of(c.cx.profile, dir->axis);
+       return maybe(motion::jog_start(a, dir->sign, *speed, static_cast<int>(c.args[2].number), motion::name_of(dir->axis)));
+     }},
+    {{"move_target", "axis, from, ms",
+      "a target toward the farther end of the range whose auto move from `from` lasts at least ms at fast speed"},
+     3,
+     [](const Call& c) {
+       if (auto e = c.numbers({1, 2})) return error(*e);
+       return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+         return maybe(motion::move_target(a, c.args[1].number, static_cast<int>(c.args[2].number), motion::name_of(axis)));
+       });
+     }},
+    {{"pace_ms", "", "the run's pace between commands (--pace), ms"}, 0,
+     [](const Call& c) { return number(static_cast<double>(c.cx.pace.count())); }},
+    {{"counts", "axis, deg", "the pulse count of a position: count_offset + deg x counts_per_degree (§3.16)"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({1})) return error(*e);
+       return with_axis(c, [&](motion::Axis axis, const AxisProfile&) {
+         const double n = std::round(c.cx.profile.count_offset + c.args[1].number * c.cx.profile.counts_per_degree);
+         if (n < 0 || n > 99999)
+           return unavailable("a 5-digit pulse count for " + std::string(motion::name_of(axis)) + " " +
+                              format_number(c.args[1].number) + " deg");
+         return number(n);
+       });
+     }},
+    {{"first_empty", "presets|tles|signposts", "the lowest index the profile leaves empty"}, 1,
+     [](const Call& c) { return slot(c, false, false); }},
+    {{"last_empty", "presets|tles|signposts", "the highest index the profile leaves empty"}, 1,
+     [](const Call& c) { return slot(c, false, true); }},
+    {{"first_filled", "presets|tles|signposts", "the lowest index the profile fills"}, 1,
+     [](const Call& c) { return slot(c, true, false); }},
+    {{"last_filled", "presets|tles|signposts", "the highest index the profile fills"}, 1,
+     [](const Call& c) { return slot(c, true, true); }},
+    {{"store_count", "", "the number of entries of the profile's STORE list (§3.6)"}, 0,
+     [](const Call& c) { return number(static_cast<double>(c.cx.profile.store.size())); }},
+    {{"min", "a, b", "the smaller number"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({0, 1})) return error(*e);
+       return number(std::min(c.args[0].number, c.args[1].number));
+     }},
+    {{"max", "a, b", "the larger number"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({0, 1})) return error(*e);
+       return number(std::max(c.args[0].number, c.args[1].number));
+     }},
+    {{"abs", "x", "the magnitude"}, 1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       return number(std::abs(c.args[0].number));
+     }},
+    {{"tenths", "x", "x rounded to 0.1"}, 1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       return number(std::round(c.args[0].number * 10) / 10);
+     }},
+    {{"pad2", "n", "a whole number 0-99 as two digits: 05"}, 1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const double n = c.args[0].number;
+       if (n < 0 || n > 99 || n != std::floor(n)) return error("pad2: " + format_number(n) + " is not a whole number 0-99");
+       char buf[4];
+       std::snprintf(buf, sizeof buf, "%02d", static_cast<int>(n));
+       return text(buf);
+     }},
+};
+
+const Function* find_function(std::string_view name) {
+  for (const auto& f : kFunctions)
+    if (f.doc.name == name) return &f;
+  return nullptr;
+}
+
+// ---- the parser -----------------------------------------------------------------
+
+bool is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9'); }
+
+class Parser {
+ public:
+  Parser(std::string_view s, const ExprContext& cx) : s_(s), cx_(cx) {}
+
+  Result parse() {
+    Result r = sum();
+    if (!r.ok() && r.kind == Kind::kError) return r;
+    skip_blanks();
+    if (pos_ < s_.size()) return error("unexpected '" + std::string(1, s_[pos_]) + "' at character " + std::to_string(pos_ + 1));
+    return r;
+  }
+
+  std::set<std::string> captures_read;
+
+ private:
+  void skip_blanks() {
+    while (pos_ < s_.size() && s_[pos_] == ' ') ++pos_;
+  }
+  bool eat(char c) {
+    skip_blanks();
+    if (pos_ < s_.size() && s_[pos_] == c) {
+      ++pos_;
+      return true;
+    }
+    return false;
+  }
+  std::string name() {
+    const std::size_t start = pos_;
+    while (pos_ < s_.size() && is_name_char(s_[pos_])) ++pos_;
+    return std::string(s_.substr(start, pos_ - start));
+  }
+
+  // An unavailable or failed operand decides the result; an error wins
+  // over unavailability (it is the vector's bug).
+  static std::optional<Result> first_problem(const Result& a, const Result& b) {
+    if (a.kind == Kind::kError) return a;
+    if (b.kind == Kind::kError) return b;
+    if (!a.ok()) return a;
+    if (!b.ok()) return b;
+    return std::nullopt;
+  }
+
+  Result arithmetic(char op, const Result& a, const Result& b) {
+    if (auto p = first_problem(a, b)) return *p;
+    if (!a.value.is_number || !b.value.is_number)
+      return error(std::string("'") + op + "' needs numbers, got " + (a.value.is_number ? b : a).value.text);
+    switch (op) {
+      case '+': return number(a.value.number + b.value.number);
+      case '-': return number(a.value.number - b.value.number);
+      case '*': return number(a.value.number * b.value.number);
+      default:
+        if (b.value.number == 0) return error("division by zero");
+        return number(a.value.number / b.value.number);
+    }
+  }
+
+  Result sum() {
+    Result r = product();
+    while (true) {
+      if (eat('+')) r = arithmetic('+', r, product());
+      else if (eat('-')) r = arithmetic('-', r, product());
+      else return r;
+    }
+  }
+  Result product() {
+    Result r = unary();
+    while (true) {
+      if (eat('*')) r = arithmetic('*', r, unary());
+      else if (eat('/')) r = arithmetic('/', r, unary());
+      else return r;
+    }
+  }
+  Result unary() {
+    if (eat('-')) return arithmetic('-', number(0), unary());
+    return primary();
+  }
+
+  Result capture() {
+    const std::string n = "$" + name();
+    if (n.size() == 1) return error("'$' must be followed by a capture name");
+    captures_read.insert(n);
+    if (!cx_.captures) return number(0);  // static check: the value is known at run time only
+    const auto it = cx_.captures->find(n);
+    if (it == cx_.captures->end()) return error("no value captured as " + n);
+    if (auto v = parse_double(it->second)) return number(*v);
+    return text(it->second);
+  }
+
+  Result call(const std::string& fname) {
+    const Function* f = find_function(fname);
+    if (!f) return error("unknown function " + fname + "() (sabus vectors functions lists them)");
+    std::vector<Result> results;
+    if (!eat(')')) {
+      do results.push_back(sum());
+      while (eat(','));
+      if (!eat(')')) return error("expected ')' after the arguments of " + fname + "()");
+    }
+    if (results.size() != f->arity)
+      return error(fname + "() takes " + std::to_string(f->arity) + " argument(s) (" + std::string(f->doc.arguments) +
+                   "), got " + std::to_string(results.size()));
+    Args args;
+    for (const auto& r : results) {
+      if (r.kind == Kind::kError) return r;
+    }
+    for (const auto& r : results) {
+      if (!r.ok()) return r;
+      args.push_back(r.value);
+    }
+    return f->eval(Call{cx_, args, f->doc.name});
+  }
+
+  Result primary() {
+    skip_blanks();
+    if (pos_ >= s_.size()) return error("expected a value at the end");
+    const char c = s_[pos_];
+    if (c == '(') {
+      ++pos_;
+      Result r = sum();
+      if (!eat(')')) return error("expected ')' at character " + std::to_string(pos_ + 1));
+      return r;
+    }
+    if (c == '$') {
+      ++pos_;
+      return capture();
+    }
+    if ((c >= '0' && c <= '9') || c == '.') {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(s_.data() + pos_, s_.data() + s_.size(), v);
+      if (ec != std::errc()) return error("bad number at character " + std::to_string(pos_ + 1));
+      pos_ = static_cast<std::size_t>(end - s_.data());
+      return number(v);
+    }
+    if (is_name_start(c)) {
+      const std::string n = name();
+      if (eat('(')) return call(n);
+      return text(n);  // a symbol: az, F, presets
+    }
+    return error("unexpected '" + std::string(1, c) + "' at character " + std::to_string(pos_ + 1));
+  }
+
+  std::string_view s_;
+  const ExprContext& cx_;
+  std::size_t pos_ = 0;
+};
+
+// Calls `f` on each placeholder's expression; literal text goes to `literal`.
+// Returns the first error of the template's own syntax ("{" unclosed).
+template <class Literal, class Placeholder>
+std::optional<std::string> scan_template(std::string_view text, Literal literal, Placeholder placeholder) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if ((c == '{' || c == '}') && i + 1 < text.size() && text[i + 1] == c) {
+      literal(c);
+      ++i;
+    } else if (c == '{') {
+      const std::size_t close = text.find('}', i);
+      if (close == std::string_view::npos) return "the placeholder at character " + std::to_string(i + 1) + " has no closing '}'";
+      if (auto e = placeholder(text.substr(i + 1, close - i - 1))) return e;
+      i = close;
+    } else if (c == '}') {
+      return "a '}' at character " + std::to_string(i + 1) + " closes no placeholder (write }} for a brace)";
+    } else {
+      literal(c);
+    }
+  }
+  return std::nullopt;
+}
+
+Profile& static_profile() {
+  static Profile p;
+  return p;
+}
+
+}  // namespace
+
+std::string format_number(double x) {
+  if (std::abs(x - std::round(x)) < 1e-9) return std::to_string(static_cast<long long>(std::llround(x)));
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6f", x);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+bool has_placeholder(std::string_view text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '{') continue;
+    if (i + 1 < text.size() && text[i + 1] == '{') ++i;
+    else return true;
+  }
+  return false;
+}
+
+Expansion expand_template(std::string_view text, const ExprContext& cx) {
+  std::string out;
+  Expansion problem{Kind::kValue, {}};
+  auto e = scan_template(
+      text, [&](char c) { out.push_back(c); },
+      [&](std::string_view expr) -> std::optional<std::string> {
+        if (!problem.ok()) return std::nullopt;
+        Parser p(expr, cx);
+        const Result r = p.parse();
+        if (r.kind == Kind::kError) return "{" + std::string(expr) + "}: " + r.message;
+        if (!r.ok()) problem = {r.kind, r.message};
+        else out += r.value.is_number ? format_number(r.value.number) : r.value.text;
+        return std::nullopt;
+      });
+  if (e) return {Kind::kError, *e};
+  if (!problem.ok()) return problem;
+  return {Kind::kValue, out};
+}
+
+Number expand_number(std::string_view text, const ExprContext& cx) {
+  const Expansion e = expand_template(text, cx);
+  if (!e.ok()) return {e.kind, 0, e.text};
+  if (auto v = parse_double(e.text); v && e.text.find_first_not_of(" +-.0123456789eE") == std::string::npos)
+    return {Kind::kValue, *v, {}};
+  return {Kind::kError, 0, "\"" + std::string(text) + "\" gives \"" + e.text + "\", not a number"};
+}
+
+std::optional<std::string> check_template(std::string_view text, const std::set<std::string>& captured) {
+  const ExprContext cx{static_profile(), nullptr, {}};
+  return scan_template(
+      text, [](char) {},
+      [&](std::string_view expr) -> std::optional<std::string> {
+        Parser p(expr, cx);
+        const Result r = p.parse();
+        if (r.kind == Kind::kError) return "{" + std::string(expr) + "}: " + r.message;
+        for (const auto& c : p.captures_read)
+          if (!captured.count(c)) return "{" + std::string(expr) + "}: " + c + " is not captured by an earlier step";
+        return std::nullopt;
+      });
+}
+
+std::set<std::string> template_captures(std::string_view text) {
+  std::set<std::string> out;
+  const ExprContext cx{static_profile(), nullptr, {}};
+  (void)scan_template(
+      text, [](char) {},
+      [&](std::string_view expr) -> std::optional<std::string> {
+        Parser p(expr, cx);
+        (void)p.parse();
+        out.insert(p.captures_read.begin(), p.captures_read.end());
+        return std::nullopt;
+      });
+  return out;
+}
+
+std::vector<ExprFunction> expression_functions() {
+  std::vector<ExprFunction> out;
+  for (const auto& f : kFunctions) out.push_back(f.doc);
+  return out;
+}
+
+}  // namespace sabus::harness

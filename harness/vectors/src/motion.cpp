@@ -1,0 +1,146 @@
+// Motion expectations from the device profile (motion.hpp).
+#include "sabus/harness/motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace sabus::harness::motion {
+namespace {
+
+double seconds(int ms) { return ms / 1000.0; }
+int floor_tick(int ms) { return ms / kJogTick * kJogTick; }
+int ceil_tick(int ms) { return (ms + kJogTick - 1) / kJogTick * kJogTick; }
+
+// Tenths, toward the inside of [low, high] where rounding could leave it.
+double tenths_down(double x) { return std::floor(x * 10 + 1e-6) / 10; }
+double tenths_up(double x) { return std::ceil(x * 10 - 1e-6) / 10; }
+double tenths(double x) { return std::round(x * 10) / 10; }
+
+// Travel in `t` seconds of timer: the ramp (if any) inside the timer, or
+// after it.
+double travel_ramp_inside(double v, std::optional<double> accel, double t) {
+  if (!accel) return v * t;
+  const double a = *accel;
+  return t >= 2 * v / a ? v * t - v * v / a : a * t * t / 4;
+}
+double travel_ramp_after(double v, std::optional<double> accel, double t) {
+  if (!accel) return v * t;
+  const double a = *accel;
+  return t >= v / a ? v * t : a * t * t;
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+std::string speed_text(const AxisProfile& a, char speed) {
+  return std::string(speed == 'F' ? "fast" : "slow") + " speed (" + number(speed_dps(a, speed)) + " deg/s)";
+}
+
+std::string range_text(const AxisProfile& a, std::string_view axis_name) {
+  return "the " + std::string(axis_name) + " range (" + number(a.min_deg) + " to " + number(a.max_deg) + ")";
+}
+
+// Stays this far inside a limit beyond the arrival tolerance: limits stop
+// an axis (§3.2 bytes 32-34) and would cut a jog short.
+constexpr double kLimitMargin = 0.5;
+
+}  // namespace
+
+const AxisProfile& profile_of(const Profile& p, Axis a) {
+  return a == Axis::kAz ? p.az : a == Axis::kEl ? p.el : p.pol;
+}
+
+std::string_view name_of(Axis a) { return a == Axis::kAz ? "azimuth" : a == Axis::kEl ? "elevation" : "polarization"; }
+
+std::optional<Axis> axis_named(std::string_view n) {
+  if (n == "az") return Axis::kAz;
+  if (n == "el") return Axis::kEl;
+  if (n == "pol") return Axis::kPol;
+  return std::nullopt;
+}
+
+std::optional<Axis> axis_of_field(std::string_view field) {
+  for (Axis a : {Axis::kAz, Axis::kEl, Axis::kPol})
+    if (field == name_of(a)) return a;
+  return std::nullopt;
+}
+
+std::optional<JogDirection> jog_direction(char letter) {
+  switch (letter) {  // §3.4 byte 3
+    case 'E': return JogDirection{Axis::kAz, -1};
+    case 'W': return JogDirection{Axis::kAz, +1};
+    case 'D': return JogDirection{Axis::kEl, -1};
+    case 'U': return JogDirection{Axis::kEl, +1};
+    case 'O': return JogDirection{Axis::kPol, -1};
+    case 'L': return JogDirection{Axis::kPol, +1};
+    default: return std::nullopt;
+  }
+}
+
+double speed_dps(const AxisProfile& a, char speed) { return speed == 'F' ? a.fast_dps : a.slow_dps; }
+
+Interval jog_travel(const AxisProfile& a, char speed, int ms) {
+  if (ms <= 0) return {0, 0};  // E-61: '0000' does not move
+  const double v = speed_dps(a, speed);
+  const int shortest = std::max(0, floor_tick(ms) - kJogTick), longest = ceil_tick(ms) + kJogTick;
+  return {travel_ramp_inside(v, a.accel_dps2, seconds(shortest)), travel_ramp_after(v, a.accel_dps2, seconds(longest))};
+}
+
+Interval jog_end(const AxisProfile& a, double from, int sign, char speed, int ms) {
+  const Interval t = jog_travel(a, speed, ms);
+  Interval end = sign > 0 ? Interval{from + t.low, from + t.high} : Interval{from - t.high, from - t.low};
+  end.low = std::clamp(end.low, a.min_deg, a.max_deg);
+  end.high = std::clamp(end.high, a.min_deg, a.max_deg);
+  return {end.low - kDisplayResolution, end.high + kDisplayResolution};
+}
+
+double home(const AxisProfile& a) { return at(a, 0.5); }
+
+double at(const AxisProfile& a, double fraction) {
+  return std::clamp(tenths(a.min_deg + fraction * (a.max_deg - a.min_deg)), tenths_up(a.min_deg), tenths_down(a.max_deg));
+}
+
+Maybe<int> measurable_jog_ms(const AxisProfile& a, char speed, std::string_view axis_name) {
+  const double h = home(a);
+  const double room = std::min(h - a.min_deg, a.max_deg - h) - a.tolerance_deg - kLimitMargin;
+  for (int ms = kJogTick; ms <= floor_tick(kMaxJogMs); ms += kJogTick) {
+    const Interval t = jog_travel(a, speed, ms);
+    if (t.high + kDisplayResolution > room) break;  // longer jogs only travel farther
+    if (t.low - kDisplayResolution >= 0.5) return {ms, ""};
+  }
+  return {std::nullopt, "no jog of 50-9950 ms at " + speed_text(a, speed) + " surely moves the " +
+                            std::string(axis_name) + " a measurable 0.5 deg and stays off the limits of " +
+                            range_text(a, axis_name)};
+}
+
+Maybe<double> jog_start(const AxisProfile& a, int sign, char speed, int ms, std::string_view axis_name) {
+  // Elapsed time, whatever the timer: the axis covers at most v * t.
+  const double need = speed_dps(a, speed) * seconds(ms) + a.tolerance_deg + kLimitMargin;
+  const double inner = a.tolerance_deg + kLimitMargin;
+  const double h = home(a);
+  const double start = sign > 0 ? tenths_down(std::min(h, a.max_deg - need)) : tenths_up(std::max(h, a.min_deg + need));
+  if (start >= a.min_deg + inner && start <= a.max_deg - inner) return {start, ""};
+  return {std::nullopt, range_text(a, axis_name) + " is too short for a jog at " + speed_text(a, speed) + " to run " +
+                            std::to_string(ms) + " ms"};
+}
+
+Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string_view axis_name) {
+  const double inset = 0.05 * (a.max_deg - a.min_deg);
+  const double target = a.max_deg - from >= from - a.min_deg ? tenths_down(a.max_deg - inset) : tenths_up(a.min_deg + inset);
+  const double fastest_ms = std::abs(target - from) / a.fast_dps * 1000;
+  if (fastest_ms >= ms) return {target, ""};
+  return {std::nullopt, "an auto move across " + range_text(a, axis_name) + " at " + speed_text(a, 'F') +
+                            " can end in " + number(std::round(fastest_ms)) + " ms, before " + std::to_string(ms) + " ms"};
+}
+
+std::chrono::milliseconds longest_move(const AxisProfile& a, double distance) {
+  double ms = std::abs(distance) / a.slow_dps * 1000;
+  if (a.accel_dps2) ms += 2 * a.fast_dps / *a.accel_dps2 * 1000;
+  return std::chrono::milliseconds(static_cast<std::int64_t>(std::ceil(ms)));
+}
+
+}  // namespace sabus::harness::motion

@@ -1,0 +1,187 @@
+// Profile expressions and the motion expectations behind them: values from
+// the profile, capabilities a profile lacks, errors a vector makes.
+#include <gtest/gtest.h>
+
+#include "sabus/harness/expressions.hpp"
+#include "sabus/harness/motion.hpp"
+
+namespace sabus::harness {
+namespace {
+
+using Kind = Expansion::Kind;
+
+Profile profile_with_el(double min, double max, double fast, double slow) {
+  Profile p;
+  p.el.min_deg = min;
+  p.el.max_deg = max;
+  p.el.fast_dps = fast;
+  p.el.slow_dps = slow;
+  return p;
+}
+
+Expansion expand(std::string_view t, const Profile& p, const std::map<std::string, std::string>* captures = nullptr) {
+  return expand_template(t, ExprContext{p, captures, std::chrono::milliseconds(1000)});
+}
+
+TEST(Expressions, TextOutsideBracesIsKeptAndBracesEscape) {
+  const Profile p;
+  EXPECT_EQ(expand("plain", p).text, "plain");
+  EXPECT_EQ(expand("a {{b}} c", p).text, "a {b} c");
+  EXPECT_FALSE(has_placeholder("a {{b}}"));
+  EXPECT_TRUE(has_placeholder("{home(az)}"));
+}
+
+TEST(Expressions, PositionsComeFromTheProfile) {
+  const Profile p = profile_with_el(0, 90, 20, 5);
+  EXPECT_EQ(expand("{home(el)}", p).text, "45");
+  EXPECT_EQ(expand("{at(el, 0.25)}", p).text, "22.5");
+  EXPECT_EQ(expand("{min_deg(el)} to {max_deg(el)}", p).text, "0 to 90");
+  EXPECT_EQ(expand("{home(el) + 1.5}", p).text, "46.5");
+  EXPECT_EQ(expand("{-(home(el) - 50) * 2}", p).text, "10");
+  EXPECT_EQ(expand("{pace_ms()}", p).text, "1000");
+}
+
+TEST(Expressions, CapturesAreNumbersWhenTheyReadAsNumbers) {
+  const Profile p;
+  const std::map<std::string, std::string> captures{{"$az0", "  30.0"}, {"$name", "SBS 6"}};
+  EXPECT_EQ(expand("{$az0 + 0.5}", p, &captures).text, "30.5");
+  EXPECT_EQ(expand("{$name}", p, &captures).text, "SBS 6");
+  EXPECT_EQ(expand("{$name + 1}", p, &captures).kind, Kind::kError);
+  EXPECT_EQ(expand("{$other}", p, &captures).kind, Kind::kError);
+}
+
+TEST(Expressions, AMissingCapabilityIsUnavailableWithItsReason) {
+  Profile p;
+  p.az.has_stow_limit = false;
+  const Expansion e = expand("{stow_deg(az)}", p);
+  EXPECT_EQ(e.kind, Kind::kUnavailable);
+  EXPECT_NE(e.text.find("stow limit on the azimuth"), std::string::npos) << e.text;
+
+  p.presets.clear();
+  EXPECT_EQ(expand("{first_empty(presets)}", p).text, "1");
+  EXPECT_EQ(expand("{last_empty(presets)}", p).text, "20");
+  EXPECT_EQ(expand("{first_filled(presets)}", p).kind, Kind::kUnavailable);
+  for (int i = 1; i <= 20; ++i) p.presets.push_back({static_cast<std::uint8_t>(i), {}, false});
+  const Expansion full = expand("{first_empty(presets)}", p);
+  EXPECT_EQ(full.kind, Kind::kUnavailable);
+  EXPECT_NE(full.text.find("every slot filled"), std::string::npos) << full.text;
+  EXPECT_EQ(expand("{last_filled(presets)}", p).text, "20");
+}
+
+TEST(Expressions, ErrorsNameTheProblem) {
+  const Profile p;
+  EXPECT_NE(expand("{nope(az)}", p).text.find("unknown function nope()"), std::string::npos);
+  EXPECT_NE(expand("{home(az, el)}", p).text.find("takes 1 argument"), std::string::npos);
+  EXPECT_NE(expand("{home(x)}", p).text.find("must be an axis"), std::string::npos);
+  EXPECT_NE(expand("{home(az)", p).text.find("no closing"), std::string::npos);
+  EXPECT_NE(expand("a}b", p).text.find("closes no placeholder"), std::string::npos);
+  EXPECT_NE(expand("{1 +}", p).text.find("expected a value"), std::string::npos);
+  EXPECT_EQ(expand("{1 / 0}", p).kind, Kind::kError);
+}
+
+TEST(Expressions, LoadTimeCheckNeedsEveryCaptureFromAnEarlierStep) {
+  EXPECT_EQ(check_template("{home(az)}", {}), std::nullopt);
+  EXPECT_NE(check_template("{$az0 + 1}", {}), std::nullopt);
+  EXPECT_EQ(check_template("{$az0 + 1}", {"$az0"}), std::nullopt);
+  EXPECT_NE(check_template("{jog_ms(az)}", {}), std::nullopt);
+  EXPECT_EQ(template_captures("{$a} and {$b + home(el)}"), (std::set<std::string>{"$a", "$b"}));
+}
+
+TEST(Expressions, NumbersAreWrittenWithTheDigitsTheyNeed) {
+  EXPECT_EQ(format_number(30), "30");
+  EXPECT_EQ(format_number(-2.5), "-2.5");
+  EXPECT_EQ(format_number(12.25), "12.25");
+  EXPECT_EQ(format_number(-0.0), "0");
+  const Profile p;
+  EXPECT_EQ(expand_number("{home(el)}", ExprContext{p}).value, 42.5);
+  EXPECT_EQ(expand_number("abc", ExprContext{p}).kind, Kind::kError);
+}
+
+TEST(Motion, AJogTravelsSpeedTimesTheTimerWithinOneTickEitherWay) {
+  AxisProfile a;
+  a.fast_dps = 2;
+  const auto t = motion::jog_travel(a, 'F', 1000);
+  EXPECT_DOUBLE_EQ(t.low, 2 * 0.95);
+  EXPECT_DOUBLE_EQ(t.high, 2 * 1.05);
+  const auto odd = motion::jog_travel(a, 'F', 1020);  // "approx." a multiple of 50: 1000 or 1050
+  EXPECT_DOUBLE_EQ(odd.low, 2 * 0.95);
+  EXPECT_DOUBLE_EQ(odd.high, 2 * 1.10);
+  EXPECT_EQ(motion::jog_travel(a, 'F', 0).high, 0) << "E-61: 0000 does not move";
+}
+
+TEST(Motion, ARampShortensTheShortestTravelAndNeverTheLongest) {
+  AxisProfile a;
+  a.fast_dps = 10;
+  a.accel_dps2 = 40;  // 0.25 s to full speed
+  const auto t = motion::jog_travel(a, 'F', 1000);
+  EXPECT_DOUBLE_EQ(t.low, 10 * 0.95 - 10 * 10 / 40.0);  // ramps up and down inside the timer
+  EXPECT_DOUBLE_EQ(t.high, 10 * 1.05);                  // ramps down after it
+  a.accel_dps2 = 20;  // 0.5 s up, 0.5 s down: full speed never reached inside 0.95 s
+  EXPECT_DOUBLE_EQ(motion::jog_travel(a, 'F', 1000).low, 20 * 0.95 * 0.95 / 4);
+  const auto short_jog = motion::jog_travel(a, 'F', 200);
+  EXPECT_DOUBLE_EQ(short_jog.low, 20 * 0.15 * 0.15 / 4);
+  EXPECT_DOUBLE_EQ(short_jog.high, 20 * 0.25 * 0.25);
+}
+
+TEST(Motion, AJogEndsWithinTheLimitsAndTheDisplayResolution) {
+  AxisProfile a;
+  a.min_deg = 0;
+  a.max_deg = 90;
+  a.fast_dps = 20;
+  const auto end = motion::jog_end(a, 10.0, -1, 'F', 1000);  // 19-21 deg down from 10: the limit at 0
+  EXPECT_DOUBLE_EQ(end.low, -0.1);
+  EXPECT_DOUBLE_EQ(end.high, 0.1);
+  const auto up = motion::jog_end(a, 45.0, +1, 'F', 100);
+  EXPECT_NEAR(up.low, 45.0 + 1.0 - 0.1, 1e-9);
+  EXPECT_NEAR(up.high, 45.0 + 3.0 + 0.1, 1e-9);
+}
+
+TEST(Motion, AMeasurableJogMovesAtLeastHalfADegreeAndStaysOffTheLimits) {
+  AxisProfile a;
+  a.min_deg = 0;
+  a.max_deg = 90;
+  for (double v : {0.1, 0.5, 5.0, 20.0, 50.0}) {
+    a.fast_dps = v;
+    const auto ms = motion::measurable_jog_ms(a, 'F', "elevation");
+    ASSERT_TRUE(ms.value) << v << ": " << ms.reason;
+    const auto t = motion::jog_travel(a, 'F', *ms.value);
+    EXPECT_GE(t.low - motion::kDisplayResolution, 0.5) << v;
+    EXPECT_LE(t.high, 45.0) << v;
+  }
+  a.min_deg = 0;
+  a.max_deg = 10;
+  a.fast_dps = 50;
+  const auto none = motion::measurable_jog_ms(a, 'F', "elevation");
+  EXPECT_FALSE(none.value);
+  EXPECT_NE(none.reason.find("elevation"), std::string::npos) << none.reason;
+}
+
+TEST(Motion, AJogStartLeavesRoomForTheWholeDuration) {
+  AxisProfile a;
+  a.min_deg = 0;
+  a.max_deg = 90;
+  a.slow_dps = 5;
+  const auto up = motion::jog_start(a, +1, 'S', 4000, "elevation");  // 20 deg of room above
+  ASSERT_TRUE(up.value);
+  EXPECT_LE(*up.value + 20.0, 90.0);
+  EXPECT_EQ(*up.value, 45.0) << "home leaves room enough";
+  const auto far = motion::jog_start(a, +1, 'S', 12000, "elevation");  // 60 deg
+  ASSERT_TRUE(far.value);
+  EXPECT_LE(*far.value + 60.0, 90.0);
+  EXPECT_FALSE(motion::jog_start(a, +1, 'S', 20000, "elevation").value) << "100 deg do not fit in 90";
+}
+
+TEST(Motion, AMoveTargetLastsLongEnoughOrSaysWhyNot) {
+  AxisProfile a;
+  a.min_deg = -180;
+  a.max_deg = 180;
+  a.fast_dps = 2;
+  const auto t = motion::move_target(a, -170.0, 3000, "azimuth");
+  ASSERT_TRUE(t.value);
+  EXPECT_EQ(*t.value, 162.0);
+  a.fast_dps = 500;
+  EXPECT_FALSE(motion::move_target(a, 0.0, 3000, "azimuth").value);
+}
+
+}  // namespace
+}  // namespace sabus::harness
