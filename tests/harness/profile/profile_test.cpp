@@ -421,9 +421,9 @@ Profile every_field_set() {
   p.dvb_receiver = true;
   p.counts_per_degree = 123.456;
   p.count_offset = 99999;
-  p.az = {3.3, 0.1, -170.5, 350.25, 12.125, true, 0.1};
-  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0};
-  p.pol = {9, 3, -45, 45, -44.9, true, 44.9};
+  p.az = {3.3, 0.1, -170.5, 350.25, 12.125, true, 0.1, 0.1, std::nullopt};
+  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0, 0.1, std::nullopt};
+  p.pol = {9, 3, -45, 45, -44.9, true, 44.9, 0.1, std::nullopt};
   p.turnaround_ms = 0.25;
   p.agc = 0;
   p.store = {{"A: #b", 1.5, -2.25, 0.1, -0.1}, {"'Q'", -180, 360, 0, 0}};
