@@ -1,9 +1,11 @@
 // Field matchers (vectors/README.md "Field matchers"): the text and number a
 // matcher compares for a described reply field, and the check of one matcher
 // against a reply. Pure functions; the step engine (steps.cpp) calls them.
+#include <cstdio>
 #include <regex>
 #include <sstream>
 
+#include "sabus/harness/motion.hpp"
 #include "sabus/harness/runner.hpp"
 
 namespace sabus::harness {
@@ -57,11 +59,13 @@ std::optional<std::string> check_one_field(const FieldDescription& field, const 
         return "matcher for \"" + m.field + "\": bad regex /" + m.values[0] + "/";
       }
       return std::nullopt;
-    case FieldMatcher::Kind::kRange: {
+    case FieldMatcher::Kind::kRange:
+    case FieldMatcher::Kind::kNear:
+    case FieldMatcher::Kind::kJogged: {
       const auto n = matcher_number(field);
       std::ostringstream want;
       want << m.low << " to " << m.high;
-      if (!n || *n < m.low - 1e-9 || *n > m.high + 1e-9) return fail(want.str());
+      if (!n || *n < m.low - 1e-9 || *n > m.high + 1e-9) return fail(m.expected.empty() ? want.str() : m.expected);
       return std::nullopt;
     }
   }
@@ -98,6 +102,81 @@ std::optional<std::string> check_field(const FrameDescription& reply, const Fiel
   }
   if (!found) return "field \"" + m.field + "\" is not in the reply (" + reply.summary + ")";
   return std::nullopt;
+}
+
+namespace {
+
+std::string degrees(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", x);
+  std::string t = buf;
+  while (t.back() == '0') t.pop_back();
+  if (t.back() == '.') t.pop_back();
+  return t;
+}
+
+ResolvedMatcher problem(Expansion::Kind kind, const FieldMatcher& m, std::string why) {
+  return {kind, m, "matcher for \"" + m.field + "\": " + std::move(why)};
+}
+
+// near: the target within the axis's arrival tolerance (AxisProfile::tolerance_deg).
+ResolvedMatcher resolve_near(FieldMatcher m, const ExprContext& cx) {
+  const auto axis = !m.near_axis.empty() ? motion::axis_named(m.near_axis) : motion::axis_of_field(m.field);
+  if (!axis) return problem(Expansion::Kind::kError, m, "near needs an axis: the field is not a position of one");
+  const Number target = expand_number(m.values.at(0), cx);
+  if (target.kind != Expansion::Kind::kValue) return problem(target.kind, m, target.text);
+  const double tol = motion::profile_of(cx.profile, *axis).tolerance_deg;
+  m.low = target.value - tol;
+  m.high = target.value + tol;
+  m.expected = degrees(target.value) + " within " + degrees(tol) + " (" + degrees(m.low) + " to " + degrees(m.high) + ")";
+  return {Expansion::Kind::kValue, m, {}};
+}
+
+// jogged: where the jog can leave the axis (motion::jog_end).
+ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
+  const auto dir = motion::jog_direction(m.jog);
+  if (!dir) return problem(Expansion::Kind::kError, m, std::string("jogged: no jog direction '") + m.jog + "'");
+  const Number from = expand_number(m.values.at(0), cx), ms = expand_number(m.values.at(1), cx);
+  for (const Number* n : {&from, &ms})
+    if (n->kind != Expansion::Kind::kValue) return problem(n->kind, m, n->text);
+  const AxisProfile& a = motion::profile_of(cx.profile, dir->axis);
+  const motion::Interval end = motion::jog_end(a, from.value, dir->sign, m.speed, static_cast<int>(ms.value));
+  m.low = end.low;
+  m.high = end.high;
+  m.expected = std::string("a '") + m.jog + "' jog at " + (m.speed == 'F' ? "fast" : "slow") + " speed (" +
+               degrees(motion::speed_dps(a, m.speed)) + " deg/s) for " + format_number(ms.value) + " ms from " +
+               degrees(from.value) + ": " + degrees(m.low) + " to " + degrees(m.high);
+  return {Expansion::Kind::kValue, m, {}};
+}
+
+}  // namespace
+
+ResolvedMatcher resolve_matcher(const FieldMatcher& in, const ExprContext& cx) {
+  FieldMatcher m = in;
+  switch (m.kind) {
+    case FieldMatcher::Kind::kNear: return resolve_near(std::move(m), cx);
+    case FieldMatcher::Kind::kJogged: return resolve_jogged(std::move(m), cx);
+    case FieldMatcher::Kind::kRange:
+      if (m.values.size() == 2) {
+        const Number low = expand_number(m.values[0], cx), high = expand_number(m.values[1], cx);
+        for (const Number* n : {&low, &high})
+          if (n->kind != Expansion::Kind::kValue) return problem(n->kind, m, n->text);
+        m.low = low.value;
+        m.high = high.value;
+      }
+      return {Expansion::Kind::kValue, m, {}};
+    case FieldMatcher::Kind::kRegex:  // a pattern is never a template: its braces are quantifiers
+    case FieldMatcher::Kind::kAny: return {Expansion::Kind::kValue, m, {}};
+    case FieldMatcher::Kind::kEq:
+    case FieldMatcher::Kind::kOneOf:
+      for (auto& v : m.values) {
+        const Expansion e = expand_template(v, cx);
+        if (!e.ok()) return problem(e.kind, m, e.text);
+        v = e.text;
+      }
+      return {Expansion::Kind::kValue, m, {}};
+  }
+  return {Expansion::Kind::kValue, m, {}};
 }
 
 }  // namespace sabus::harness

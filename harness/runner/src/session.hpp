@@ -28,6 +28,7 @@ class Session : public ReceiverSink {
   Captures captures;                                // this vector's captured values
   std::vector<TranscriptEntry>* transcript = nullptr;  // where exchanges are recorded; null: nowhere
   std::string expect;  // the expected path of the step being sent (TranscriptEntry::expect)
+  bool vector_moves = false;  // the current vector can move the antenna: its polls watch for motion ending
   TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
   std::size_t bytes_sent = 0, bytes_received = 0;
   std::chrono::microseconds silence_listened{0};
@@ -59,6 +60,8 @@ class Session : public ReceiverSink {
   std::optional<std::string> run_poll(const Step& s);
 
   double t_ms() const;
+  // Profile expressions of the current vector: the profile, its captures, the pace.
+  ExprContext expr_context() const { return {profile, &captures, options.pace}; }
 
  private:
   void on_frame(const FrameView& f) override { frames_.push_back(f.to_frame()); }
@@ -66,6 +69,8 @@ class Session : public ReceiverSink {
   void record(bool sent, const Bytes& bytes, std::string note);
   void pace();
   void send_in_chunks(const Bytes& chars, const Modifiers& m);
+  std::optional<std::string> check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers);
+  std::chrono::milliseconds poll_timeout(const Step& s, const FrameDescription& first_reply);
 
   TimePoint start_;
   TimePoint last_send_{};

@@ -4,6 +4,7 @@
 // a send until its `until` matchers hold; a wait lets time pass.
 #include <algorithm>
 
+#include "sabus/harness/motion.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/lrc.hpp"
 #include "session.hpp"
@@ -67,6 +68,35 @@ std::optional<std::string> check_nak_rule(const Expectation& e, const std::optio
          (names.empty() ? std::string("none") : names);
 }
 
+// A structured command's field values with their profile expressions
+// expanded; the first problem instead when one does not expand.
+std::optional<std::string> expand_fields(Step& s, const ExprContext& cx) {
+  if (!s.command) return std::nullopt;
+  for (auto& [name, value] : s.command->fields) {
+    if (!has_placeholder(value)) continue;
+    const Expansion e = expand_template(value, cx);
+    if (!e.ok()) return "field \"" + name + "\": " + (e.kind == Expansion::Kind::kUnavailable ? "needs " : "") + e.text;
+    value = e.text;
+  }
+  return std::nullopt;
+}
+
+// Whether a reply shows every axis stopped: the movement/alarm status of
+// §3.2 bytes 36-38 is 0000 (no movement) or an alarm (1000-1100) on each
+// axis it reports. nullopt when the reply has no axis status.
+std::optional<bool> every_axis_stopped(const FrameDescription& d) {
+  bool seen = false;
+  for (const auto& f : d.fields) {
+    if (f.name != "az status" && f.name != "el status" && f.name != "pol status") continue;
+    const auto byte = matcher_number(f);
+    if (!byte) continue;
+    seen = true;
+    const int code = static_cast<int>(*byte) & 0x0F;
+    if (code != 0 && code < 8) return false;
+  }
+  return seen ? std::optional<bool>(true) : std::nullopt;
+}
+
 std::string expect_name(Expectation::Kind k) {
   switch (k) {
     case Expectation::Kind::kAck: return "ack";
@@ -80,7 +110,19 @@ std::string expect_name(Expectation::Kind k) {
 
 }  // namespace
 
-std::optional<std::string> Session::run_send(const Step& s) {
+std::optional<std::string> Session::check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers) {
+  for (const auto& m : matchers) {
+    const ResolvedMatcher r = resolve_matcher(m, expr_context());
+    if (r.kind != Expansion::Kind::kValue)
+      return r.problem + (r.kind == Expansion::Kind::kUnavailable ? " (a capability the profile lacks)" : "");
+    if (auto e = check_field(d, r.matcher, captures)) return e;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> Session::run_send(const Step& step) {
+  Step s = step;
+  if (auto e = expand_fields(s, expr_context())) return "cannot build the command: " + *e;
   auto bytes = step_bytes(s, profile.address, captures);
   if (!bytes) return "cannot build the command: " + bytes.error().message();
   const Bytes wire = apply_modifiers(bytes.value(), s.modifiers);
@@ -115,25 +157,71 @@ std::optional<std::string> Session::run_send(const Step& s) {
   }
   const FrameDescription d = describe_frame(reply);
   if (s.expect.kind == Expectation::Kind::kAck && d.error) return "reply does not decode: " + d.error->message();
-  for (const auto& m : s.expect.fields)
-    if (auto e = check_field(d, m, captures)) return e;
-  return std::nullopt;
+  return check_matchers(d, s.expect.fields);
 }
 
+// A poll without a timeout of its own waits as long as the longest move it
+// can be waiting for takes (motion::longest_move: slow speed, both ramps):
+// the distance from the first reply's position to each position the poll
+// waits for, or every axis's whole range when it waits for none; then half
+// as long again and 10 s more. At most an hour.
+std::chrono::milliseconds Session::poll_timeout(const Step& s, const FrameDescription& first_reply) {
+  using std::chrono::milliseconds;
+  milliseconds longest{0};
+  bool named = false;
+  for (const auto& m : s.until) {
+    const auto axis = motion::axis_of_field(m.field);
+    if (!axis) continue;
+    const ResolvedMatcher r = resolve_matcher(m, expr_context());
+    const auto field = std::find_if(first_reply.fields.begin(), first_reply.fields.end(),
+                                    [&](const FieldDescription& f) { return f.name == m.field; });
+    if (r.kind != Expansion::Kind::kValue || field == first_reply.fields.end()) continue;
+    const auto now_at = matcher_number(*field);
+    if (!now_at || r.matcher.kind == FieldMatcher::Kind::kRegex || r.matcher.kind == FieldMatcher::Kind::kAny) continue;
+    const double target = (r.matcher.low + r.matcher.high) / 2;
+    longest = std::max(longest, motion::longest_move(motion::profile_of(profile, *axis), target - *now_at));
+    named = true;
+  }
+  if (!named)
+    for (auto axis : {motion::Axis::kAz, motion::Axis::kEl, motion::Axis::kPol}) {
+      const AxisProfile& a = motion::profile_of(profile, axis);
+      longest = std::max(longest, motion::longest_move(a, a.max_deg - a.min_deg));
+    }
+  return std::min<milliseconds>(longest * 3 / 2 + milliseconds(10000), milliseconds(3600000));
+}
+
+// Repeats the send until `until` holds. In a vector that moves the antenna,
+// a poll ends as soon as every axis has shown stopped for kStoppedPolls
+// polls in a row with `until` still unmet: a mount that stops in the wrong
+// place fails in seconds, not at the timeout.
 std::optional<std::string> Session::run_poll(const Step& s) {
-  const TimePoint end = transport.now() + s.timeout;
+  constexpr int kStoppedPolls = 3;
+  const TimePoint start = transport.now();
+  std::chrono::milliseconds timeout = s.timeout;
+  if (!s.timeout_text.empty()) {
+    const Number n = expand_number(s.timeout_text, expr_context());
+    if (n.kind != Expansion::Kind::kValue) return "poll: timeout_ms: " + n.text;
+    timeout = std::chrono::milliseconds(static_cast<std::int64_t>(n.value));
+  }
   Step probe = s;
   probe.kind = Step::Kind::kSend;
+  int stopped_polls = 0;
   while (true) {
     if (auto e = run_send(probe)) return "poll: " + *e;
     // The reply of the last exchange, checked against `until`.
     const Bytes reply = last_replies().empty() ? Bytes{} : encode_frame(last_replies()[0]);
     const FrameDescription d = describe_frame(reply);
-    std::optional<std::string> unmet;
-    for (const auto& m : s.until)
-      if (!unmet) unmet = check_field(d, m, captures);
+    const std::optional<std::string> unmet = check_matchers(d, s.until);
     if (!unmet) return std::nullopt;
-    if (transport.now() >= end) return "poll timed out after " + std::to_string(s.timeout.count()) + " ms: " + *unmet;
+    if (timeout.count() == 0) timeout = poll_timeout(s, d);
+    if (vector_moves && every_axis_stopped(d).value_or(false)) {
+      if (++stopped_polls >= kStoppedPolls)
+        return "poll: the mount stopped (every axis idle for " + std::to_string(kStoppedPolls) +
+               " polls) before the poll's condition held: " + *unmet;
+    } else {
+      stopped_polls = 0;
+    }
+    if (transport.now() - start >= timeout) return "poll timed out after " + std::to_string(timeout.count()) + " ms: " + *unmet;
     if (options.stop && options.stop()) return "stopped";
     transport.pause(s.interval);
   }
@@ -141,9 +229,16 @@ std::optional<std::string> Session::run_poll(const Step& s) {
 
 std::optional<std::string> Session::run_step(const Step& s) {
   switch (s.kind) {
-    case Step::Kind::kWait:
-      transport.pause(s.timeout);
+    case Step::Kind::kWait: {
+      std::chrono::milliseconds wait = s.timeout;
+      if (!s.timeout_text.empty()) {
+        const Number n = expand_number(s.timeout_text, expr_context());
+        if (n.kind != Expansion::Kind::kValue) return "wait: " + n.text;
+        wait = std::chrono::milliseconds(static_cast<std::int64_t>(n.value));
+      }
+      transport.pause(wait);
       return std::nullopt;
+    }
     case Step::Kind::kSend: return run_send(s);
     case Step::Kind::kPoll: return run_poll(s);
   }

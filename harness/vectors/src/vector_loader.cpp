@@ -520,7 +520,9 @@ void read_range(const YAML::Node& v, const At& at, FieldMatcher& m) {
 }
 
 FieldMatcher read_matcher(const std::string& name, const YAML::Node& v, const At& at, StepContext& cx) {
-  FieldMatcher m{name, FieldMatcher::Kind::kAny, {}, 0, 0, "", cx.file.loc(at.mark)};
+  FieldMatcher m;
+  m.field = name;
+  m.where = cx.file.loc(at.mark);
   if (v.IsNull()) fail(at, "expected a value, any, or a map of eq, one_of, regex, range, capture");
   if (v.IsScalar()) {
     if (!is_quoted(v) && v.Scalar() == "any") return m;

@@ -169,7 +169,9 @@ bool matches(const FieldMatcher& m, const FieldDescription& f) {
     case FieldMatcher::Kind::kEq:
     case FieldMatcher::Kind::kOneOf: return std::find(m.values.begin(), m.values.end(), got) != m.values.end();
     case FieldMatcher::Kind::kRegex: return std::regex_search(got, std::regex(m.values[0]));
-    case FieldMatcher::Kind::kRange: return false;  // not used by the starter files
+    case FieldMatcher::Kind::kRange:
+    case FieldMatcher::Kind::kNear:
+    case FieldMatcher::Kind::kJogged: return false;  // not used by the starter files
   }
   return false;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sabus/harness/expressions.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/transport.hpp"
 #include "sabus/harness/vector.hpp"
@@ -31,6 +32,18 @@ using Captures = std::map<std::string, std::string>;
 // that names the byte range, the field, what was expected and what came, e.g.
 //   byte 36 az status: expected 0x57, got 0x44 (slow, ccw automatic movement in progress)
 std::optional<std::string> check_field(const FrameDescription& reply, const FieldMatcher& m, Captures& captures);
+
+// A matcher with its profile expressions resolved against the device's
+// profile and the vector's captures: eq and one_of values expanded; range
+// bounds, `near` and `jogged` turned into a range with words of their own for
+// the failure message. When `kind` is not kValue, `problem` says why: the
+// capability the profile lacks, or the vector's error.
+struct ResolvedMatcher {
+  Expansion::Kind kind = Expansion::Kind::kValue;
+  FieldMatcher matcher;
+  std::string problem;
+};
+ResolvedMatcher resolve_matcher(const FieldMatcher& m, const ExprContext& cx);
 
 // Applies a step's modifiers to an encoded frame of 7-bit characters.
 Bytes apply_modifiers(Bytes frame, const Modifiers& m);

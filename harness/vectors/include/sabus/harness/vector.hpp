@@ -66,17 +66,30 @@ struct Modifiers {
 // How a reply field is checked. The field is named as describe_frame names it
 // ("az status", "azimuth", "sat name"); a matcher compares the field's raw
 // text ("0x47", "-152.5", "SBS 6" with trailing blanks removed) or, for
-// `range`, its number (degrees, counts, the byte's data bits). When a reply
-// has several fields of that name (31h "reserved": byte 13 and bytes 45-49),
-// the matcher must hold for each of them.
+// `range`, `near` and `jogged`, its number (degrees, counts, the byte's data
+// bits). When a reply has several fields of that name (31h "reserved": byte
+// 13 and bytes 45-49), the matcher must hold for each of them.
+//
+// Values may hold profile expressions ("{home(az)}", expressions.hpp): the
+// runner resolves such a matcher against the device's profile and the
+// vector's captures before it checks it (resolve_matcher, runner.hpp).
 struct FieldMatcher {
-  enum class Kind : std::uint8_t { kEq, kOneOf, kRegex, kRange, kAny };
+  enum class Kind : std::uint8_t {
+    kEq, kOneOf, kRegex, kRange, kAny,
+    kNear,    // values[0]: the target; within the axis's tolerance_deg
+    kJogged,  // values = {from, ms}: where a jog `jog` at `speed` from `from` for `ms` can end (motion.hpp)
+  };
   std::string field;
   Kind kind = Kind::kAny;
-  std::vector<std::string> values;  // eq: one value; one_of: several; regex: the pattern
-  double low = 0, high = 0;         // range, inclusive
+  // eq: one value; one_of: several; regex: the pattern; range: {low, high}
+  // as written; near: {target}; jogged: {from, ms}.
+  std::vector<std::string> values;
+  double low = 0, high = 0;         // range, inclusive, once resolved
   std::string capture;              // "$name": keep the field's text for later steps
   SourceLocation where;
+  char jog = 0, speed = 0;          // jogged: the direction letter (E W D U O L) and F/S
+  std::string near_axis;            // near: "az", "el", "pol" when the field does not name the axis
+  std::string expected;             // a resolved matcher's own words for its failure message
 };
 
 struct Expectation {
@@ -100,7 +113,8 @@ struct Step {
   Modifiers modifiers;
   Expectation expect;                         // send: what must come back; poll: the reply each time
   std::vector<FieldMatcher> until;            // poll: repeat until these hold
-  std::chrono::milliseconds timeout{0};       // poll: give up after; wait: how long
+  std::chrono::milliseconds timeout{0};       // poll: give up after (0: derived, see the runner); wait: how long
+  std::string timeout_text;                   // wait / poll timeout as a profile expression, when written so
   std::chrono::milliseconds interval{1000};   // poll: between polls (§4 pacing)
   SourceLocation where;
 };
