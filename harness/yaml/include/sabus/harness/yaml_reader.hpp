@@ -1,5 +1,6 @@
 // Strict reading of YAML with yaml-cpp 0.7, shared by the loaders of device
-// profiles (profile_loader.cpp) and conformance vectors (harness/vectors/src/).
+// profiles (harness/profile/src/profile_loader.cpp) and conformance vectors
+// (harness/vectors/src/).
 // Internal to the harness: a header-only library of its own (harness/yaml),
 // linked privately by the two loaders' libraries.
 //
