@@ -5,6 +5,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "sabus/protocol/receiver.hpp"
+
 namespace sabus {
 namespace {
 
@@ -289,6 +291,37 @@ std::string address_text(std::uint8_t a) {
   return buf;
 }
 
+// Byte 0 of the command frame a slave's receiver last began in `b`, complete
+// or not: the last frame it reports, or the last run it discards that begins
+// with STX (bad LRC, another address, cut short, ...). So the frame is the
+// one the last STX begins (READING-NOTES 7: an STX restarts reception in
+// state 2 or 3), except that an STX where the check byte belongs is the
+// check byte (state 4). nullopt: no STX begins a frame.
+class LastCommandFrame final : public ReceiverSink {
+ public:
+  explicit LastCommandFrame(ByteView bytes) : bytes_(bytes) {}
+  void on_frame(const FrameView& f) override { start_ = static_cast<std::size_t>(f.offset); }
+  void on_discard(const Discard& d) override {
+    if (d.reason != DiscardReason::kUnknown && d.offset < bytes_.size() && bytes_[d.offset] == STX)
+      start_ = static_cast<std::size_t>(d.offset);
+  }
+  std::optional<std::size_t> start() const { return start_; }
+
+ private:
+  ByteView bytes_;
+  std::optional<std::size_t> start_;
+};
+
+std::optional<std::size_t> command_frame_start(ByteView b) {
+  ReceiverOptions options = ReceiverOptions::slave_any_address();
+  options.parity = Parity::kNone;  // 7-bit characters, as a vector's send is written
+  Receiver receiver(options);
+  LastCommandFrame last(b);
+  receiver.feed(b, last);
+  receiver.finish(last);
+  return last.start();
+}
+
 }  // namespace
 
 std::string_view AutoMove::form_id() const {
@@ -317,25 +350,22 @@ std::string_view form_of(const Request& r) {
 
 CommandForm classify_command(ByteView b) {
   CommandForm out;
-  // The frame is the one the last STX begins; the final byte is a check
-  // byte, which may itself be 02h.
-  std::size_t start = b.empty() ? 0 : b.size() - 1;
-  while (start > 0 && b[start - 1] != STX) --start;
-  if (start == 0 || start + 1 >= b.size()) return out;
-  out.info = find_command(b[start + 1]);
+  const std::optional<std::size_t> start = command_frame_start(b);
+  if (!start || *start + 2 >= b.size()) return out;
+  out.info = find_command(b[*start + 2]);
   if (!out.info) return out;
   if (out.info->forms.size() == 1) {
     out.form = &out.info->forms.front();
     return out;
   }
-  if (auto frame = decode_frame(ByteView(b).subspan(start - 1)); frame) {
+  if (auto frame = decode_frame(ByteView(b).subspan(*start)); frame) {
     if (auto request = decode_request(frame.value()); request) {
       out.form = out.info->form_by_id(form_of(request.value()));
       return out;
     }
   }
   if (out.info->form_selector_offset) {
-    const std::size_t at = start - 1 + *out.info->form_selector_offset;
+    const std::size_t at = *start + *out.info->form_selector_offset;
     if (at < b.size()) out.form = out.info->form_for_selector(b[at]);
   }
   return out;

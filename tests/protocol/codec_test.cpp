@@ -365,5 +365,38 @@ TEST(Replies, FieldErrorAtTheEndOfAFieldNamesItsLastByte) {
   ASSERT_FALSE(e2.ok());
   EXPECT_LE(e2.error().offset, 20u);
 }
+
+// classify_command reads the frame a slave would be reading when the bytes
+// end (READING-NOTES 7), complete or damaged.
+std::string classified(const Bytes& bytes) {
+  const CommandForm cf = classify_command(bytes);
+  if (!cf.info) return "none";
+  if (!cf.form) return std::string(cf.info->key) + " (form unknown)";
+  return std::string(cf.info->key) + (cf.form->id.empty() ? "" : " " + std::string(cf.form->id));
+}
+
+TEST(ClassifyCommand, TheLastFrameAStxBegins) {
+  EXPECT_EQ(classified(test::hex("02 32 31 03 02")), "status") << "a check byte of 02h starts nothing";
+  EXPECT_EQ(classified(test::concat({test::hex("02"), command('2', 0x31)})), "status") << "STX STX: the second one";
+  EXPECT_EQ(classified(test::concat({command('2', 0x30), command('2', 0x31)})), "status");
+  EXPECT_EQ(classified(command('2', 0x32, " -152500456")), "auto_move 2A");
+  EXPECT_EQ(classified(command('2', 0x33, "EF0050")), "jog E");
+}
+
+TEST(ClassifyCommand, DamagedFramesByTheirSelectorByte) {
+  Bytes bad_lrc = command('2', 0x33, "WF0050");
+  bad_lrc.back() ^= 0x01;
+  EXPECT_EQ(classified(bad_lrc), "jog W");
+  EXPECT_EQ(classified(command('2', 0x33, "UFxx50")), "jog U") << "the duration does not decode";
+  EXPECT_EQ(classified(test::hex("02 32 33 51")), "jog (form unknown)") << "cut short, no such selector";
+  EXPECT_EQ(classified(test::hex("02 12 31 03 22")), "status") << "an address no device has (§1 State 2 b)";
+}
+
+TEST(ClassifyCommand, NoCommandFrame) {
+  EXPECT_EQ(classified(test::hex("")), "none");
+  EXPECT_EQ(classified(test::hex("32 31 03")), "none") << "no STX";
+  EXPECT_EQ(classified(test::hex("02 32")), "none") << "no command byte";
+  EXPECT_EQ(classified(command('2', 0x5A)), "none") << "not a catalog code";
+}
 }  // namespace
 }  // namespace sabus

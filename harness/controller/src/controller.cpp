@@ -1,5 +1,6 @@
 // The reference controller's state, motion and replies. The command handlers
-// are in handlers.cpp; the line side (receivers, multi-drop) in bus.cpp.
+// are in handlers*.cpp (handlers.hpp); the line side (receivers, multi-drop)
+// in bus.cpp.
 #include "sabus/harness/controller.hpp"
 
 #include <algorithm>

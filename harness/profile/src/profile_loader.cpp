@@ -1,6 +1,7 @@
 // Device profiles in YAML (vectors/profiles/README.md is the schema): the
-// loader, which rejects a bad file with the key's line and column, and the
-// writer, whose output the loader reads back to an equal profile.
+// loader, which rejects a bad file with the key's line and column. The
+// writer (to_yaml, profile_writer.cpp) writes what it reads back to an equal
+// profile; the names both spell enumerations with are profile_tables.hpp.
 //
 // The strict reading itself (marks, duplicate keys, scalars without as<T>(),
 // the stray-',' guard) is yaml_reader.hpp, shared with the vector loader.
@@ -15,16 +16,18 @@
 #include <initializer_list>
 #include <span>
 
-#include "sabus/protocol/frame.hpp"
+#include "profile_tables.hpp"
 #include "sabus/harness/yaml_reader.hpp"
+#include "sabus/protocol/frame.hpp"
 
 namespace sabus::harness {
 namespace {
 
 using namespace yaml_reader;
+using namespace profile_internal;
 
 // ---------------------------------------------------------------------------
-// Limits and name tables (one table per fact: the writer uses them too)
+// Limits
 // ---------------------------------------------------------------------------
 
 // A profile is a few kilobytes; anything near this is not a profile, and the
@@ -39,45 +42,6 @@ constexpr std::size_t kTleLine = 69;       // §3.12 "69 characters (including c
 // Positions as the 6-character fields of §3.2 carry them (E-12), with room for
 // a fluxgate azimuth of 0.0-359.9 (§3.2 NOTE).
 constexpr double kPositionMin = -180.0, kPositionMax = 360.0;
-
-template <class T>
-struct Named {
-  std::string_view name;
-  T value;
-};
-
-constexpr Named<PolType> kPolTypes[] = {
-    {"circular", PolType::kCircular}, {"single_port", PolType::kSinglePort}, {"dual_port", PolType::kDualPort}};
-constexpr Named<AzSensor> kAzSensors[] = {{"pot", AzSensor::kPot},
-                                          {"pulse", AzSensor::kPulse},
-                                          {"resolver", AzSensor::kResolver},
-                                          {"fluxgate", AzSensor::kFluxgate}};
-constexpr Named<OfflineUnknown> kOfflineUnknown[] = {{"nak", OfflineUnknown::kNak},
-                                                     {"offline", OfflineUnknown::kOffline}};
-constexpr Named<TrackActivity> kTrackActivities[] = {{"idle", TrackActivity::kIdle},
-                                                     {"peaking", TrackActivity::kPeaking},
-                                                     {"searching", TrackActivity::kSearching},
-                                                     {"error", TrackActivity::kError}};
-constexpr Named<char> kTrackBands[] = {{"C", 'C'}, {"K", 'K'}};  // §3.2 byte 40 / §3.7 'T'
-// §3.22 byte 3 'XXX' (110 is not defined for lat/lon).
-constexpr Named<std::uint8_t> kLatLonSources[] = {{"none", 1},   {"gps", 2},   {"manual", 3},
-                                                  {"preset", 4}, {"saved", 5}, {"remote", 7}};
-// §3.22 byte 29 'XXX'.
-constexpr Named<std::uint8_t> kHeadingSources[] = {{"none", 1},     {"fluxgate_auto", 2}, {"fluxgate_manual", 3},
-                                                   {"manual", 4},   {"user_fix", 5},      {"dvb_receiver", 6},
-                                                   {"remote", 7}};
-// §3.2 bytes 36-38 'XXXX': the alarm codes 1000-1100.
-constexpr Named<std::uint8_t> kAxisAlarms[] = {{"none", 0},     {"off_axis", 8}, {"sensor_direction", 9},
-                                               {"runaway", 10}, {"jammed", 11},  {"drive", 12}};
-// ERRATA E-2: CONFIG items 1-6.
-constexpr int kBauds[] = {300, 600, 1200, 2400, 4800, 9600};
-
-template <class T, std::size_t N>
-std::string names_of(const Named<T> (&table)[N]) {
-  std::string out;
-  for (const auto& n : table) out += (out.empty() ? "" : ", ") + std::string(n.name);
-  return out;
-}
 
 // ---------------------------------------------------------------------------
 // Scalars
@@ -490,177 +454,5 @@ ProfileResult load_profile_file(const std::string& path) {
 }
 
 std::string default_profile_path() { return SABUS_SOURCE_DIR "/vectors/profiles/rc3000-1.59.yaml"; }
-
-// ---------------------------------------------------------------------------
-// Writing
-// ---------------------------------------------------------------------------
-namespace {
-
-// A double-quoted YAML string: the loader's text fields are printable ASCII,
-// anything else is escaped so the output stays well-formed YAML.
-std::string quoted(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (u < 0x20 || u == 0x7F) {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[u >> 4];
-      out += kHex[u & 0xF];
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-std::string tenths_text(std::int32_t t) {
-  long long a = std::llabs(static_cast<long long>(t));
-  return (t < 0 ? "-" : "") + std::to_string(a / 10) + "." + std::to_string(a % 10);
-}
-std::string bool_text(bool b) { return b ? "true" : "false"; }
-std::string opt_text(const std::optional<std::int32_t>& v, std::string (*text)(std::int32_t)) {
-  return v ? text(*v) : "~";
-}
-std::string int_text(std::int32_t v) { return std::to_string(v); }
-
-std::string minutes_text(const std::optional<std::int32_t>& m, int width, char pos, char neg) {
-  if (!m) return "~";
-  int a = std::abs(*m);
-  std::string deg = std::to_string(a / 60);
-  std::string min = std::to_string(a % 60);
-  return quoted(std::string(static_cast<std::size_t>(std::max(0, width - static_cast<int>(deg.size()))), '0') + deg +
-                "." + (min.size() < 2 ? "0" : "") + min + " " + (*m < 0 ? neg : pos));
-}
-
-template <class T, std::size_t N>
-std::string name_text(const Named<T> (&table)[N], T value) {
-  for (const auto& n : table)
-    if (n.value == value) return std::string(n.name);
-  return std::to_string(static_cast<long long>(value));  // a raw source code 1-7
-}
-
-std::string item_text(std::span<const fields::ChoiceItem> items, char ch, bool by_char) {
-  for (const auto& i : items)
-    if (i.ch == ch) return by_char ? std::string(1, ch) : std::string(i.meaning);
-  return quoted(std::string(1, ch));  // not in the table: the loader will say so
-}
-
-using Pairs = std::initializer_list<std::pair<std::string_view, std::string>>;
-std::string flow(Pairs pairs) {
-  std::string out = "{";
-  for (const auto& [k, v] : pairs) out += (out.size() > 1 ? ", " : "") + std::string(k) + ": " + v;
-  return out + "}";
-}
-
-std::string axis_text(const AxisProfile& a) {
-  return flow({{"fast_dps", number_text(a.fast_dps)},
-               {"slow_dps", number_text(a.slow_dps)},
-               {"min_deg", number_text(a.min_deg)},
-               {"max_deg", number_text(a.max_deg)},
-               {"initial_deg", number_text(a.initial_deg)},
-               {"has_stow_limit", bool_text(a.has_stow_limit)},
-               {"stow_deg", number_text(a.stow_deg)}});
-}
-
-// A list of flow maps, one entry a line; "[]" when empty.
-template <class T, class F>
-void write_list(std::string& out, std::string_view key, const std::vector<T>& items, F&& entry) {
-  out += std::string(key) + ":" + (items.empty() ? " []\n" : "\n");
-  for (const auto& item : items) out += "  - " + entry(item) + "\n";
-}
-
-}  // namespace
-
-std::string to_yaml(const Profile& p) {
-  std::string out;
-  auto line = [&out](std::string_view key, const std::string& value) { out += std::string(key) + ": " + value + "\n"; };
-  auto sub = [&out](std::string_view key, const std::string& value) { out += "  " + std::string(key) + ": " + value + "\n"; };
-  line("name", quoted(p.name));
-  line("address", std::to_string(p.address));
-  {
-    std::string peers;
-    for (auto a : p.bus_peers) peers += (peers.empty() ? "" : ", ") + std::to_string(a);
-    line("bus_peers", "[" + peers + "]");
-  }
-  line("remote_enabled", bool_text(p.remote_enabled));
-  line("baud", std::to_string(p.baud));
-  line("firmware", quoted(p.firmware));
-  line("polarization", name_text(kPolTypes, p.pol_type));
-  line("azimuth_sensor", name_text(kAzSensors, p.az_sensor));
-  line("hundredths", bool_text(p.hundredths));
-  line("stow", bool_text(p.stow));
-  line("deploy", bool_text(p.deploy));
-  line("dvb_receiver", bool_text(p.dvb_receiver));
-  line("counts_per_degree", number_text(p.counts_per_degree));
-  line("count_offset", std::to_string(p.count_offset));
-  out += "axes:\n";
-  sub("az", axis_text(p.az));
-  sub("el", axis_text(p.el));
-  sub("pol", axis_text(p.pol));
-  line("turnaround_ms", number_text(p.turnaround_ms));
-  line("agc", std::to_string(p.agc));
-  write_list(out, "store", p.store, [](const StoredSatellite& s) {
-    return flow({{"name", quoted(s.name)},
-                 {"az_deg", number_text(s.az_deg)},
-                 {"el_deg", number_text(s.el_deg)},
-                 {"h_pol_deg", number_text(s.h_pol_deg)},
-                 {"v_pol_deg", number_text(s.v_pol_deg)}});
-  });
-  write_list(out, "presets", p.presets, [](const PresetSatellite& s) {
-    return flow({{"index", std::to_string(s.index)},
-                 {"name", quoted(s.data.name)},
-                 {"longitude", opt_text(s.data.longitude, tenths_text)},
-                 {"inclination", opt_text(s.data.inclination, int_text)},
-                 {"band", item_text(layouts::kBands, s.data.band, false)},
-                 {"ephemeris", item_text(layouts::kEphemeris, s.data.ephemeris, false)},
-                 {"pol_offset", opt_text(s.data.pol_offset, tenths_text)},
-                 {"dual_band", bool_text(s.dual_band)}});
-  });
-  write_list(out, "tles", p.tles, [](const TleSet& t) {
-    return flow({{"index", std::to_string(t.index)}, {"line1", quoted(t.line1)}, {"line2", quoted(t.line2)}});
-  });
-  write_list(out, "signposts", p.signposts, [](const Signpost& s) {
-    return flow({{"index", std::to_string(s.index)},
-                 {"longitude", opt_text(s.data.longitude, tenths_text)},
-                 {"frequency", opt_text(s.data.frequency, int_text)},
-                 {"symbol_rate", opt_text(s.data.symbol_rate, int_text)},
-                 {"fec", item_text(layouts::kFec, s.data.fec, false)},
-                 {"polarization", item_text(layouts::kSignpostPol, s.data.polarization, true)},
-                 {"id", quoted(s.data.id)},
-                 {"priority", std::to_string(s.data.priority)}});
-  });
-  const Navigation& nav = p.navigation;
-  out += "navigation:\n";
-  sub("latlon_source", name_text(kLatLonSources, nav.latlon_source));
-  sub("latitude", minutes_text(nav.latitude_min, 2, 'N', 'S'));
-  sub("longitude", minutes_text(nav.longitude_min, 3, 'E', 'W'));
-  sub("heading_source", name_text(kHeadingSources, nav.heading_source));
-  sub("heading", opt_text(nav.heading_tenths, tenths_text));
-  sub("magvar", opt_text(nav.magvar_tenths, tenths_text));
-  out += "track:\n";
-  sub("active", bool_text(p.track.active));
-  sub("activity", name_text(kTrackActivities, p.track.activity));
-  sub("band", name_text(kTrackBands, p.track.band));
-  sub("dual_band", bool_text(p.track.dual_band));
-  out += "alarms:\n";
-  sub("az", name_text(kAxisAlarms, p.alarms.az));
-  sub("el", name_text(kAxisAlarms, p.alarms.el));
-  sub("pol", name_text(kAxisAlarms, p.alarms.pol));
-  sub("code", std::to_string(p.alarms.code));
-  out += "errata:\n";
-  sub("stx_restarts_in_data", bool_text(p.stx_restarts_in_data));
-  sub("unknown_command_while_offline", name_text(kOfflineUnknown, p.unknown_command_while_offline));
-  sub("implements_signal_strength", bool_text(p.implements_signal_strength));
-  sub("implements_iess", bool_text(p.implements_iess));
-  sub("nak_bad_tle_checksum", bool_text(p.nak_bad_tle_checksum));
-  sub("locate_index_min", std::to_string(p.locate_index_min));
-  sub("locate_index_max", std::to_string(p.locate_index_max));
-  sub("restore_lost_locate_exit", bool_text(p.restore_lost_locate_exit));
-  return out;
-}
 
 }  // namespace sabus::harness

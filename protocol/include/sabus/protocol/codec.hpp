@@ -54,9 +54,10 @@ FrameDescription describe_frame(ByteView frame_bytes);
 std::string_view form_of(const Request& request);
 
 // The command and form of the command frame that ends a byte sequence (the
-// frame from its last STX: READING-NOTES 7), however damaged: the request's
-// form when it decodes, else the form the selector byte picks, else none.
-// For coverage matrices and reports; `info` is null for an unknown code.
+// frame a slave's receiver last began: from the last STX, READING-NOTES 7),
+// however damaged: the request's form when it decodes, else the form the
+// selector byte picks, else none. For coverage matrices and reports; `info`
+// is null for an unknown code.
 struct CommandForm {
   const CommandInfo* info = nullptr;
   const FormInfo* form = nullptr;

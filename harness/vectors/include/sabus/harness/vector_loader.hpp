@@ -14,6 +14,10 @@
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/vector.hpp"
 
+namespace YAML {
+class Node;
+}
+
 namespace sabus::harness {
 
 // A file with any load error is left out of `files` (lint the rest): its
@@ -26,6 +30,11 @@ struct LoadResult {
 };
 
 LoadResult load_vector_text(const std::string& yaml, const std::string& name);
+// The schema alone: a vector file already parsed into a YAML tree (what
+// load_vector_text reads after its size check and the parser; fuzz targets
+// build trees in code). Errors point at the marks the tree's nodes carry
+// (line 0 for a node built in code).
+LoadResult load_vector_tree(const YAML::Node& root, const std::string& name);
 LoadResult load_vector_file(const std::string& path);
 // Files, or directories searched recursively for *.yaml (except the folders
 // profiles/, examples/ and regression/ below a directory given).

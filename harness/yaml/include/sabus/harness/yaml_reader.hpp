@@ -1,5 +1,6 @@
 // Strict reading of YAML with yaml-cpp 0.7, shared by the loaders of device
-// profiles (profile_loader.cpp) and conformance vectors (vector_loader.cpp).
+// profiles (harness/profile/src/profile_loader.cpp) and conformance vectors
+// (harness/vectors/src/).
 // Internal to the harness: a header-only library of its own (harness/yaml),
 // linked privately by the two loaders' libraries.
 //
@@ -58,9 +59,14 @@ struct Failure {
 [[noreturn]] inline void fail(const At& at, std::string message) { throw Failure{at, std::move(message)}; }
 
 // User text in a message, cut short so a message stays one line.
+// (Appended, not "\"" + std::string(...): GCC 12 warns falsely, -Wrestrict,
+// where that operator+ is inlined.)
 inline std::string quoted_clip(std::string_view s) {
   constexpr std::size_t kMax = 40;
-  return "\"" + std::string(s.substr(0, kMax)) + (s.size() > kMax ? "...\"" : "\"");
+  std::string out = "\"";
+  out.append(s.substr(0, kMax));
+  out += s.size() > kMax ? "...\"" : "\"";
+  return out;
 }
 
 // The shortest text that reads back to exactly `d`.

@@ -1,0 +1,203 @@
+// The handlers of the commands that move the antenna: §3.3 Auto Move (all
+// five forms), §3.4 / §3.24 Jog, §3.5 Polarization preset, §3.18 Remote
+// Locate.
+#include <algorithm>
+#include <cmath>
+
+#include "handlers.hpp"
+
+namespace sabus::harness {
+namespace {
+
+constexpr std::chrono::milliseconds kJogTick{50};        // §3.4: timer resolution ~50 ms
+
+// §3.4: "any move will be for a time interval equal to a multiple of approx.
+// 50 milliseconds": a duration is rounded up to the timer's resolution.
+Duration jog_duration(std::uint32_t ms) {
+  const auto ticks = (ms + kJogTick.count() - 1) / kJogTick.count();
+  return std::chrono::duration_cast<Duration>(kJogTick * ticks);
+}
+
+// Geostationary look angles from the mount's position, for LOCATE (§3.18).
+std::pair<double, double> look_angles(double site_lat_deg, double site_lon_deg, double sat_lon_deg) {
+  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kRatio = 0.1513;  // earth radius / geostationary orbit radius
+  const double lat = site_lat_deg * kPi / 180, dlon = (sat_lon_deg - site_lon_deg) * kPi / 180;
+  const double c = std::cos(lat) * std::cos(dlon);
+  const double el = std::atan2(c - kRatio, std::sqrt(std::max(0.0, 1 - c * c))) * 180 / kPi;
+  double az = std::atan2(std::tan(dlon), std::sin(lat)) * 180 / kPi;  // from south
+  return {std::clamp(az, -180.0, 180.0), el};
+}
+
+}  // namespace
+
+// ---- §3.3 Auto Move -----------------------------------------------------------
+Outcome Handlers::auto_move(C& c, const Frame& f, const AutoMove& m) {
+  return std::visit([&](const auto& form) { return auto_move_form(c, f, form); }, m.form);
+}
+
+std::optional<StoredSatellite> Handlers::find_stored(const C& c, std::string_view name) {
+  for (const auto& s : c.state_.store)
+    if (s.name == name) return s;
+  return std::nullopt;
+}
+
+bool Handlers::target_ok(const C& c, AxisId a, double deg) {
+  const AxisProfile& p = c.axis_profile(a);
+  return deg >= p.min_deg - 1e-9 && deg <= p.max_deg + 1e-9;
+}
+
+Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveStored& m) {
+  const auto sat = find_stored(c, m.name);
+  if (!sat) return nak(c, 0x32, NakRule::kUnknownSatellite, "\"" + m.name + "\"");
+  if (m.pol != ' ' && c.profile_.pol_type == PolType::kCircular && !c.faults_.has(Fault::kCircularPolAcked))
+    return nak(c, 0x32, NakRule::kPolWithCircularFeed);
+  take_remote_control(c);
+  c.start_move(AxisId::kAz, sat->az_deg, true);
+  c.start_move(AxisId::kEl, sat->el_deg, true);
+  if (m.pol != ' ' && c.profile_.pol_type != PolType::kCircular) {
+    // §3.5: a dual-port feed has one position per satellite.
+    const bool dual = c.profile_.pol_type == PolType::kDualPort;
+    c.start_move(AxisId::kPol, m.pol == 'H' || dual ? sat->h_pol_deg : sat->v_pol_deg, true);
+    c.state_.pol_code = m.pol;
+  }
+  c.state_.displayed_sat = sat->name;
+  c.state_.last_target = sat;
+  return status(c, 0x32, "auto move (form 1) to " + sat->name);
+}
+
+Outcome Handlers::auto_move_form(C& c, const Frame& f, const AutoMoveAzEl& m) {
+  // READING-NOTES 31: a field that names a stored satellite is form 1.
+  const std::string field(f.data.begin() + 1, f.data.end());
+  std::string name = field;
+  while (!name.empty() && name.back() == ' ') name.pop_back();
+  if (find_stored(c, name)) return auto_move_form(c, f, AutoMoveStored{' ', name});
+  return move_az_el(c, m.az / 10.0, m.el / 10.0, "auto move (form 2A)");
+}
+
+// Forms 2A and 2B: both axes to a target, or NAK when it is outside the limits.
+Outcome Handlers::move_az_el(C& c, double az, double el, std::string note) {
+  if (!target_ok(c, AxisId::kAz, az) || !target_ok(c, AxisId::kEl, el))
+    return nak(c, 0x32, NakRule::kTargetOutOfRange);
+  take_remote_control(c);
+  c.start_move(AxisId::kAz, az, true);
+  c.start_move(AxisId::kEl, el, true);
+  c.state_.displayed_sat.clear();
+  return status(c, 0x32, std::move(note));
+}
+
+Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveCounts& m) {
+  if (c.profile_.az_sensor != AzSensor::kPulse && c.profile_.az_sensor != AzSensor::kResolver)
+    return nak(c, 0x32, NakRule::kNoCountSensors);
+  return move_az_el(c, c.position_of_counts(m.az), c.position_of_counts(m.el), "auto move (form 2B)");
+}
+
+Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveAxis& m) {
+  if (!c.profile_.hundredths) return nak(c, 0x32, NakRule::kNoHundredths);
+  const AxisId a = m.axis == 'A' ? AxisId::kAz : AxisId::kEl;
+  const double target = m.target / 100.0;
+  if (!target_ok(c, a, target)) return nak(c, 0x32, NakRule::kTargetOutOfRange);
+  take_remote_control(c);
+  c.start_move(a, target, true);
+  return status(c, 0x32, "auto move (form 2C)");
+}
+
+Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMovePol& m) {
+  if (c.profile_.pol_type == PolType::kCircular && !c.faults_.has(Fault::kCircularPolAcked))
+    return nak(c, 0x32, NakRule::kPolWithCircularFeed);
+  const double target = m.pol / 10.0;
+  if (!target_ok(c, AxisId::kPol, target)) return nak(c, 0x32, NakRule::kTargetOutOfRange);
+  take_remote_control(c);
+  if (c.profile_.pol_type != PolType::kCircular) c.start_move(AxisId::kPol, target, true);
+  return status(c, 0x32, "auto move (form 3)");
+}
+
+// ---- §3.4 / §3.24 Jog ---------------------------------------------------------
+Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
+  const bool pol = j.direction == 'O' || j.direction == 'L';
+  if (j.direction != 'X') {
+    if (pol && c.profile_.pol_type == PolType::kCircular && !c.faults_.has(Fault::kCircularPolAcked))
+      return nak(c, code, NakRule::kJogPolCircular);
+    if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
+    const AxisId a = j.direction == 'E' || j.direction == 'W' ? AxisId::kAz
+                     : j.direction == 'D' || j.direction == 'U' ? AxisId::kEl
+                                                                : AxisId::kPol;
+    const int dir = j.direction == 'W' || j.direction == 'U' || j.direction == 'L' ? +1 : -1;
+    if (c.limit(a, dir) && !c.faults_.has(Fault::kJogIntoLimitAcked)) return nak(c, code, NakRule::kJogIntoLimit);
+    // §3.4: in TRACK, X/E/W/D/U hand control to REMOTE; pol jogs do not.
+    if (!pol || !c.state_.track.active) take_remote_control(c);
+    // §3.4: "the controller can only support a remote jog about a single axis".
+    if (!c.faults_.has(Fault::kSecondAxisJogKeepsFirst))
+      for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
+        if (other != a && c.axis(other).motion == AxisState::Motion::kJog)
+          c.axis(other).motion = AxisState::Motion::kIdle;
+    const double before = c.axis(a).position;
+    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));
+    if (code == 0x47) return jog_position(c, a, before);
+    return status(c, code, "jog " + std::string(1, j.direction));
+  }
+  // 'X': stop all movement (speed and duration are still required, READING-NOTES 14).
+  if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
+  take_remote_control(c);
+  const double az = c.state_.az.position;
+  c.stop_all();
+  if (code == 0x47) return jog_position(c, AxisId::kAz, az);  // ERRATA E-46
+  return status(c, code, "stop all movement");
+}
+
+// §3.24: "the position (at the time the command is received) of the axis".
+Outcome Handlers::jog_position(C& c, AxisId a, double position) {
+  JogPositionReply r;
+  r.axis = a == AxisId::kAz ? 'A' : a == AxisId::kEl ? 'E' : 'P';
+  const bool no_feed = a == AxisId::kPol && c.profile_.pol_type == PolType::kCircular;
+  r.position = no_feed ? std::nullopt : std::optional<std::int32_t>(static_cast<std::int32_t>(std::lround(position * 10)));
+  return ack(c, 0x47, r);
+}
+
+// ---- §3.5 Polarization preset ---------------------------------------------------
+Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
+  if (c.profile_.pol_type == PolType::kCircular && !c.faults_.has(Fault::kCircularPolAcked))
+    return nak(c, 0x34, NakRule::kPolPresetCircular);
+  if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
+  // §3.5: during TRACK peaking or search the move waits, and the reply is an ACK.
+  if (track_busy(c)) return status(c, 0x34, "pol preset deferred until peaking ends");
+  const StoredSatellite sat = c.state_.last_target.value_or(c.state_.store.front());
+  const bool dual = c.profile_.pol_type == PolType::kDualPort;
+  take_remote_control(c);
+  if (c.profile_.pol_type != PolType::kCircular) {
+    c.start_move(AxisId::kPol, p.pol == 'H' || dual ? sat.h_pol_deg : sat.v_pol_deg, true);
+    c.state_.pol_code = p.pol;
+  }
+  return status(c, 0x34, std::string("pol preset ") + p.pol);
+}
+
+// ---- §3.18 Remote Locate ------------------------------------------------------------
+Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
+  SatelliteData sat;
+  if (l.preset.preset) {
+    if (l.preset.index < c.profile_.locate_index_min || l.preset.index > c.profile_.locate_index_max)
+      return nak(c, 0x41, NakRule::kLocateIndex, "index " + std::to_string(l.preset.index));
+    const auto& p = l.preset.index >= 1 && l.preset.index <= 20 ? c.state_.presets[l.preset.index - 1] : std::nullopt;
+    if (!p) return nak(c, 0x41, NakRule::kLocateEmptyPreset);
+    sat = p->data;
+  } else {
+    if (!satellite_fields_ok(l.sat) || l.sat.name.empty()) return nak(c, 0x41, NakRule::kLocateField);
+    sat = l.sat;
+  }
+  c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
+  c.state_.displayed_sat = sat.name;
+  c.state_.last_located = sat;
+  const Navigation& nav = c.state_.navigation;
+  if (!nav.latitude_min || !nav.longitude_min) {
+    c.set_state("LOCATE_WAITING_FOR_LAT_LON");
+    return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": waiting for lat/lon");
+  }
+  const auto [az, el] = look_angles(*nav.latitude_min / 60.0, *nav.longitude_min / 60.0, *sat.longitude / 10.0);
+  c.set_state("LOCATE_AZIM_MOVEMENT");
+  c.start_move(AxisId::kAz, az, false);
+  c.start_move(AxisId::kEl, el, false);
+  if (!c.moving()) c.on_motion_done();
+  return ack(c, 0x41, AckReply{}, "locate " + sat.name);
+}
+
+}  // namespace sabus::harness

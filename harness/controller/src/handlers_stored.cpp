@@ -1,0 +1,214 @@
+// The handlers of the controller's stored data: §3.6 Query Name (the STORE
+// list), §3.10-§3.13 preset satellites and TLEs, §3.14 / §3.15 IESS, §3.19
+// Remote Store, §3.20 / §3.21 signposts, §3.22 / §3.23 navigation data.
+#include <algorithm>
+#include <cstdlib>
+
+#include "handlers.hpp"
+
+namespace sabus::harness {
+namespace {
+
+// A TLE line's own checksum (READING-NOTES 19): the last digit is the sum of
+// the other digits, with '-' counting 1, modulo 10.
+bool tle_checksum_ok(const std::string& line) {
+  if (line.size() != 69 || line.back() < '0' || line.back() > '9') return false;
+  int sum = 0;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    if (line[i] >= '0' && line[i] <= '9') sum += line[i] - '0';
+    else if (line[i] == '-') sum += 1;
+  }
+  return sum % 10 == line.back() - '0';
+}
+
+double wrap_pol(double deg) { return deg > 90 ? deg - 180 : deg < -90 ? deg + 180 : deg; }
+
+}  // namespace
+
+// ---- §3.6 Query Name --------------------------------------------------------------
+Outcome Handlers::query_name(C& c, const QueryName& q) {
+  const bool zero_based = c.faults_.has(Fault::kQueryNameZeroBased);
+  const std::size_t first = zero_based ? 0 : 1;
+  if (q.index < first || q.index - first >= c.state_.store.size())
+    return nak(c, 0x35, NakRule::kQueryNameIndex, "index " + std::to_string(q.index));
+  QueryNameReply r;
+  r.index = q.index;
+  r.total = static_cast<std::uint32_t>(c.state_.store.size()) + (c.faults_.has(Fault::kStoreCountOffByOne) ? 1 : 0);
+  r.name = c.state_.store[q.index - first].name;
+  return ack(c, 0x35, r);
+}
+
+Outcome Handlers::write_iess(C& c, const WriteIess& w) {
+  if (w.index < 1 || w.index > c.iess_.size()) return nak(c, 0x3D, NakRule::kIessIndex);
+  c.iess_[w.index - 1] = w.payload;
+  return stored(ack(c, 0x3D, AckReply{}));
+}
+Outcome Handlers::read_iess(C& c, const ReadIess& r) {
+  if (r.index < 1 || r.index > c.iess_.size()) return nak(c, 0x3E, NakRule::kIessIndex);
+  IessDataReply reply;
+  const auto& slot = c.iess_[r.index - 1];
+  if (slot) {
+    reply.index = static_cast<std::uint8_t>(r.index);
+    reply.payload = *slot;
+  } else {
+    reply.index = std::nullopt;
+  }
+  return ack(c, 0x3E, reply);
+}
+
+// ---- §3.10-§3.13 preset satellites and TLEs ---------------------------------------
+Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
+  if (w.index < 1 || w.index > 20) return nak(c, 0x39, NakRule::kSatelliteIndex, "index " + std::to_string(w.index));
+  if (!satellite_fields_ok(w.sat)) return nak(c, 0x39, NakRule::kSatelliteField);
+  if (w.sat.ephemeris != '0' && w.index > 10) return nak(c, 0x39, NakRule::kEphemerisIndex);
+  PresetSatellite p{static_cast<std::uint8_t>(w.index), w.sat, false};
+  if (const auto& old = c.state_.presets[w.index - 1]) p.dual_band = old->dual_band;
+  c.state_.presets[w.index - 1] = p;
+  return stored(ack(c, 0x39, AckReply{}, "preset " + std::to_string(w.index) + " written"));
+}
+Outcome Handlers::read_satellite(C& c, const ReadSatellite& r) {
+  if (r.index < 1 || r.index > 20) return nak(c, 0x3A, NakRule::kSatelliteIndex, "index " + std::to_string(r.index));
+  SatelliteDataReply reply;
+  if (const auto& p = c.state_.presets[r.index - 1]) {
+    reply.index = p->index;
+    reply.sat = p->data;
+  } else {
+    reply.index = empty_index(c);
+  }
+  return ack(c, 0x3A, reply);
+}
+std::optional<std::uint8_t> Handlers::empty_index(const C& c) {
+  // READING-NOTES 18: 7Fh in both index bytes.
+  return c.faults_.has(Fault::kEmptySlotZeros) ? std::optional<std::uint8_t>(0) : std::nullopt;
+}
+Outcome Handlers::write_tle(C& c, const WriteTle& w) {
+  const std::uint32_t max = c.faults_.has(Fault::kTleIndexTo20) ? 20 : 10;
+  if (w.index < 1 || w.index > max) return nak(c, 0x3B, NakRule::kTleIndex, "index " + std::to_string(w.index));
+  if (c.profile_.nak_bad_tle_checksum && (!tle_checksum_ok(w.line1) || !tle_checksum_ok(w.line2)))
+    return nak(c, 0x3B, NakRule::kTleChecksum);
+  if (w.index <= c.state_.tles.size())
+    c.state_.tles[w.index - 1] = TleSet{static_cast<std::uint8_t>(w.index), w.line1, w.line2};
+  return stored(ack(c, 0x3B, AckReply{}, "TLE " + std::to_string(w.index) + " written"));
+}
+Outcome Handlers::read_tle(C& c, const ReadTle& r) {
+  if (r.index < 1 || r.index > 10) return nak(c, 0x3C, NakRule::kTleIndex, "index " + std::to_string(r.index));
+  TleDataReply reply;
+  if (const auto& t = c.state_.tles[r.index - 1]) {
+    reply.index = t->index;
+    reply.line1 = t->line1;
+    reply.line2 = t->line2;
+  } else {
+    reply.index = empty_index(c);
+  }
+  return ack(c, 0x3C, reply);
+}
+
+// ---- §3.19 Remote Store ----------------------------------------------------------------
+Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
+  SatelliteData sat;
+  if (s.preset.preset) {
+    if (s.preset.index < 1 || s.preset.index > 20) return nak(c, 0x42, NakRule::kStoreIndex);
+    const auto& p = c.state_.presets[s.preset.index - 1];
+    if (!p) return nak(c, 0x42, NakRule::kStoreEmptyPreset);
+    sat = p->data;
+  } else {
+    if (!satellite_fields_ok(s.sat) || s.sat.name.empty()) return nak(c, 0x42, NakRule::kStoreField);
+    sat = s.sat;
+  }
+  StoredSatellite entry{sat.name, c.state_.az.position, c.state_.el.position, 0, 0};
+  if (c.profile_.pol_type != PolType::kCircular) {  // "not applicable if feed type is circular"
+    const double pol = c.state_.pol.position;
+    switch (s.pol_selection) {
+      case 'C':
+        if (!c.state_.last_located) return nak(c, 0x42, NakRule::kStoreNeedsLocate);
+        entry.h_pol_deg = *c.state_.last_located->pol_offset / 10.0;
+        entry.v_pol_deg = wrap_pol(entry.h_pol_deg + 90);
+        break;
+      case 'S':
+        if (!in_range(s.h_pos, -900, 900) || !in_range(s.v_pos, -900, 900)) return nak(c, 0x42, NakRule::kStoreField);
+        entry.h_pol_deg = *s.h_pos / 10.0;
+        entry.v_pol_deg = *s.v_pos / 10.0;
+        break;
+      case 'H':
+        entry.h_pol_deg = pol;
+        entry.v_pol_deg = wrap_pol(pol + 90);
+        break;
+      default:  // 'V'
+        entry.v_pol_deg = pol;
+        entry.h_pol_deg = wrap_pol(pol - 90);
+        break;
+    }
+  }
+  auto it = std::find_if(c.state_.store.begin(), c.state_.store.end(),
+                         [&](const StoredSatellite& x) { return x.name == entry.name; });
+  if (it == c.state_.store.end() && c.state_.store.size() >= C::kMaxStored)
+    return nak(c, 0x42, NakRule::kStoreListFull);
+  // "If a particular satellite name has already been STOREd, its data will be overwritten."
+  if (it != c.state_.store.end()) *it = entry;
+  else c.state_.store.push_back(entry);
+  c.enter_mode("STORE_SAT_MODE", "STORE_ENTERING_MODE");
+  c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STORE_SAT_DATA_STORED_OK");
+  return stored(ack(c, 0x42, AckReply{}, "stored " + entry.name));
+}
+
+// ---- §3.20 / §3.21 Signposts -----------------------------------------------------------
+bool Handlers::dvb(const C& c) { return c.profile_.dvb_receiver || c.faults_.has(Fault::kSignpostsWithoutDvb); }
+
+Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
+  if (!dvb(c)) return nak(c, 0x43, NakRule::kNoDvbOption);
+  if (w.index < 1 || w.index > 20) return nak(c, 0x43, NakRule::kSignpostIndex);
+  const SignpostData& d = w.signpost;
+  if (!in_range(d.longitude, -1799, 1800) || !in_range(d.frequency, 10700, 12750) ||
+      !in_range(d.symbol_rate, 1000, 30000))
+    return nak(c, 0x43, NakRule::kSignpostField);
+  c.state_.signposts[w.index - 1] = Signpost{static_cast<std::uint8_t>(w.index), d};
+  return stored(ack(c, 0x43, AckReply{}, "signpost " + std::to_string(w.index) + " written"));
+}
+Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
+  if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
+  if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
+  SignpostDataReply reply;
+  if (const auto& s = c.state_.signposts[r.index - 1]) {
+    reply.index = s->index;
+    reply.signpost = s->data;
+  } else {
+    reply.index = empty_index(c);
+  }
+  return ack(c, 0x44, reply);
+}
+
+// ---- §3.22 / §3.23 Navigation data ---------------------------------------------------
+Outcome Handlers::read_navigation(C& c) {
+  const Navigation& n = c.state_.navigation;
+  NavigationDataReply r;
+  r.latlon_source = n.latlon_source;
+  r.latitude = n.latitude_min;
+  r.longitude = n.longitude_min;
+  r.heading_source = n.heading_source;
+  r.heading = n.heading_tenths;
+  r.magvar_status = n.magvar_tenths ? 1 : 0;
+  r.magvar = n.magvar_tenths;
+  return ack(c, 0x45, r);
+}
+Outcome Handlers::write_navigation(C& c, const WriteNavigation& w) {
+  // sddmm / sdddmm: degrees and minutes in one integer (§3.23).
+  const std::int32_t lat_deg = std::abs(w.latitude) / 100, lat_min = std::abs(w.latitude) % 100;
+  const std::int32_t lon_deg = std::abs(w.longitude) / 100, lon_min = std::abs(w.longitude) % 100;
+  const bool lat_ok = lat_min < 60 && (lat_deg < 90 || (lat_deg == 90 && lat_min == 0));
+  const bool lon_ok = lon_min < 60 && (lon_deg < 180 || (lon_deg == 180 && lon_min == 0));
+  const bool heading_ok = in_range(w.heading, 0, 3599);
+  if (!lat_ok || !lon_ok || !heading_ok)
+    return nak(c, 0x46, NakRule::kNavigationField,
+               !lat_ok ? "latitude" : !lon_ok ? "longitude" : "heading");
+  Navigation& n = c.state_.navigation;
+  n.latlon_source = 0b111;   // remotely entered
+  n.heading_source = 0b111;
+  n.latitude_min = (w.latitude < 0 ? -1 : 1) * (lat_deg * 60 + lat_min);
+  n.longitude_min = (w.longitude < 0 ? -1 : 1) * (lon_deg * 60 + lon_min);
+  n.heading_tenths = w.heading;
+  // §3.23 NOTE: "invalidate (DELETE) any STOREd satellites".
+  if (!c.faults_.has(Fault::kWriteNavKeepsStore)) c.state_.store.clear();
+  return stored(ack(c, 0x46, AckReply{}, "navigation data written, STORE list deleted"));
+}
+
+}  // namespace sabus::harness

@@ -1,0 +1,199 @@
+// The suite linter: what needs the whole suite or the errata beyond one file
+// -- unique ids, flags against notes, errata entries, known tags, the spec
+// quotes, and the motion/destructive tags that keep bench runs safe
+// (READING-NOTES 26, ERRATA E-26).
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/structured.hpp"
+#include "vector_loader_internal.hpp"
+
+namespace sabus::harness::vector_loader_internal {
+namespace {
+
+// Tags a run selects or skips vectors by (vectors/README.md). `motion` and
+// `destructive` are required by the catalog's effects (READING-NOTES 26).
+constexpr std::string_view kKnownTags[] = {"motion",          "destructive", "option:dvb", "pol:circular",
+                                           "pol:single_port", "pol:dual_port", "parity",   "timing",
+                                           "offline",         "multidrop",   "track"};
+
+constexpr std::string_view kErrataPath = SABUS_SOURCE_DIR "/protocol/ERRATA.md";
+// The spec text the quotes come from (protocol/ERRATA.md: "the project reads
+// it from ../shared/spec/"). Outside the repository: skipped when absent.
+constexpr std::string_view kSpecTextPath = SABUS_SOURCE_DIR "/../shared/spec/000_ebbe2d50858e9e24.txt";
+
+// ERRATA.md entries by number ("### E-7: ..."), and whether each is withdrawn.
+struct ErrataIndex {
+  std::optional<std::string> error;
+  std::map<std::size_t, bool> withdrawn;
+};
+
+ErrataIndex read_errata() {
+  ErrataIndex index;
+  std::string error;
+  auto text = read_capped(std::string(kErrataPath), 4 << 20, error);
+  if (!text) {
+    index.error = error;
+    return index;
+  }
+  std::istringstream in(*text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("### E-", 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    std::size_t n = 0;
+    if (colon == std::string::npos || !parse_whole(std::string_view(line).substr(6, colon - 6), n)) continue;
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    index.withdrawn[n] = lower.find("withdrawn") != std::string::npos;
+  }
+  return index;
+}
+
+// Whitespace runs as one blank: the spec text is extracted from a PDF with
+// line breaks and tabs where the quote has blanks.
+std::string squeezed(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    const bool space = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    if (space && (out.empty() || out.back() == ' ')) continue;
+    out += space ? ' ' : c;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+// A quote is verbatim, or verbatim parts joined by "…" that appear in order.
+bool quote_found(const std::string& spec, const std::string& quote) {
+  static constexpr std::string_view kEllipsis = "\xE2\x80\xA6";
+  std::size_t pos = 0;
+  for (std::size_t from = 0;;) {
+    const std::size_t at = quote.find(kEllipsis, from);
+    const std::string part = squeezed(std::string_view(quote).substr(from, at == std::string::npos ? std::string::npos : at - from));
+    if (!part.empty()) {
+      const std::size_t hit = spec.find(part, pos);
+      if (hit == std::string::npos) return false;
+      pos = hit + part.size();
+    }
+    if (at == std::string::npos) return true;
+    from = at + kEllipsis.size();
+  }
+}
+
+LoadError vector_error(const Vector& v, std::string key, std::string message) {
+  return LoadError{v.where, v.id, std::move(key), std::move(message)};
+}
+
+void lint_notes(const VectorFile& f, const ErrataIndex& errata, std::vector<LoadError>& errors) {
+  std::set<std::string> used;
+  for (const auto& v : f.vectors) used.insert(v.flags.begin(), v.flags.end());
+  for (const auto& [flag, note] : f.notes) {
+    if (!used.count(flag)) errors.push_back({note.where, "", "notes." + flag, "note " + quoted_clip(flag) + " is used by no vector"});
+    if (note.errata.empty()) continue;
+    std::size_t n = 0;
+    const std::string key = "notes." + flag + ".errata";
+    if (note.errata.rfind("E-", 0) != 0 || !parse_whole(std::string_view(note.errata).substr(2), n))
+      errors.push_back({note.where, "", key, quoted_clip(note.errata) + " is not an errata entry id like E-7"});
+    else if (errata.error)
+      errors.push_back({note.where, "", key, "cannot check " + note.errata + ": " + std::string(kErrataPath) + ": " + *errata.error});
+    else if (!errata.withdrawn.count(n))
+      errors.push_back({note.where, "", key, note.errata + " is not an entry of protocol/ERRATA.md"});
+    else if (errata.withdrawn.at(n))
+      errors.push_back({note.where, "", key, note.errata + " is withdrawn (protocol/ERRATA.md)"});
+  }
+}
+
+void lint_flags_and_tags(const VectorFile& f, const Vector& v, std::vector<LoadError>& errors) {
+  for (const auto& flag : v.flags)
+    if (!f.notes.count(flag)) errors.push_back(vector_error(v, "flags", "flag " + quoted_clip(flag) + " is not defined in the file's notes"));
+  for (const auto& tag : v.tags)
+    if (!contains(kKnownTags, tag))
+      errors.push_back(vector_error(v, "tags", "unknown tag " + quoted_clip(tag) + "; known tags: " + joined(kKnownTags)));
+}
+
+
+void lint_matchers(const Vector& v, const std::vector<FieldMatcher>& matchers, const CommandInfo* command,
+                   const std::string& key, std::vector<LoadError>& errors) {
+  if (!command) return;
+  const auto names = reply_field_names(*command);
+  for (const auto& m : matchers)
+    if (!contains(names, m.field))
+      errors.push_back({m.where, v.id, key, "unknown field " + quoted_clip(m.field) + " of the " + std::string(command->key) + " reply"});
+}
+
+// READING-NOTES 26 / ERRATA E-26: a vector that sends a command that can move
+// the antenna or change stored data says so, so a bench run can leave it out.
+void lint_effects(const Vector& v, const Step& s, const Effects& e, const std::string& key, const CommandInfo& c,
+                  std::vector<LoadError>& errors) {
+  const std::string what = std::string(c.key) + " (" + hex_byte(c.code) + ")";
+  if (e.moves_antenna && !v.has_tag("motion"))
+    errors.push_back({s.where, v.id, key, "sends " + what + ", which can move the antenna: tag the vector motion (READING-NOTES 26, E-26)"});
+  if (e.changes_stored_data && !v.has_tag("destructive"))
+    errors.push_back({s.where, v.id, key, "sends " + what + ", which changes stored data: tag the vector destructive (READING-NOTES 26, E-26)"});
+}
+
+void lint_step_list(const Vector& v, const std::vector<Step>& steps, const std::string& list, std::vector<LoadError>& errors) {
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const Step& s = steps[i];
+    if (s.kind == Step::Kind::kWait) continue;
+    const std::string key = list + "[" + std::to_string(i) + "]";
+    std::string problem;
+    auto sketch = step_sketch(s, problem);
+    if (!problem.empty()) errors.push_back({s.where, v.id, key, problem});
+    if (!sketch || !sketch->command) continue;
+    if (auto e = effects_of(*sketch)) lint_effects(v, s, *e, key, *sketch->command, errors);
+    lint_matchers(v, s.expect.fields, sketch->command, key + ".expect.fields", errors);
+    lint_matchers(v, s.until, sketch->command, key + ".until", errors);
+  }
+}
+
+void lint_vector(const VectorFile& f, const Vector& v, const std::optional<std::string>& spec, std::vector<LoadError>& errors) {
+  lint_flags_and_tags(f, v, errors);
+  lint_step_list(v, v.setup, "setup", errors);
+  lint_step_list(v, v.steps, "steps", errors);
+  lint_step_list(v, v.teardown, "teardown", errors);
+  if (spec && !quote_found(*spec, v.quote))
+    errors.push_back(vector_error(v, "spec.quote", "not found verbatim in the spec text (" + spec_text_path() +
+                                                       "; line breaks may be blanks, parts may be joined by \"\xE2\x80\xA6\")"));
+}
+
+}  // namespace
+}  // namespace sabus::harness::vector_loader_internal
+
+namespace sabus::harness {
+
+using namespace vector_loader_internal;
+
+std::string spec_text_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
+
+std::optional<std::string> read_spec_text() {
+  std::string error;
+  return read_capped(spec_text_path(), 4 << 20, error);
+}
+
+std::vector<LoadError> lint(const std::vector<VectorFile>& files) {
+  if (files.empty()) return {};  // the errata and the spec text are read only when there is something to check
+  return lint(files, read_spec_text());
+}
+
+std::vector<LoadError> lint(const std::vector<VectorFile>& files, const std::optional<std::string>& spec_text) {
+  std::vector<LoadError> errors;
+  if (files.empty()) return errors;
+  const ErrataIndex errata = read_errata();
+  const std::optional<std::string> spec = spec_text ? std::optional(squeezed(*spec_text)) : std::nullopt;
+  std::map<std::string, SourceLocation> first;
+  for (const auto& f : files) {
+    lint_notes(f, errata, errors);
+    for (const auto& v : f.vectors) {
+      auto [it, fresh] = first.emplace(v.id, v.where);
+      if (!fresh) errors.push_back(vector_error(v, "id", "duplicate id; first at " + it->second.text()));
+      lint_vector(f, v, spec, errors);
+    }
+  }
+  return errors;
+}
+
+}  // namespace sabus::harness

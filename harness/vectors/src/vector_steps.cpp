@@ -1,0 +1,507 @@
+// The step schema of a vector: steps (send, poll, wait), sends (a structured
+// command or a raw template), frame modifiers, expectations and field
+// matchers, each checked against the command catalog and the codecs.
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <map>
+#include <regex>
+
+#include "sabus/harness/nak_rules.hpp"
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/structured.hpp"
+#include "vector_loader_internal.hpp"
+
+namespace sabus::harness::vector_loader_internal {
+namespace {
+
+constexpr std::pair<std::string_view, Expectation::Kind> kReplyKinds[] = {{"ack", Expectation::Kind::kAck},
+                                                                          {"nak", Expectation::Kind::kNak},
+                                                                          {"offline", Expectation::Kind::kOffline},
+                                                                          {"silence", Expectation::Kind::kSilence},
+                                                                          {"any", Expectation::Kind::kAny}};
+
+// --- field matchers ---
+
+// describe_frame writes a one-byte field as 0x and two lower-case digits: an
+// upper-case "0x4A" could never match.
+std::string to_match_text(const YAML::Node& v, const At& at) {
+  const std::string& s = scalar(v, at, "a value");
+  const bool hex_byte_text = s.size() == 4 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X') &&
+                             std::isxdigit(static_cast<unsigned char>(s[2])) && std::isxdigit(static_cast<unsigned char>(s[3]));
+  if (hex_byte_text && (s[1] == 'X' || std::any_of(s.begin() + 2, s.end(), [](char c) { return c >= 'A' && c <= 'F'; })))
+    fail(at, quoted_clip(s) + ": write one-byte values as describe_frame does, lower case (0x4a)");
+  return s;
+}
+
+// std::regex expands bounded repeats ("a{5}") into states: their product is
+// capped so that a pattern cannot make compiling it take all memory.
+std::optional<std::string> repeat_problem(std::string_view p) {
+  std::size_t states = 1;
+  bool in_class = false;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const char c = p[i];
+    if (c == '\\') ++i;
+    else if (c == '[') in_class = true;
+    else if (c == ']') in_class = false;
+    else if (c == '{' && !in_class) {
+      std::size_t bound = 0, j = i + 1;
+      for (std::size_t n = 0; j < p.size() && (std::isdigit(static_cast<unsigned char>(p[j])) || p[j] == ','); ++j) {
+        if (p[j] == ',') {
+          n = 0;
+          continue;
+        }
+        n = std::min<std::size_t>(n * 10 + static_cast<std::size_t>(p[j] - '0'), kMaxRegexStates);
+        bound = std::max(bound, n);
+      }
+      states = std::min(states * (bound + 1), kMaxRegexStates + 1);
+      if (states > kMaxRegexStates) return "its bounded repeats ({n,m}) are too large";
+    }
+  }
+  return std::nullopt;
+}
+
+std::string to_regex(const YAML::Node& v, const At& at) {
+  const std::string& s = scalar(v, at, "a regular expression");
+  if (s.empty() || s.size() > kMaxRegex) fail(at, "a regex has 1 to " + std::to_string(kMaxRegex) + " characters");
+  if (auto e = repeat_problem(s)) fail(at, "regex " + quoted_clip(s) + ": " + *e);
+  try {
+    std::regex re(s, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    fail(at, "bad regex " + quoted_clip(s) + " (ECMAScript): " + e.what());
+  }
+  return s;
+}
+
+void read_range(const YAML::Node& v, const At& at, FieldMatcher& m) {
+  if (!v.IsSequence() || v.size() != 2) fail(at, "expected [low, high], got " + kind_of(v));
+  m.low = to_number(v[0], at);
+  m.high = to_number(v[1], at);
+  if (m.low > m.high) fail(at, "low " + number_text(m.low) + " is above high " + number_text(m.high));
+}
+
+FieldMatcher read_matcher(const std::string& name, const YAML::Node& v, const At& at, StepContext& cx) {
+  FieldMatcher m;
+  m.field = name;
+  m.where = cx.file.loc(at.mark);
+  if (v.IsNull()) fail(at, "expected a value, any, or a map of eq, one_of, regex, range, capture");
+  if (v.IsScalar()) {
+    if (!is_quoted(v) && v.Scalar() == "any") return m;
+    m.kind = FieldMatcher::Kind::kEq;
+    m.values = {to_match_text(v, at)};
+    return m;
+  }
+  MapReader r(v, at, {"eq", "one_of", "regex", "range", "capture"});
+  const int tests = r.has("eq") + r.has("one_of") + r.has("regex") + r.has("range");
+  if (tests > 1) fail(at, "give one of eq, one_of, regex, range");
+  if (tests == 0 && !r.has("capture")) fail(at, "expected eq, one_of, regex, range or capture");
+  r.with("eq", [&](const YAML::Node& n, const At& a) {
+    m.kind = FieldMatcher::Kind::kEq;
+    m.values = {to_match_text(n, a)};
+  });
+  r.with("one_of", [&](const YAML::Node& n, const At& a) {
+    m.kind = FieldMatcher::Kind::kOneOf;
+    for_each_element(n, a, kMaxValues, [&](const YAML::Node& e, const At& ea) { m.values.push_back(to_match_text(e, ea)); });
+    if (m.values.empty()) fail(a, "no value given");
+  });
+  r.with("regex", [&](const YAML::Node& n, const At& a) {
+    m.kind = FieldMatcher::Kind::kRegex;
+    cx.file.spend(a, kCostRegex);
+    m.values = {to_regex(n, a)};
+  });
+  r.with("range", [&](const YAML::Node& n, const At& a) {
+    m.kind = FieldMatcher::Kind::kRange;
+    read_range(n, a, m);
+  });
+  r.with("capture", [&](const YAML::Node& n, const At& a) {
+    m.capture = scalar(n, a, "a capture name");
+    if (!is_capture_name(m.capture)) fail(a, quoted_clip(m.capture) + " is not a capture name ($name)");
+  });
+  return m;
+}
+
+// The fields a reply can show, as describe_frame names them. A NAK or offline
+// reply has only the frame fields every reply has (§3): reply_field_names
+// lists them first (start, address, command) and last (offline, ETX, check
+// byte). nullopt: the command is unknown, names are not checked.
+struct ReplyFields {
+  std::vector<std::string> names;
+  std::string what;  // "the status reply"
+};
+
+std::optional<ReplyFields> reply_fields(const CommandInfo* command, Expectation::Kind kind) {
+  if (kind == Expectation::Kind::kNak || kind == Expectation::Kind::kOffline) {
+    const std::vector<std::string> all = reply_field_names(*find_command(kFirstCommand));
+    const std::size_t tail = kind == Expectation::Kind::kNak ? 2 : 3;  // without / with "offline"
+    std::vector<std::string> names(all.begin(), all.begin() + 3);
+    names.insert(names.end(), all.end() - static_cast<std::ptrdiff_t>(tail), all.end());
+    return ReplyFields{names, kind == Expectation::Kind::kNak ? "the NAK reply (§3)" : "the offline reply (§3)"};
+  }
+  if (!command) return std::nullopt;
+  return ReplyFields{reply_field_names(*command), "the " + std::string(command->key) + " reply"};
+}
+
+std::vector<FieldMatcher> read_matchers(const YAML::Node& v, const At& at, const std::optional<ReplyFields>& reply,
+                                        StepContext& cx) {
+  std::vector<FieldMatcher> out;
+  for_each_entry(v, at, kMaxEntries, [&](const std::string& name, const YAML::Node& value, const At& fa) {
+    cx.file.spend(fa);
+    if (reply && !contains(reply->names, name))
+      fail(fa, "unknown field " + quoted_clip(name) + " of " + reply->what + "; its fields (as describe_frame names them): " +
+                   joined(reply->names));
+    out.push_back(read_matcher(name, value, fa, cx));
+  });
+  if (out.empty()) fail(at, "no field given");
+  return out;
+}
+
+void keep_captures(const std::vector<FieldMatcher>& matchers, StepContext& cx) {
+  for (const auto& m : matchers)
+    if (!m.capture.empty()) cx.captures.insert(m.capture);
+}
+
+// --- expectations ---
+
+Expectation::Kind to_reply_kind(const YAML::Node& v, const At& at) {
+  const std::string& s = scalar(v, at, "ack, nak, offline, silence or any");
+  for (const auto& [name, kind] : kReplyKinds)
+    if (s == name) return kind;
+  fail(at, quoted_clip(s) + " is not a reply: expected ack, nak, offline, silence or any");
+}
+
+std::string_view reply_kind_name(Expectation::Kind k) {
+  for (const auto& [name, kind] : kReplyKinds)
+    if (kind == k) return name;
+  return "?";
+}
+
+// A whole expected reply must fit the catalog: ACK or NAK first, the step's
+// command byte, and the length of that kind of reply (§3 NAK and offline replies).
+void check_reply_bytes(const FrameSketch& s, Expectation::Kind kind, const CommandInfo* command, const At& at) {
+  if (kind == Expectation::Kind::kAny || s.bytes.empty()) return;
+  const std::uint8_t start = kind == Expectation::Kind::kNak ? NAK : ACK;
+  if (s.bytes[0] != start)
+    fail(at, "a " + std::string(reply_kind_name(kind)) + " reply starts with " + describe_byte(start) + ", not " + describe_byte(s.bytes[0]));
+  if (command && s.bytes.size() > 2 && s.bytes[2] != command->code)
+    fail(at, "the reply's command byte is " + hex_byte(s.bytes[2]) + "; the step sends " + hex_byte(command->code));
+  if (!s.complete) return;
+  std::optional<std::size_t> want = command ? command->reply_length : std::nullopt;
+  std::string what = command ? "the catalog's reply to " + std::string(command->key) : "";
+  if (kind == Expectation::Kind::kNak) {
+    want = kNakReplyLength;
+    what = "the NAK reply, §3";
+  } else if (kind == Expectation::Kind::kOffline) {
+    want = kOfflineReplyLength;
+    what = "the offline reply, §3";
+  }
+  if (want && s.bytes.size() != *want)
+    fail(at, "the reply is " + std::to_string(s.bytes.size()) + " bytes, not " + std::to_string(*want) + " (" + what + ")");
+}
+
+RawBytes read_raw(const YAML::Node& v, const At& at, StepContext& cx, std::vector<Element>& elements) {
+  const std::string& hex = scalar(v, at, "hex bytes");
+  if (hex.size() > kMaxHex) fail(at, "has " + std::to_string(hex.size()) + " characters, at most " + std::to_string(kMaxHex));
+  if (auto e = parse_template(hex, elements)) fail(at, *e);
+  if (elements.empty()) fail(at, "no bytes given");
+  for (const auto& e : elements)
+    if (e.kind == Element::Kind::kCapture && !cx.captures.count(e.capture))
+      fail(at, "{" + e.capture + "}: no earlier step captures " + e.capture);
+  return RawBytes{hex, cx.file.loc(at.mark)};
+}
+
+Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInfo* command, StepContext& cx) {
+  Expectation e;
+  e.where = cx.file.loc(at.mark);
+  if (v.IsScalar()) {
+    e.kind = to_reply_kind(v, at);
+    return e;
+  }
+  MapReader r(v, at, {"reply", "bytes", "fields", "rule"});
+  require_keys(r, at, {"reply"}, "expect");
+  r.read("reply", e.kind, to_reply_kind);
+  r.with("rule", [&](const YAML::Node& n, const At& a) {
+    if (e.kind != Expectation::Kind::kNak) fail(a, "only a nak reply names a rule");
+    const std::string& s = scalar(n, a, "a NAK rule");
+    if (!find_nak_rule(s)) {
+      std::string names;
+      for (NakRule rule : all_nak_rules()) names += (names.empty() ? "" : ", ") + std::string(name(rule));
+      fail(a, quoted_clip(s) + " is not a NAK rule of harness/controller/include/sabus/harness/nak_rules.hpp: " + names);
+    }
+    e.nak_rule = s;
+  });
+  if (e.kind == Expectation::Kind::kSilence)
+    for (auto k : {"bytes", "fields"})
+      if (r.has(k)) fail(r.at(k), std::string("silence has no ") + k);
+  r.with("bytes", [&](const YAML::Node& n, const At& a) {
+    std::vector<Element> elements;
+    e.bytes = read_raw(n, a, cx, elements);
+    check_reply_bytes(sketch_of(elements), e.kind, command, a);
+  });
+  r.with("fields", [&](const YAML::Node& n, const At& a) { e.fields = read_matchers(n, a, reply_fields(command, e.kind), cx); });
+  keep_captures(e.fields, cx);
+  return e;
+}
+
+// --- sends ---
+
+struct Send {
+  std::optional<StructuredCommand> command;
+  std::optional<RawBytes> raw;
+  At raw_at;
+  FrameSketch sketch;
+};
+
+std::string form_ids(const CommandInfo& info) {
+  std::string out;
+  for (const auto& f : info.forms) out += (out.empty() ? "" : ", ") + std::string(f.id);
+  return out;
+}
+
+const CommandInfo& to_command(const YAML::Node& v, const At& at) {
+  const std::string& s = scalar(v, at, "a command");
+  if (const CommandInfo* c = find_command(s)) return *c;
+  std::string keys;
+  for (const auto& c : catalog()) keys += (keys.empty() ? "" : ", ") + std::string(c.key);
+  fail(at, "unknown command " + quoted_clip(s) + ": expected a catalog key (" + keys + "), name or code (\"31h\")");
+}
+
+// The catalog's spelling of the form ("2a" -> "2A"); "" for one-form commands.
+std::string to_form(const MapReader& r, const At& at, const CommandInfo& info) {
+  std::string text;
+  r.read("form", text, [](const YAML::Node& n, const At& a) { return scalar(n, a, "a form"); });
+  if (info.forms.size() <= 1) {
+    if (!text.empty()) fail(r.at("form"), std::string(info.key) + " has one form: leave form out");
+    return "";
+  }
+  if (!r.has("form")) fail_missing(at, "form", std::string(info.key) + " needs form: one of " + form_ids(info));
+  const FormInfo* f = info.form_by_id(text);
+  if (!f) fail(r.at("form"), "unknown form " + quoted_clip(text) + " of " + std::string(info.key) + ": expected one of " + form_ids(info));
+  return std::string(f->id);
+}
+
+// A field value is its text as written: 45.6, -152.5, 0x47, "SBS 6".
+std::string to_field_value(const YAML::Node& v, const At& at) {
+  if (!v.IsScalar()) fail(at, "expected a value, got " + kind_of(v) + " (quote \"\" for an empty text)");
+  return v.Scalar();
+}
+
+// Where build_request's error points: `field "NAME": ...` names a field key.
+At build_error_at(const DecodeError& e, const std::map<std::string, At>& field_at, const At& fallback) {
+  for (const auto& [name, at] : field_at)
+    if (e.expected.rfind("field \"" + name + "\"", 0) == 0) return at;
+  return fallback;
+}
+
+
+StructuredCommand read_structured(const MapReader& r, const At& at, StepContext& cx, FrameSketch& sketch) {
+  StructuredCommand sc;
+  sc.where = cx.file.loc(at.mark);
+  const CommandInfo* info = nullptr;
+  r.with("command", [&](const YAML::Node& n, const At& a) {
+    info = &to_command(n, a);
+    sc.command = n.Scalar();
+  });
+  sc.form = to_form(r, at, *info);
+  const std::vector<std::string> names = request_field_names(*info, sc.form);
+  std::map<std::string, At> field_at;
+  r.with("fields", [&](const YAML::Node& n, const At& a) {
+    for_each_entry(n, a, kMaxEntries, [&](const std::string& name, const YAML::Node& value, const At& fa) {
+      if (!contains(names, name))
+        fail(fa, "unknown field " + quoted_clip(name) + " of " + std::string(info->key) +
+                     (sc.form.empty() ? "" : " form " + sc.form) + "; its fields: " + joined(names));
+      sc.fields[name] = to_field_value(value, fa);
+      field_at.emplace(name, fa);
+    });
+  });
+  r.with("address", [&](const YAML::Node& n, const At& a) { sc.address = to_address(n, a); });
+  auto built = build_request(*info, sc.form, sc.fields);
+  if (!built) fail(build_error_at(built.error(), field_at, r.at("fields")), build_error_text(built.error()));
+  sketch = sketch_of(encode_request(*built, sc.address.value_or(kSketchAddress)), true);
+  return sc;
+}
+
+Send read_send(const YAML::Node& v, const At& at, StepContext& cx) {
+  MapReader r(v, at, {"command", "form", "fields", "address", "raw"});
+  Send s;
+  if (r.has("raw")) {
+    for (auto k : {"command", "form", "fields", "address"})
+      if (r.has(k)) fail(r.at(k), std::string("a raw send has no ") + k + ": write the bytes in raw");
+    r.with("raw", [&](const YAML::Node& n, const At& a) {
+      std::vector<Element> elements;
+      s.raw = read_raw(n, a, cx, elements);
+      s.raw_at = a;
+      s.sketch = sketch_of(elements);
+    });
+    return s;
+  }
+  if (!r.has("command")) fail(at, "a send needs command (a catalog command) or raw (hex bytes)");
+  cx.file.spend(at, kCostBuild);
+  s.command = read_structured(r, at, cx, s.sketch);
+  return s;
+}
+
+// make a wrong length out of a right frame and need no flag.
+void check_length(const Send& s, const std::optional<At>& mismatch_at) {
+  if (s.command) {
+    if (mismatch_at) fail(*mismatch_at, "length_mismatch is for raw sends: a command built from fields has its catalog length");
+    return;
+  }
+  const FrameSketch& k = s.sketch;
+  if (!has_checked_length(k)) return;
+  const std::size_t got = k.bytes.size() - k.start, want = *k.command->request_length;
+  const std::string key(k.command->key);
+  if (got != want && !mismatch_at)
+    fail(s.raw_at, "the frame is " + std::to_string(got) + " bytes; the catalog says " + std::to_string(want) + " for " + key +
+                       " (§" + std::string(k.command->paragraph) + "). If that is the test, write length_mismatch: true on the step");
+  if (got == want && mismatch_at)
+    fail(*mismatch_at, "length_mismatch: true, but the frame has the catalog length of " + key + " (" + std::to_string(want) + " bytes)");
+}
+
+// --- modifiers ---
+
+// Any 7-bit character: modify.address sends to other or invalid addresses on purpose.
+std::uint8_t to_modified_address(const YAML::Node& v, const At& at) {
+  if (is_quoted(v) && v.Scalar().size() == 1) {
+    const auto c = static_cast<std::uint8_t>(v.Scalar()[0]);
+    if (c < 0x20 || c > 0x7F) fail(at, "expected a printable address character, got " + describe_byte(c));
+    return c;
+  }
+  return static_cast<std::uint8_t>(to_integer_or_hex_in(v, at, 0x20, 0x7F));
+}
+
+std::size_t to_index(const YAML::Node& v, const At& at, std::optional<std::size_t> length) {
+  const long long hi = length ? static_cast<long long>(*length) - 1 : 1000;
+  if (hi < 0) fail(at, "the frame has no bytes left");
+  return static_cast<std::size_t>(to_integer_in(v, at, 0, hi));
+}
+
+// Length checks follow the order the runner applies the modifiers in
+// (vectors/README.md): address, extra_data_bytes, lrc_xor, replace, truncate,
+// parity_flip, then chunks.
+Modifiers read_modifiers(const YAML::Node& v, const At& at, std::optional<std::size_t> length) {
+  MapReader r(v, at, {"lrc_xor", "address", "parity_flip", "extra_data_bytes", "truncate", "replace", "chunks", "pause_ms"});
+  Modifiers m;
+  auto byte = [](const YAML::Node& n, const At& a, long long lo) { return static_cast<std::uint8_t>(to_integer_or_hex_in(n, a, lo, 0x7F)); };
+  r.read("lrc_xor", m.lrc_xor, [&](const YAML::Node& n, const At& a) { return byte(n, a, 1); });
+  r.read("address", m.address, to_modified_address);
+  r.read("extra_data_bytes", m.extra_data_bytes, [](const YAML::Node& n, const At& a) { return static_cast<std::size_t>(to_integer_in(n, a, 1, 200)); });
+  if (length) *length += m.extra_data_bytes;
+  r.with("replace", [&](const YAML::Node& n, const At& a) {
+    for_each_element(n, a, kMaxValues, [&](const YAML::Node& e, const At& ea) {
+      if (!e.IsSequence() || e.size() != 2) fail(ea, "expected [index, byte], got " + kind_of(e));
+      m.replace.emplace_back(to_index(e[0], ea, length), byte(e[1], ea, 0));
+    });
+  });
+  r.read("truncate", m.truncate, [&](const YAML::Node& n, const At& a) {
+    return static_cast<std::size_t>(to_integer_in(n, a, 1, length ? static_cast<long long>(*length) - 1 : 1000));
+  });
+  if (length) *length -= m.truncate;
+  r.with("parity_flip", [&](const YAML::Node& n, const At& a) {
+    for_each_element(n, a, kMaxValues, [&](const YAML::Node& e, const At& ea) {
+      const std::size_t i = to_index(e, ea, length);
+      if (std::find(m.parity_flip.begin(), m.parity_flip.end(), i) != m.parity_flip.end()) fail(ea, "index " + std::to_string(i) + " is listed twice");
+      m.parity_flip.push_back(i);
+    });
+  });
+  r.with("chunks", [&](const YAML::Node& n, const At& a) {
+    std::size_t total = 0;
+    for_each_element(n, a, kMaxValues, [&](const YAML::Node& e, const At& ea) {
+      m.chunks.push_back(static_cast<std::size_t>(to_integer_in(e, ea, 1, 1000)));
+      total += m.chunks.back();
+    });
+    if (m.chunks.empty()) fail(a, "no chunk size given");
+    if (length && total > *length) fail(a, "the chunks add up to " + std::to_string(total) + " bytes; the frame has " + std::to_string(*length));
+  });
+  r.with("pause_ms", [&](const YAML::Node& n, const At& a) {
+    if (m.chunks.empty()) fail(a, "pause_ms is the pause between chunks: give chunks too");
+    m.pause = std::chrono::milliseconds(to_integer_in(n, a, 1, 60000));
+  });
+  if (m == Modifiers{}) fail(at, "no change given; leave modify out");
+  return m;
+}
+
+// --- steps ---
+
+Step read_send_step(const MapReader& r, const At& at, StepContext& cx) {
+  Step step;
+  step.kind = Step::Kind::kSend;
+  Send send;
+  r.with("send", [&](const YAML::Node& n, const At& a) { send = read_send(n, a, cx); });
+  step.command = send.command;
+  step.raw = send.raw;
+  const std::optional<std::size_t> length =
+      send.sketch.complete ? std::optional<std::size_t>(send.sketch.bytes.size()) : std::nullopt;
+  r.with("modify", [&](const YAML::Node& n, const At& a) { step.modifiers = read_modifiers(n, a, length); });
+  bool mismatch = false;
+  r.read("length_mismatch", mismatch, to_bool);
+  check_length(send, mismatch ? std::optional<At>(r.at("length_mismatch")) : std::nullopt);
+  if (r.has("length_mismatch") && !mismatch) fail(r.at("length_mismatch"), "length_mismatch: false is the default; leave it out");
+  require_keys(r, at, {"expect"}, "a send");
+  r.with("expect", [&](const YAML::Node& n, const At& a) { step.expect = read_expectation(n, a, send.sketch.command, cx); });
+  return step;
+}
+
+Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
+  MapReader r(v, at, {"send", "until", "timeout_ms", "interval_ms", "expect"});
+  require_keys(r, at, {"send", "until", "timeout_ms"}, "a poll");
+  Step step;
+  step.kind = Step::Kind::kPoll;
+  Send send;
+  r.with("send", [&](const YAML::Node& n, const At& a) { send = read_send(n, a, cx); });
+  check_length(send, std::nullopt);
+  step.command = send.command;
+  step.raw = send.raw;
+  step.expect.where = cx.file.loc(at.mark);
+  r.with("expect", [&](const YAML::Node& n, const At& a) {
+    step.expect = read_expectation(n, a, send.sketch.command, cx);
+    if (step.expect.kind == Expectation::Kind::kSilence) fail(a, "a poll needs a reply to test until against");
+  });
+  r.with("until", [&](const YAML::Node& n, const At& a) {
+    step.until = read_matchers(n, a, reply_fields(send.sketch.command, step.expect.kind), cx);
+  });
+  keep_captures(step.until, cx);
+  r.read("timeout_ms", step.timeout, [](const YAML::Node& n, const At& a) { return std::chrono::milliseconds(to_integer_in(n, a, 1, kMaxMs)); });
+  r.read("interval_ms", step.interval, [](const YAML::Node& n, const At& a) {
+    return std::chrono::milliseconds(to_integer_in(n, a, kMinPollIntervalMs, kMaxMs));  // §4, E-3
+  });
+  if (step.interval > step.timeout) fail(r.at("interval_ms"), "interval_ms is longer than timeout_ms");
+  return step;
+}
+
+std::chrono::milliseconds to_wait(const YAML::Node& v, const At& at) { return std::chrono::milliseconds(to_integer_in(v, at, 1, kMaxMs)); }
+
+Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
+  cx.file.spend(at);
+  MapReader r(v, at, {"send", "modify", "expect", "length_mismatch", "poll", "wait", "wait_ms"});
+  const int kinds = r.has("send") + r.has("poll") + r.has("wait") + r.has("wait_ms");
+  if (kinds != 1) fail(at, "a step is one of send, poll, wait or wait_ms");
+  if (!r.has("send"))
+    for (auto k : {"modify", "expect", "length_mismatch"})
+      if (r.has(k)) fail(r.at(k), std::string(k) + " belongs to a send step (a poll has its own expect)");
+  Step step;
+  if (r.has("send")) {
+    step = read_send_step(r, at, cx);
+  } else if (r.has("poll")) {
+    r.with("poll", [&](const YAML::Node& n, const At& a) { step = read_poll(n, a, cx); });
+  } else {
+    step.kind = Step::Kind::kWait;
+    r.read("wait_ms", step.timeout, to_wait);
+    r.with("wait", [&](const YAML::Node& n, const At& a) {
+      MapReader w(n, a, {"ms"});
+      require_keys(w, a, {"ms"}, "wait");
+      w.read("ms", step.timeout, to_wait);
+    });
+  }
+  step.where = cx.file.loc(at.mark);
+  return step;
+}
+
+}  // namespace
+
+std::vector<Step> read_steps(const YAML::Node& v, const At& at, StepContext& cx) {
+  std::vector<Step> out;
+  for_each_element(v, at, kMaxSteps, [&](const YAML::Node& e, const At& ea) { out.push_back(read_step(e, ea, cx)); });
+  return out;
+}
+
+}  // namespace sabus::harness::vector_loader_internal
