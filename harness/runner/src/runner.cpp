@@ -63,12 +63,44 @@ VectorResult result_of(const Vector& v) {
   return r;
 }
 
+// The first capability a vector's profile expressions find missing
+// ("{first_empty(presets)}" on a profile with every slot filled). Only
+// expressions that read no capture are known before the run; an error is
+// left for the step to report.
+std::optional<std::string> missing_capability(const Vector& v, const ExprContext& cx) {
+  std::optional<std::string> missing;
+  auto check = [&](const std::string& text) {
+    if (missing || !has_placeholder(text) || !template_captures(text).empty()) return;
+    const Expansion e = expand_template(text, cx);
+    if (e.kind == Expansion::Kind::kUnavailable) missing = e.text;
+  };
+  auto check_matchers = [&](const std::vector<FieldMatcher>& matchers) {
+    for (const auto& m : matchers)
+      if (m.kind != FieldMatcher::Kind::kRegex)
+        for (const auto& value : m.values) check(value);
+  };
+  for (const auto* list : {&v.setup, &v.steps, &v.teardown})
+    for (const Step& s : *list) {
+      if (s.command)
+        for (const auto& [name, value] : s.command->fields) check(value);
+      if (s.raw) {
+        const Expansion e = expand_raw_expressions(s.raw->hex, ExprContext{cx.profile, nullptr, cx.pace});
+        if (e.kind == Expansion::Kind::kUnavailable && !missing) missing = e.text;
+      }
+      check_matchers(s.expect.fields);
+      check_matchers(s.until);
+      check(s.timeout_text);
+    }
+  return missing;
+}
+
 // Gate: why a selected vector does not run here, or nullopt when it runs.
 std::optional<std::string> skip_reason(const Vector& v, const RunOptions& o, const Profile& profile,
                                        const Transport& transport) {
   if (static_cast<int>(v.level) > static_cast<int>(o.max_level)) return "level " + std::string(to_string(v.level));
   for (const auto& req : v.requires_)
     if (auto why = unmet_requirement(profile, req)) return "requires: " + *why;
+  if (auto why = missing_capability(v, ExprContext{profile, nullptr, o.pace})) return "needs " + *why;
   if (v.has_tag("motion") && !o.allow_motion) return "moves the antenna: needs --allow-motion";
   if (v.has_tag("destructive") && !o.allow_destructive) return "changes stored data: needs --allow-destructive";
   if (v.has_tag("parity") && !transport.can_send_parity_errors())

@@ -68,14 +68,24 @@ std::optional<std::string> check_nak_rule(const Expectation& e, const std::optio
          (names.empty() ? std::string("none") : names);
 }
 
-// A structured command's field values with their profile expressions
-// expanded; the first problem instead when one does not expand.
+std::string problem_text(const Expansion& e) {
+  return (e.kind == Expansion::Kind::kUnavailable ? "needs " : "") + e.text;
+}
+
+// A send's profile expressions expanded: a structured command's field
+// values, or a raw template's {expr} placeholders; the first problem instead
+// when one does not expand.
 std::optional<std::string> expand_fields(Step& s, const ExprContext& cx) {
+  if (s.raw) {
+    const Expansion e = expand_raw_expressions(s.raw->hex, cx);
+    if (!e.ok()) return "raw: " + problem_text(e);
+    s.raw->hex = e.text;
+  }
   if (!s.command) return std::nullopt;
   for (auto& [name, value] : s.command->fields) {
     if (!has_placeholder(value)) continue;
     const Expansion e = expand_template(value, cx);
-    if (!e.ok()) return "field \"" + name + "\": " + (e.kind == Expansion::Kind::kUnavailable ? "needs " : "") + e.text;
+    if (!e.ok()) return "field \"" + name + "\": " + problem_text(e);
     value = e.text;
   }
   return std::nullopt;
@@ -151,7 +161,9 @@ std::optional<std::string> Session::run_send(const Step& step) {
   if (replies.empty()) return std::nullopt;
   const Bytes reply = encode_frame(replies[0]);
   if (s.expect.bytes) {
-    auto want = expand_raw_bytes(s.expect.bytes->hex, profile.address, captures);
+    const Expansion template_ = expand_raw_expressions(s.expect.bytes->hex, expr_context());
+    if (!template_.ok()) return "expected bytes: " + problem_text(template_);
+    auto want = expand_raw_bytes(template_.text, profile.address, captures);
     if (!want) return "bad expected bytes: " + want.error().message();
     if (want.value() != reply) return "expected bytes " + to_hex(want.value()) + ", got " + to_hex(reply);
   }

@@ -466,11 +466,21 @@ Number expand_number(std::string_view text, const ExprContext& cx) {
   return {Kind::kError, 0, "\"" + std::string(text) + "\" gives \"" + e.text + "\", not a number"};
 }
 
+// A bare name ("{adr}") is a symbol, which only a function takes: as a whole
+// placeholder it is a typo.
+bool is_bare_name(std::string_view expr) {
+  while (!expr.empty() && expr.front() == ' ') expr.remove_prefix(1);
+  while (!expr.empty() && expr.back() == ' ') expr.remove_suffix(1);
+  return !expr.empty() && is_name_start(expr.front()) && std::all_of(expr.begin(), expr.end(), is_name_char);
+}
+
 std::optional<std::string> check_template(std::string_view text, const std::set<std::string>& captured) {
   const ExprContext cx{static_profile(), nullptr, {}};
   return scan_template(
       text, [](char) {},
       [&](std::string_view expr) -> std::optional<std::string> {
+        if (is_bare_name(expr))
+          return "unknown placeholder {" + std::string(expr) + "}: a name alone is not a value (sabus vectors functions lists the functions)";
         Parser p(expr, cx);
         const Result r = p.parse();
         if (r.kind == Kind::kError) return "{" + std::string(expr) + "}: " + r.message;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "sabus/harness/expressions.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/lrc.hpp"
 #include "sabus/protocol/structured.hpp"
@@ -56,8 +57,22 @@ Expected<Bytes> expand(const std::vector<Element>& elements, std::uint8_t addres
         }
         break;
       }
+      case Element::Kind::kExpr:
+        return DecodeError{out.size(), "raw", "the value of {" + e.capture + "} (profile expressions are expanded by the runner)", ""};
     }
   }
+  return out;
+}
+
+bool is_builtin_placeholder(std::string_view name) { return name == "addr" || name == "lrc"; }
+
+// "{name}", built by appending: g++ 12 -O3 warns -Wrestrict on "{" + s + "}".
+std::string braced(std::string_view name) {
+  std::string out;
+  out.reserve(name.size() + 2);
+  out += '{';
+  out += name;
+  out += '}';
   return out;
 }
 
@@ -81,7 +96,14 @@ std::optional<std::string> parse_template(std::string_view hex, std::vector<Elem
     if (name == "addr") out.push_back({Element::Kind::kAddr, 0, {}});
     else if (name == "lrc") out.push_back({Element::Kind::kLrc, 0, {}});
     else if (is_capture_name(name)) out.push_back({Element::Kind::kCapture, 0, std::string(name)});
-    else return "unknown placeholder {" + std::string(name.substr(0, 40)) + "}: expected {addr}, {lrc} or {$name}";
+    else {
+      // A profile expression: its syntax and functions here, the captures it
+      // reads by the step reader (read_raw), its value at run time.
+      const std::string placeholder = braced(name);
+      if (auto e = check_template(placeholder, template_captures(placeholder)))
+        return *e + " (a raw placeholder is {addr}, {lrc}, {$name} or a profile expression)";
+      out.push_back({Element::Kind::kExpr, 0, std::string(name)});
+    }
     pos = close + 1;
   }
 }
@@ -99,13 +121,13 @@ FrameSketch sketch_of(const std::vector<Element>& elements) {
   std::vector<Element> known;
   bool complete = true;
   for (const auto& e : elements) {
-    if (e.kind == Element::Kind::kCapture) {
+    if (e.kind == Element::Kind::kCapture || e.kind == Element::Kind::kExpr) {
       complete = false;
       break;
     }
     known.push_back(e);
   }
-  auto bytes = expand(known, kSketchAddress, {});  // cannot fail: no captures
+  auto bytes = expand(known, kSketchAddress, {});  // cannot fail: no captures, no expressions
   return sketch_of(bytes ? std::move(bytes).value() : Bytes{}, complete);
 }
 
@@ -173,11 +195,13 @@ Expected<Bytes> step_bytes(const Step& s, std::uint8_t address, const std::map<s
                            bool blank_missing_captures) {
   if (s.raw) {
     if (!blank_missing_captures) return expand_raw_bytes(s.raw->hex, address, captures);
+    // Static analysis: a value known only at run time is one blank.
     std::string hex = s.raw->hex;
-    for (std::size_t at = hex.find("{$"); at != std::string::npos; at = hex.find("{$", at)) {
+    for (std::size_t at = hex.find('{'); at != std::string::npos; at = hex.find('{', at)) {
       const auto end = hex.find('}', at);
       if (end == std::string::npos) break;
-      if (captures.count(hex.substr(at + 1, end - at - 1))) {
+      const std::string name = hex.substr(at + 1, end - at - 1);
+      if (is_builtin_placeholder(name) || captures.count(name)) {
         at = end;
         continue;
       }
@@ -191,6 +215,30 @@ Expected<Bytes> step_bytes(const Step& s, std::uint8_t address, const std::map<s
   auto r = build_request(*info, s.command->form, s.command->fields);
   if (!r) return r.error();
   return encode_request(r.value(), s.command->address.value_or(address));
+}
+
+Expansion expand_raw_expressions(std::string_view hex, const ExprContext& cx) {
+  std::string out;
+  for (std::size_t pos = 0;;) {
+    const std::size_t open = hex.find('{', pos);
+    out.append(hex.substr(pos, open == std::string_view::npos ? std::string_view::npos : open - pos));
+    if (open == std::string_view::npos) return {Expansion::Kind::kValue, out};
+    const std::size_t close = hex.find('}', open);
+    if (close == std::string_view::npos) return {Expansion::Kind::kValue, out + std::string(hex.substr(open))};
+    const std::string_view name = hex.substr(open + 1, close - open - 1);
+    if (is_builtin_placeholder(name) || is_capture_name(name)) {
+      out.append(hex.substr(open, close - open + 1));
+    } else {
+      const Expansion e = expand_template(braced(name), cx);
+      if (!e.ok()) return e;
+      for (char c : e.text) {
+        out += ' ';
+        out += hex_byte(static_cast<std::uint8_t>(c)).substr(2);
+        out += ' ';
+      }
+    }
+    pos = close + 1;
+  }
 }
 
 bool needs_length_mismatch(ByteView raw_send) {

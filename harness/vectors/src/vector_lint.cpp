@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "sabus/harness/expressions.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "vector_loader_internal.hpp"
@@ -135,6 +136,58 @@ void lint_effects(const Vector& v, const Step& s, const Effects& e, const std::s
     errors.push_back({s.where, v.id, key, "sends " + what + ", which changes stored data: tag the vector destructive (READING-NOTES 26, E-26)"});
 }
 
+// Where the antenna is (§3.2 bytes 14-31, §3.16, §3.17 bytes 49-50, §3.24
+// bytes 4-9) and where it is sent (§3.3 forms 2A, 2B, 2C, 3): in a vector
+// that moves the antenna these rest on the profile, never on literal values
+// that fit the shipped profiles' speeds and ranges (vectors/README.md,
+// "Profile expressions").
+constexpr std::string_view kPositionReplyFields[] = {"azimuth",       "elevation",       "polarization",  "position",
+                                                     "azimuth count", "elevation count", "az hundredths", "el hundredths"};
+constexpr std::string_view kTargetRequestFields[] = {"azimuth", "elevation", "target", "pol target", "azimuth count",
+                                                     "elevation count"};
+
+bool literal_window(const FieldMatcher& m) {
+  if (m.kind != FieldMatcher::Kind::kEq && m.kind != FieldMatcher::Kind::kOneOf && m.kind != FieldMatcher::Kind::kRange)
+    return false;
+  if (m.kind == FieldMatcher::Kind::kRange && m.values.empty()) return true;  // built in code with numbers
+  return std::none_of(m.values.begin(), m.values.end(), [](const std::string& t) { return has_placeholder(t); });
+}
+
+// Positions in a vector that moves the antenna: matchers on position fields
+// are near, jogged or ranges of profile expressions; targets the device acts
+// on are expressions; a poll's timeout is derived (or an expression).
+void lint_motion_positions(const Vector& v, const Step& s, const FrameSketch& sketch, const std::string& key,
+                           std::vector<LoadError>& errors) {
+  if (!v.has_tag("motion")) return;
+  auto matchers = [&](const std::vector<FieldMatcher>& list, const std::string& where) {
+    for (const auto& m : list)
+      if (contains(kPositionReplyFields, m.field) && literal_window(m))
+        errors.push_back({m.where, v.id, where + "." + m.field,
+                          "a literal position window in a vector that moves the antenna: derive it from the profile "
+                          "(near, jogged, or a range of profile expressions; vectors/README.md)"});
+  };
+  matchers(s.expect.fields, key + ".expect.fields");
+  matchers(s.until, key + ".until");
+  const bool acted_on = s.expect.kind == Expectation::Kind::kAck || s.expect.kind == Expectation::Kind::kAny;
+  if (acted_on && s.command)
+    for (const auto& [name, value] : s.command->fields)
+      if (contains(kTargetRequestFields, name) && !has_placeholder(value))
+        errors.push_back({s.where, v.id, key + ".send.fields." + name,
+                          "a literal target in a vector that moves the antenna: derive it from the profile "
+                          "(\"{home(az)}\", \"{at(el, 0.3)}\"; vectors/README.md)"});
+  if (acted_on && s.raw && sketch.complete && sketch.command && sketch.command->code == 0x32 && sketch.selector) {
+    const FormInfo* form = sketch.command->form_for_selector(*sketch.selector);
+    if (form && form->id != "1")  // form 1 names a stored satellite; the others carry a target
+      errors.push_back({s.where, v.id, key + ".send.raw",
+                        "a raw auto move to a literal target in a vector that moves the antenna: put the target in "
+                        "a profile expression or build the command from fields"});
+  }
+  if (s.kind == Step::Kind::kPoll && s.timeout.count() > 0)
+    errors.push_back({s.where, v.id, key + ".timeout_ms",
+                      "a literal timeout in a vector that moves the antenna: leave it out (the runner derives it "
+                      "from distance and speed) or write a profile expression"});
+}
+
 void lint_step_list(const Vector& v, const std::vector<Step>& steps, const std::string& list, std::vector<LoadError>& errors) {
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const Step& s = steps[i];
@@ -145,6 +198,7 @@ void lint_step_list(const Vector& v, const std::vector<Step>& steps, const std::
     if (!problem.empty()) errors.push_back({s.where, v.id, key, problem});
     if (!sketch || !sketch->command) continue;
     if (auto e = effects_of(*sketch)) lint_effects(v, s, *e, key, *sketch->command, errors);
+    lint_motion_positions(v, s, *sketch, key, errors);
     lint_matchers(v, s.expect.fields, sketch->command, key + ".expect.fields", errors);
     lint_matchers(v, s.until, sketch->command, key + ".until", errors);
   }

@@ -105,10 +105,14 @@ std::string hex_byte(std::uint8_t b);
 
 // One element of a raw template "02 {addr} 31 03 {lrc}".
 struct Element {
-  enum class Kind : std::uint8_t { kByte, kAddr, kLrc, kCapture };
+  enum class Kind : std::uint8_t {
+    kByte, kAddr, kLrc,
+    kCapture,  // {$name}: the text a step captured
+    kExpr,     // {expr}: a profile expression (expressions.hpp), expanded by the runner
+  };
   Kind kind = Kind::kByte;
   std::uint8_t byte = 0;
-  std::string capture;  // "$name"
+  std::string capture;  // kCapture: "$name"; kExpr: the expression
 };
 
 // Appends the elements of `hex`; the reason when it is not a template.

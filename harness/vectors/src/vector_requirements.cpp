@@ -89,6 +89,11 @@ Requirement read_requirement(const std::string& key, const YAML::Node& value, co
   const std::vector<std::string> path = split(key, '.');
   if (path.size() > 3 || !std::all_of(path.begin(), path.end(), [](const std::string& s) { return is_key_segment(s); }))
     fail(at, quoted_clip(key) + " is not a profile key path (polarization, errata.implements_iess)");
+  // A vector judges any controller whose profile has what it needs; a
+  // profile's name says nothing about the controller (vectors/README.md).
+  if (key == "name")
+    fail(at, "a vector requires capabilities, never a profile's name: require the keys that matter, or find a "
+             "slot or a position with a profile expression ({first_filled(presets)}, {home(el)})");
   if (value.IsMap()) fail(at, "expected a value or a list of values; write nested profile keys dotted (errata.implements_iess)");
   auto one = [&](const YAML::Node& n, const At& a) {
     file.spend(a, kCostRequirement);

@@ -7,6 +7,8 @@
 #include <map>
 #include <regex>
 
+#include "sabus/harness/expressions.hpp"
+#include "sabus/harness/motion.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
@@ -23,10 +25,17 @@ constexpr std::pair<std::string_view, Expectation::Kind> kReplyKinds[] = {{"ack"
 
 // --- field matchers ---
 
+// A text that may hold profile expressions ("{home(az)}"): their syntax,
+// functions and the captures they read, which earlier steps must make.
+void check_expressions(const std::string& text, const At& at, const StepContext& cx) {
+  if (auto e = check_template(text, cx.captures)) fail(at, *e);
+}
+
 // describe_frame writes a one-byte field as 0x and two lower-case digits: an
 // upper-case "0x4A" could never match.
-std::string to_match_text(const YAML::Node& v, const At& at) {
+std::string to_match_text(const YAML::Node& v, const At& at, const StepContext& cx) {
   const std::string& s = scalar(v, at, "a value");
+  check_expressions(s, at, cx);
   const bool hex_byte_text = s.size() == 4 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X') &&
                              std::isxdigit(static_cast<unsigned char>(s[2])) && std::isxdigit(static_cast<unsigned char>(s[3]));
   if (hex_byte_text && (s[1] == 'X' || std::any_of(s.begin() + 2, s.end(), [](char c) { return c >= 'A' && c <= 'F'; })))
@@ -73,36 +82,101 @@ std::string to_regex(const YAML::Node& v, const At& at) {
   return s;
 }
 
-void read_range(const YAML::Node& v, const At& at, FieldMatcher& m) {
+// A number, or a text with profile expressions that gives one at run time.
+std::string to_number_text(const YAML::Node& v, const At& at, const StepContext& cx, std::optional<double>& literal) {
+  const std::string& s = scalar(v, at, "a number or a profile expression");
+  if (has_placeholder(s)) {
+    check_expressions(s, at, cx);
+    literal.reset();
+  } else {
+    literal = to_number(v, at);
+  }
+  return s;
+}
+
+void read_range(const YAML::Node& v, const At& at, FieldMatcher& m, const StepContext& cx) {
   if (!v.IsSequence() || v.size() != 2) fail(at, "expected [low, high], got " + kind_of(v));
-  m.low = to_number(v[0], at);
-  m.high = to_number(v[1], at);
-  if (m.low > m.high) fail(at, "low " + number_text(m.low) + " is above high " + number_text(m.high));
+  std::optional<double> low, high;
+  m.values = {to_number_text(v[0], at, cx, low), to_number_text(v[1], at, cx, high)};
+  if (low) m.low = *low;
+  if (high) m.high = *high;
+  if (low && high && m.low > m.high) fail(at, "low " + number_text(m.low) + " is above high " + number_text(m.high));
+}
+
+// near: a position within the axis's arrival tolerance; the axis is the
+// field's, or named ({value, axis}) for a field that is not an axis position.
+void read_near(const YAML::Node& v, const At& at, FieldMatcher& m, const StepContext& cx) {
+  std::optional<double> literal;
+  if (v.IsScalar()) {
+    m.values = {to_number_text(v, at, cx, literal)};
+  } else {
+    MapReader r(v, at, {"value", "axis"});
+    require_keys(r, at, {"value"}, "near");
+    r.with("value", [&](const YAML::Node& n, const At& a) { m.values = {to_number_text(n, a, cx, literal)}; });
+    r.with("axis", [&](const YAML::Node& n, const At& a) {
+      m.near_axis = scalar(n, a, "an axis");
+      if (!motion::axis_named(m.near_axis)) fail(a, quoted_clip(m.near_axis) + " is not an axis: az, el or pol");
+    });
+  }
+  if (m.near_axis.empty() && !motion::axis_of_field(m.field))
+    fail(at, "near on " + quoted_clip(m.field) + ", which is not an axis position: give {value, axis}");
+}
+
+// jogged: where a jog of §3.4 can leave the axis (motion.hpp).
+void read_jogged(const YAML::Node& v, const At& at, FieldMatcher& m, const StepContext& cx) {
+  MapReader r(v, at, {"jog", "speed", "from", "ms"});
+  require_keys(r, at, {"jog", "speed", "from", "ms"}, "jogged");
+  std::string from, ms;
+  std::optional<double> literal;
+  r.with("jog", [&](const YAML::Node& n, const At& a) {
+    const std::string& t = scalar(n, a, "a jog direction");
+    if (t.size() != 1 || !motion::jog_direction(t[0])) fail(a, quoted_clip(t) + " is not a jog direction: E, W, D, U, O or L");
+    m.jog = t[0];
+  });
+  r.with("speed", [&](const YAML::Node& n, const At& a) {
+    const std::string& t = scalar(n, a, "F or S");
+    if (t != "F" && t != "S") fail(a, quoted_clip(t) + ": the speed is F or S");
+    m.speed = t[0];
+  });
+  r.with("from", [&](const YAML::Node& n, const At& a) { from = to_number_text(n, a, cx, literal); });
+  r.with("ms", [&](const YAML::Node& n, const At& a) { ms = to_number_text(n, a, cx, literal); });
+  m.values = {from, ms};
+  const auto axis = motion::jog_direction(m.jog)->axis;
+  if (m.field != motion::name_of(axis))
+    fail(at, std::string("a '") + m.jog + "' jog moves the " + std::string(motion::name_of(axis)) + ", not " + quoted_clip(m.field));
 }
 
 FieldMatcher read_matcher(const std::string& name, const YAML::Node& v, const At& at, StepContext& cx) {
   FieldMatcher m;
   m.field = name;
   m.where = cx.file.loc(at.mark);
-  if (v.IsNull()) fail(at, "expected a value, any, or a map of eq, one_of, regex, range, capture");
+  if (v.IsNull()) fail(at, "expected a value, any, or a map of eq, one_of, regex, range, near, jogged, capture");
   if (v.IsScalar()) {
     if (!is_quoted(v) && v.Scalar() == "any") return m;
     m.kind = FieldMatcher::Kind::kEq;
-    m.values = {to_match_text(v, at)};
+    m.values = {to_match_text(v, at, cx)};
     return m;
   }
-  MapReader r(v, at, {"eq", "one_of", "regex", "range", "capture"});
-  const int tests = r.has("eq") + r.has("one_of") + r.has("regex") + r.has("range");
-  if (tests > 1) fail(at, "give one of eq, one_of, regex, range");
-  if (tests == 0 && !r.has("capture")) fail(at, "expected eq, one_of, regex, range or capture");
+  MapReader r(v, at, {"eq", "one_of", "regex", "range", "near", "jogged", "capture"});
+  const int tests = r.has("eq") + r.has("one_of") + r.has("regex") + r.has("range") + r.has("near") + r.has("jogged");
+  if (tests > 1) fail(at, "give one of eq, one_of, regex, range, near, jogged");
+  if (tests == 0 && !r.has("capture")) fail(at, "expected eq, one_of, regex, range, near, jogged or capture");
   r.with("eq", [&](const YAML::Node& n, const At& a) {
     m.kind = FieldMatcher::Kind::kEq;
-    m.values = {to_match_text(n, a)};
+    m.values = {to_match_text(n, a, cx)};
   });
   r.with("one_of", [&](const YAML::Node& n, const At& a) {
     m.kind = FieldMatcher::Kind::kOneOf;
-    for_each_element(n, a, kMaxValues, [&](const YAML::Node& e, const At& ea) { m.values.push_back(to_match_text(e, ea)); });
+    for_each_element(n, a, kMaxValues, [&](const YAML::Node& e, const At& ea) { m.values.push_back(to_match_text(e, ea, cx)); });
     if (m.values.empty()) fail(a, "no value given");
+  });
+  r.with("near", [&](const YAML::Node& n, const At& a) {
+    m.kind = FieldMatcher::Kind::kNear;
+    read_near(n, a, m, cx);
+  });
+  r.with("jogged", [&](const YAML::Node& n, const At& a) {
+    m.kind = FieldMatcher::Kind::kJogged;
+    read_jogged(n, a, m, cx);
   });
   r.with("regex", [&](const YAML::Node& n, const At& a) {
     m.kind = FieldMatcher::Kind::kRegex;
@@ -111,7 +185,7 @@ FieldMatcher read_matcher(const std::string& name, const YAML::Node& v, const At
   });
   r.with("range", [&](const YAML::Node& n, const At& a) {
     m.kind = FieldMatcher::Kind::kRange;
-    read_range(n, a, m);
+    read_range(n, a, m, cx);
   });
   r.with("capture", [&](const YAML::Node& n, const At& a) {
     m.capture = scalar(n, a, "a capture name");
@@ -203,9 +277,11 @@ RawBytes read_raw(const YAML::Node& v, const At& at, StepContext& cx, std::vecto
   if (hex.size() > kMaxHex) fail(at, "has " + std::to_string(hex.size()) + " characters, at most " + std::to_string(kMaxHex));
   if (auto e = parse_template(hex, elements)) fail(at, *e);
   if (elements.empty()) fail(at, "no bytes given");
-  for (const auto& e : elements)
+  for (const auto& e : elements) {
     if (e.kind == Element::Kind::kCapture && !cx.captures.count(e.capture))
       fail(at, "{" + e.capture + "}: no earlier step captures " + e.capture);
+    if (e.kind == Element::Kind::kExpr) check_expressions("{" + e.capture + "}", at, cx);
+  }
   return RawBytes{hex, cx.file.loc(at.mark)};
 }
 
@@ -279,10 +355,30 @@ std::string to_form(const MapReader& r, const At& at, const CommandInfo& info) {
   return std::string(f->id);
 }
 
-// A field value is its text as written: 45.6, -152.5, 0x47, "SBS 6".
-std::string to_field_value(const YAML::Node& v, const At& at) {
+// A field value is its text as written: 45.6, -152.5, 0x47, "SBS 6", or a
+// text with profile expressions: "{home(az)}".
+std::string to_field_value(const YAML::Node& v, const At& at, const StepContext& cx) {
   if (!v.IsScalar()) fail(at, "expected a value, got " + kind_of(v) + " (quote \"\" for an empty text)");
+  check_expressions(v.Scalar(), at, cx);
   return v.Scalar();
+}
+
+// The fields as a load-time check can build them: each profile expression
+// expanded against the default profile, captures read as 0; a field the
+// default profile cannot give (an unavailable capability) is left out, to
+// the codec's default. The run builds the real values.
+std::map<std::string, std::string> static_fields(const std::map<std::string, std::string>& fields) {
+  static const Profile kDefault;
+  std::map<std::string, std::string> out;
+  for (const auto& [name, value] : fields) {
+    if (!has_placeholder(value)) {
+      out.emplace(name, value);
+      continue;
+    }
+    const Expansion e = expand_template(value, ExprContext{kDefault, nullptr, {}});
+    if (e.ok()) out.emplace(name, e.text);
+  }
+  return out;
 }
 
 // Where build_request's error points: `field "NAME": ...` names a field key.
@@ -309,12 +405,12 @@ StructuredCommand read_structured(const MapReader& r, const At& at, StepContext&
       if (!contains(names, name))
         fail(fa, "unknown field " + quoted_clip(name) + " of " + std::string(info->key) +
                      (sc.form.empty() ? "" : " form " + sc.form) + "; its fields: " + joined(names));
-      sc.fields[name] = to_field_value(value, fa);
+      sc.fields[name] = to_field_value(value, fa, cx);
       field_at.emplace(name, fa);
     });
   });
   r.with("address", [&](const YAML::Node& n, const At& a) { sc.address = to_address(n, a); });
-  auto built = build_request(*info, sc.form, sc.fields);
+  auto built = build_request(*info, sc.form, static_fields(sc.fields));
   if (!built) fail(build_error_at(built.error(), field_at, r.at("fields")), build_error_text(built.error()));
   sketch = sketch_of(encode_request(*built, sc.address.value_or(kSketchAddress)), true);
   return sc;
@@ -441,9 +537,20 @@ Step read_send_step(const MapReader& r, const At& at, StepContext& cx) {
   return step;
 }
 
+// A wait or a poll timeout: 1 ms to an hour, or a profile expression
+// ("{jog_ms(az, F) + 1000}") the runner computes.
+void read_ms(const YAML::Node& v, const At& at, const StepContext& cx, Step& step) {
+  if (v.IsScalar() && has_placeholder(v.Scalar())) {
+    check_expressions(v.Scalar(), at, cx);
+    step.timeout_text = v.Scalar();
+    return;
+  }
+  step.timeout = std::chrono::milliseconds(to_integer_in(v, at, 1, kMaxMs));
+}
+
 Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
   MapReader r(v, at, {"send", "until", "timeout_ms", "interval_ms", "expect"});
-  require_keys(r, at, {"send", "until", "timeout_ms"}, "a poll");
+  require_keys(r, at, {"send", "until"}, "a poll");
   Step step;
   step.kind = Step::Kind::kPoll;
   Send send;
@@ -460,15 +567,13 @@ Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
     step.until = read_matchers(n, a, reply_fields(send.sketch.command, step.expect.kind), cx);
   });
   keep_captures(step.until, cx);
-  r.read("timeout_ms", step.timeout, [](const YAML::Node& n, const At& a) { return std::chrono::milliseconds(to_integer_in(n, a, 1, kMaxMs)); });
+  r.with("timeout_ms", [&](const YAML::Node& n, const At& a) { read_ms(n, a, cx, step); });
   r.read("interval_ms", step.interval, [](const YAML::Node& n, const At& a) {
     return std::chrono::milliseconds(to_integer_in(n, a, kMinPollIntervalMs, kMaxMs));  // §4, E-3
   });
-  if (step.interval > step.timeout) fail(r.at("interval_ms"), "interval_ms is longer than timeout_ms");
+  if (step.timeout.count() > 0 && step.interval > step.timeout) fail(r.at("interval_ms"), "interval_ms is longer than timeout_ms");
   return step;
 }
-
-std::chrono::milliseconds to_wait(const YAML::Node& v, const At& at) { return std::chrono::milliseconds(to_integer_in(v, at, 1, kMaxMs)); }
 
 Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
   cx.file.spend(at);
@@ -485,11 +590,11 @@ Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
     r.with("poll", [&](const YAML::Node& n, const At& a) { step = read_poll(n, a, cx); });
   } else {
     step.kind = Step::Kind::kWait;
-    r.read("wait_ms", step.timeout, to_wait);
+    r.with("wait_ms", [&](const YAML::Node& n, const At& a) { read_ms(n, a, cx, step); });
     r.with("wait", [&](const YAML::Node& n, const At& a) {
       MapReader w(n, a, {"ms"});
       require_keys(w, a, {"ms"}, "wait");
-      w.read("ms", step.timeout, to_wait);
+      w.with("ms", [&](const YAML::Node& wn, const At& wa) { read_ms(wn, wa, cx, step); });
     });
   }
   step.where = cx.file.loc(at.mark);

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sabus/harness/expressions.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/vector.hpp"
 
@@ -59,6 +60,12 @@ std::string default_vectors_dir();
 // placeholder, a capture not in `captures`, a byte above 7Fh.
 Expected<Bytes> expand_raw_bytes(std::string_view hex, std::uint8_t address,
                                  const std::map<std::string, std::string>& captures = {});
+
+// A raw template with its profile expressions ("{pad2(first_filled(presets))}")
+// written as the hex of their text; {addr}, {lrc} and {$name} are left for
+// expand_raw_bytes. For the runner, before it expands a raw send or an
+// expected reply.
+Expansion expand_raw_expressions(std::string_view hex, const ExprContext& cx);
 
 // The command bytes a send or poll step puts on the wire before its
 // modifiers: the structured command built by the codecs, or the raw template
