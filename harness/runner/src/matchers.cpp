@@ -1,6 +1,7 @@
 // Field matchers (vectors/README.md "Field matchers"): the text and number a
 // matcher compares for a described reply field, and the check of one matcher
 // against a reply. Pure functions; the step engine (steps.cpp) calls them.
+#include <cmath>
 #include <cstdio>
 #include <regex>
 #include <sstream>
@@ -62,7 +63,8 @@ std::optional<std::string> check_one_field(const FieldDescription& field, const 
     case FieldMatcher::Kind::kRange:
     case FieldMatcher::Kind::kNear:
     case FieldMatcher::Kind::kJogged: {
-      const auto n = matcher_number(field);
+      auto n = matcher_number(field);
+      if (n && m.angular) *n += 360.0 * std::round(((m.low + m.high) / 2 - *n) / 360.0);
       std::ostringstream want;
       want << m.low << " to " << m.high;
       if (!n || *n < m.low - 1e-9 || *n > m.high + 1e-9) return fail(m.expected.empty() ? want.str() : m.expected);
@@ -153,6 +155,7 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
 
 ResolvedMatcher resolve_matcher(const FieldMatcher& in, const ExprContext& cx) {
   FieldMatcher m = in;
+  m.angular = m.field == "azimuth" && cx.profile.az_sensor == AzSensor::kFluxgate;
   switch (m.kind) {
     case FieldMatcher::Kind::kNear: return resolve_near(std::move(m), cx);
     case FieldMatcher::Kind::kJogged: return resolve_jogged(std::move(m), cx);

@@ -10,6 +10,7 @@
 #include <fnmatch.h>
 
 #include "backup.hpp"
+#include "sabus/harness/profile_records.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "session.hpp"
 
@@ -63,6 +64,21 @@ VectorResult result_of(const Vector& v) {
   return r;
 }
 
+// A send of the profile's record the profile does not hold (navigation data
+// on a profile without any).
+std::optional<std::string> missing_record(const StructuredCommand& c, const ExprContext& cx) {
+  const CommandInfo* info = find_command(c.command);
+  if (!info || (has_placeholder(c.from_profile) && !template_captures(c.from_profile).empty())) return std::nullopt;
+  std::uint32_t index = 0;
+  if (c.from_profile != "navigation") {
+    const Number n = expand_number(c.from_profile, cx);
+    if (n.kind != Expansion::Kind::kValue) return std::nullopt;
+    index = static_cast<std::uint32_t>(n.value);
+  }
+  const RecordRequest r = profile_write(cx.profile, info->code, index);
+  return r.request ? std::nullopt : std::optional<std::string>(r.unavailable);
+}
+
 // The first capability a vector's profile expressions find missing
 // ("{first_empty(presets)}" on a profile with every slot filled). Only
 // expressions that read no capture are known before the run; an error is
@@ -79,10 +95,15 @@ std::optional<std::string> missing_capability(const Vector& v, const ExprContext
       if (m.kind != FieldMatcher::Kind::kRegex)
         for (const auto& value : m.values) check(value);
   };
+  for (const auto& need : v.needs) check(need);
   for (const auto* list : {&v.setup, &v.steps, &v.teardown})
     for (const Step& s : *list) {
-      if (s.command)
+      if (s.command) {
         for (const auto& [name, value] : s.command->fields) check(value);
+        check(s.command->from_profile);
+        if (!missing && !s.command->from_profile.empty()) missing = missing_record(*s.command, cx);
+      }
+      check(s.expect.from_profile);
       if (s.raw) {
         const Expansion e = expand_raw_expressions(s.raw->hex, ExprContext{cx.profile, nullptr, cx.pace});
         if (e.kind == Expansion::Kind::kUnavailable && !missing) missing = e.text;

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "sabus/harness/motion.hpp"
+#include "sabus/harness/profile_records.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/lrc.hpp"
 #include "session.hpp"
@@ -107,6 +108,66 @@ std::optional<bool> every_axis_stopped(const FrameDescription& d) {
   return seen ? std::optional<bool>(true) : std::nullopt;
 }
 
+// The slot a `from_profile` names (a number or a profile expression); 0 for
+// "navigation", which has one record.
+std::optional<std::string> record_index(const std::string& from_profile, const ExprContext& cx, std::uint32_t& index) {
+  index = 0;
+  if (from_profile == "navigation") return std::nullopt;
+  const Number n = expand_number(from_profile, cx);
+  if (n.kind != Expansion::Kind::kValue) return "from_profile: " + n.text;
+  index = static_cast<std::uint32_t>(n.value);
+  return std::nullopt;
+}
+
+// The bytes of a send of the profile's record (profile_records.hpp).
+Expected<Bytes> record_bytes(const StructuredCommand& c, const ExprContext& cx, std::uint8_t address) {
+  const CommandInfo* info = find_command(c.command);
+  std::uint32_t index = 0;
+  if (auto e = record_index(c.from_profile, cx, index)) return DecodeError{0, "from_profile", *e, ""};
+  const RecordRequest r = profile_write(cx.profile, info->code, index);
+  if (!r.request) return DecodeError{0, "from_profile", "needs " + r.unavailable, ""};
+  return encode_request(*r.request, c.address.value_or(address));
+}
+
+// The navigation reply as the profile has it, except that after a 46h write
+// a controller reports both sources as remotely entered, 111 (E-68): each
+// source is the profile's or 111.
+std::optional<std::string> check_navigation_record(const FrameDescription& got, const FrameDescription& want) {
+  for (const auto& w : want.fields) {
+    const auto g = std::find_if(got.fields.begin(), got.fields.end(), [&](const FieldDescription& f) { return f.name == w.name; });
+    if (g == got.fields.end()) return "field \"" + w.name + "\" is not in the reply";
+    const bool source = w.name == "lat/lon source" || w.name == "heading source";
+    if (g->raw == w.raw || (source && g->raw == "0x47")) continue;
+    return "byte " + std::to_string(w.first) + " " + w.name + ": the profile holds " + w.raw + " (" + w.meaning + "), got " +
+           g->raw + " (" + g->meaning + ")" + (source ? "; after a 46h write 0x47 (remotely entered) is accepted too" : "");
+  }
+  return std::nullopt;
+}
+
+// The reply of a read of stored data against the profile's record: the
+// whole reply for a filled slot; for an empty one the 7Fh 7Fh index, the rest
+// not being described (READING-NOTES 18, E-18); navigation as above.
+std::optional<std::string> check_record(const Expectation& e, const Frame& reply, const ExprContext& cx) {
+  std::uint32_t index = 0;
+  if (auto err = record_index(e.from_profile, cx, index)) return err;
+  const RecordReply r = profile_read_reply(cx.profile, reply.command, index);
+  if (!r.reply) return "from_profile: needs " + r.unavailable;
+  auto want = encode_reply(*r.reply, reply.address, reply.command);
+  if (!want) return "from_profile: the profile's record does not encode: " + want.error().message();
+  const Bytes got = encode_frame(reply);
+  if (reply.command == 0x45) return check_navigation_record(describe_frame(got), describe_frame(want.value()));
+  const FrameDescription wd = describe_frame(want.value()), gd = describe_frame(got);
+  for (const auto& w : wd.fields) {
+    if (w.name == "no data") continue;  // an empty slot's rest is not described
+    const auto g = std::find_if(gd.fields.begin(), gd.fields.end(), [&](const FieldDescription& f) { return f.name == w.name; });
+    if (g == gd.fields.end()) return "field \"" + w.name + "\" is not in the reply (" + gd.summary + ")";
+    if (g->raw != w.raw)
+      return "byte " + std::to_string(w.first) + " " + w.name + ": the profile holds " + w.raw + ", got " + g->raw + " (" +
+             g->meaning + ")";
+  }
+  return std::nullopt;
+}
+
 std::string expect_name(Expectation::Kind k) {
   switch (k) {
     case Expectation::Kind::kAck: return "ack";
@@ -133,7 +194,8 @@ std::optional<std::string> Session::check_matchers(const FrameDescription& d, co
 std::optional<std::string> Session::run_send(const Step& step) {
   Step s = step;
   if (auto e = expand_fields(s, expr_context())) return "cannot build the command: " + *e;
-  auto bytes = step_bytes(s, profile.address, captures);
+  auto bytes = s.command && !s.command->from_profile.empty() ? record_bytes(*s.command, expr_context(), profile.address)
+                                                             : step_bytes(s, profile.address, captures);
   if (!bytes) return "cannot build the command: " + bytes.error().message();
   const Bytes wire = apply_modifiers(bytes.value(), s.modifiers);
   const bool silence = s.expect.kind == Expectation::Kind::kSilence;
@@ -169,6 +231,8 @@ std::optional<std::string> Session::run_send(const Step& step) {
   }
   const FrameDescription d = describe_frame(reply);
   if (s.expect.kind == Expectation::Kind::kAck && d.error) return "reply does not decode: " + d.error->message();
+  if (!s.expect.from_profile.empty())
+    if (auto e = check_record(s.expect, replies[0], expr_context())) return e;
   return check_matchers(d, s.expect.fields);
 }
 

@@ -6,7 +6,7 @@
 //   sum     := product (('+' | '-') product)*
 //   product := unary (('*' | '/') unary)*
 //   unary   := '-' unary | primary
-//   primary := number | '$' name | name '(' [expr (',' expr)*] ')' | name | '(' expr ')'
+//   primary := number | '$' name | name '(' [expr (',' expr)*] ')' | name | '(' expr ')' | "'" text "'"
 #include "sabus/harness/expressions.hpp"
 
 #include <algorithm>
@@ -96,18 +96,38 @@ const SlotList kSlotLists[] = {
     {"signposts", "signpost", 20, [](const Profile& p, int i) { return has_index(p.signposts, i); }},
 };
 
-Result slot(const Call& c, bool want_filled, bool from_end) {
+// The first (or last) slot of a list, up to index `upto`, that the profile
+// fills (or leaves empty).
+Result slot(const Call& c, bool want_filled, bool from_end, int upto = 99) {
   const Value& v = c.args[0];
   const SlotList* list = nullptr;
   for (const auto& l : kSlotLists)
     if (!v.is_number && v.text == l.name) list = &l;
   if (!list) return error(std::string(c.name) + ": argument 1 must be presets, tles or signposts");
-  for (int k = 0; k < list->slots; ++k) {
-    const int i = from_end ? list->slots - k : k + 1;
+  const int slots = std::min(list->slots, upto);
+  for (int k = 0; k < slots; ++k) {
+    const int i = from_end ? slots - k : k + 1;
     if (list->filled(c.cx.profile, i) == want_filled) return number(i);
   }
-  return unavailable(std::string(want_filled ? "a filled " : "an empty ") + std::string(list->what) +
-                     " slot: the profile has " + (want_filled ? "none stored" : "every slot filled"));
+  const std::string where = slots < list->slots ? " among the first " + std::to_string(slots) : "";
+  return unavailable(std::string(want_filled ? "a filled " : "an empty ") + std::string(list->what) + " slot" + where +
+                     ": the profile has " + (want_filled ? "none stored there" : "every one filled"));
+}
+
+// filled(list, i): the index when the profile fills that slot, so that a
+// vector that overwrites it can write the profile's record back.
+Result filled_slot(const Call& c) {
+  const Value& v = c.args[0];
+  const SlotList* list = nullptr;
+  for (const auto& l : kSlotLists)
+    if (!v.is_number && v.text == l.name) list = &l;
+  if (!list) return error("filled: argument 1 must be presets, tles or signposts");
+  if (!c.args[1].is_number) return error("filled: argument 2 must be an index");
+  const int i = static_cast<int>(c.args[1].number);
+  if (i < 1 || i > list->slots) return error("filled: " + std::to_string(i) + " is not an index of " + std::string(list->name));
+  if (list->filled(c.cx.profile, i)) return number(i);
+  return unavailable(std::string(list->what) + " " + std::to_string(i) +
+                     " filled in the profile (a write there could not be undone: a slot cannot be emptied)");
 }
 
 Result maybe(const motion::Maybe<double>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
@@ -193,6 +213,7 @@ const Function kFunctions[] = {
          return number(n);
        });
      }},
+    {{"filled", "presets|tles|signposts, index", "the index, when the profile fills that slot"}, 2, filled_slot},
     {{"first_empty", "presets|tles|signposts", "the lowest index the profile leaves empty"}, 1,
      [](const Call& c) { return slot(c, false, false); }},
     {{"last_empty", "presets|tles|signposts", "the highest index the profile leaves empty"}, 1,
@@ -201,8 +222,32 @@ const Function kFunctions[] = {
      [](const Call& c) { return slot(c, true, false); }},
     {{"last_filled", "presets|tles|signposts", "the highest index the profile fills"}, 1,
      [](const Call& c) { return slot(c, true, true); }},
+    {{"first_filled_upto", "presets|tles|signposts, max", "the lowest index up to max that the profile fills"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({1})) return error(*e);
+       return slot(c, true, false, static_cast<int>(c.args[1].number));
+     }},
     {{"store_count", "", "the number of entries of the profile's STORE list (§3.6)"}, 0,
      [](const Call& c) { return number(static_cast<double>(c.cx.profile.store.size())); }},
+    {{"store_room", "'name'",
+      "1 when a STORE of that name fits: the profile's STORE list has fewer than 50 entries or holds the name "
+      "(§3.19: a STORE of a stored name overwrites it); unavailable when the list is full"},
+     1,
+     [](const Call& c) {
+       if (c.args[0].is_number) return error("store_room: argument 1 must be a name in quotes");
+       const auto& store = c.cx.profile.store;
+       const bool held = std::any_of(store.begin(), store.end(), [&](const StoredSatellite& e) { return e.name == c.args[0].text; });
+       if (held || store.size() < 50) return number(1);
+       return unavailable("a free STORE entry: the profile's STORE list is full (50)");
+     }},
+    {{"negative", "axis", "a negative position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
+     [](const Call& c) {
+       return with_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+         const double top = std::min(a.max_deg, 0.0) - a.tolerance_deg - 0.5, bottom = a.min_deg + a.tolerance_deg + 0.5;
+         if (top - bottom < 0.1) return unavailable("a negative " + std::string(motion::name_of(axis)) + " inside its range");
+         return number(std::floor((top + bottom) / 2 * 10) / 10);
+       });
+     }},
     {{"min", "a, b", "the smaller number"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({0, 1})) return error(*e);
@@ -369,6 +414,13 @@ class Parser {
     if (c == '$') {
       ++pos_;
       return capture();
+    }
+    if (c == '\'') {  // a text: 'SABUS TEST'
+      const std::size_t close = s_.find('\'', pos_ + 1);
+      if (close == std::string_view::npos) return error("the text at character " + std::to_string(pos_ + 1) + " has no closing '");
+      const std::string t(s_.substr(pos_ + 1, close - pos_ - 1));
+      pos_ = close + 1;
+      return text(t);
     }
     if ((c >= '0' && c <= '9') || c == '.') {
       double v = 0;

@@ -12,6 +12,7 @@
 #include <map>
 #include <tuple>
 
+#include "sabus/harness/expressions.hpp"
 #include "vector_loader_internal.hpp"
 
 namespace sabus::harness::vector_loader_internal {
@@ -62,11 +63,26 @@ std::vector<std::string> merged(std::vector<std::string> a, const std::vector<st
 // What a group gives each of its vectors.
 struct GroupDefaults {
   std::vector<Requirement> requires_;
+  std::vector<std::string> needs;
   std::vector<Step> setup, teardown;
   std::vector<std::string> tags, flags;
   std::optional<Level> level;
   Captures captures;  // captured by the group's setup
 };
+
+// `needs`: profile expressions that must be available on the device's
+// profile ("{store_room('SABUS TEST')}"); their values are not used. They
+// read no capture: they are decided before the vector runs.
+std::vector<std::string> read_needs(const YAML::Node& v, const At& at) {
+  std::vector<std::string> out;
+  for_each_element(v, at, kMaxValues, [&](const YAML::Node& e, const At& ea) {
+    const std::string& s = scalar(e, ea, "a profile expression");
+    if (!has_placeholder(s)) fail(ea, quoted_clip(s) + " is not a profile expression: write \"{...}\"");
+    if (auto err = check_template(s, {})) fail(ea, *err + " (needs are decided before the vector runs: no captures)");
+    if (!contains(out, s)) out.push_back(s);
+  });
+  return out;
+}
 
 void read_spec(const YAML::Node& v, const At& at, const FileInfo& file, Vector& vec) {
   MapReader r(v, at, {"paragraph", "quote"});
@@ -93,7 +109,7 @@ std::string peek_id(const YAML::Node& v) {
 Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, const GroupDefaults& g, std::string& id) {
   file.spend(at);
   id = peek_id(v);
-  MapReader r(v, at, {"id", "comment", "spec", "level", "flags", "tags", "requires", "setup", "steps", "teardown"});
+  MapReader r(v, at, {"id", "comment", "spec", "level", "flags", "tags", "requires", "needs", "setup", "steps", "teardown"});
   Vector vec;
   vec.where = file.loc(at.mark);
   require_keys(r, at, {"id"}, "a vector");
@@ -120,6 +136,8 @@ Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, cons
     auto own = read_requires(n, a, file);
     vec.requires_.insert(vec.requires_.end(), own.begin(), own.end());
   });
+  vec.needs = merged(file.needs, g.needs);
+  r.with("needs", [&](const YAML::Node& n, const At& a) { vec.needs = merged(vec.needs, read_needs(n, a)); });
   StepContext cx{file, g.captures};
   vec.setup = g.setup;
   r.with("setup", [&](const YAML::Node& n, const At& a) {
@@ -154,11 +172,12 @@ void read_vector_list(const YAML::Node& v, const At& at, const FileInfo& file, c
 
 void read_group(const YAML::Node& v, const At& at, const FileInfo& file, std::vector<Vector>& out,
                 std::vector<LoadError>& errors) {
-  MapReader r(v, at, {"comment", "requires", "setup", "teardown", "tags", "flags", "level", "vectors"});
+  MapReader r(v, at, {"comment", "requires", "needs", "setup", "teardown", "tags", "flags", "level", "vectors"});
   require_keys(r, at, {"vectors"}, "a group");
   GroupDefaults g;
   r.with("comment", [](const YAML::Node& n, const At& a) { to_text(n, a, kMaxText); });
   r.read("requires", g.requires_, [&](const YAML::Node& n, const At& a) { return read_requires(n, a, file); });
+  r.read("needs", g.needs, read_needs);
   r.read("tags", g.tags, [](const YAML::Node& n, const At& a) { return to_names(n, a, is_tag_text, "a tag"); });
   r.read("flags", g.flags, [](const YAML::Node& n, const At& a) { return to_names(n, a, is_flag_name, "a flag name"); });
   r.with("level", [&](const YAML::Node& n, const At& a) { g.level = to_level(n, a); });
@@ -205,7 +224,7 @@ std::string to_file_paragraph(const YAML::Node& v, const At& at) {
 void read_file(const YAML::Node& root, FileInfo& info, VectorFile& f, std::vector<LoadError>& errors) {
   const At at{"", root.Mark()};
   if (root.IsNull()) fail(at, "an empty file: a vector file needs paragraph, title and vectors");
-  MapReader r(root, at, {"paragraph", "title", "notes", "requires", "groups", "vectors"});
+  MapReader r(root, at, {"paragraph", "title", "notes", "requires", "needs", "groups", "vectors"});
   require_keys(r, at, {"paragraph", "title"}, "a vector file");
   if (!r.has("groups") && !r.has("vectors")) fail_missing(at, "vectors", "a vector file needs vectors or groups");
   r.read("paragraph", f.paragraph, to_file_paragraph);
@@ -214,6 +233,7 @@ void read_file(const YAML::Node& root, FileInfo& info, VectorFile& f, std::vecto
   info.paragraph = f.paragraph;
   info.cross_cutting = contains(kCrossCutting, f.paragraph);
   r.read("requires", info.requires_, [&](const YAML::Node& n, const At& a) { return read_requires(n, a, info); });
+  r.read("needs", info.needs, read_needs);
   r.with("groups", [&](const YAML::Node& n, const At& a) {
     for_each_element(n, a, kMaxGroups, [&](const YAML::Node& g, const At& ga) {
       try {
@@ -263,7 +283,7 @@ using namespace vector_loader_internal;
 LoadResult load_vector_tree(const YAML::Node& root, const std::string& name) {
   LoadResult result;
   std::size_t work = 0;
-  FileInfo info{name, "", false, {}, &work};
+  FileInfo info{name, "", false, {}, {}, &work};
   VectorFile file;
   file.path = name;
   catching(name, result.errors, [&] { read_file(root, info, file, result.errors); });

@@ -153,6 +153,24 @@ std::string build_error_text(const DecodeError& e) {
   return "the codecs cannot build this request: " + e.expected + (e.got.empty() ? "" : ", got " + e.got);
 }
 
+// The fields as a load-time check can build them: each profile expression
+// expanded against the default profile, captures read as 0; a field the
+// default profile cannot give (an unavailable capability) is left out, to
+// the codec's default. The run builds the real values.
+std::map<std::string, std::string> static_fields(const std::map<std::string, std::string>& fields) {
+  static const Profile kDefault;
+  std::map<std::string, std::string> out;
+  for (const auto& [name, value] : fields) {
+    if (!has_placeholder(value)) {
+      out.emplace(name, value);
+      continue;
+    }
+    const Expansion e = expand_template(value, ExprContext{kDefault, nullptr, {}});
+    if (e.ok()) out.emplace(name, e.text);
+  }
+  return out;
+}
+
 // The frame a step sends, as far as it can be told without a device.
 std::optional<FrameSketch> step_sketch(const Step& s, std::string& problem) {
   if (s.command) {
@@ -161,7 +179,7 @@ std::optional<FrameSketch> step_sketch(const Step& s, std::string& problem) {
       problem = "unknown command " + quoted_clip(s.command->command);
       return std::nullopt;
     }
-    auto built = build_request(*info, s.command->form, s.command->fields);
+    auto built = build_request(*info, s.command->form, static_fields(s.command->fields));
     if (!built) {
       problem = build_error_text(built.error());
       return std::nullopt;
@@ -212,7 +230,8 @@ Expected<Bytes> step_bytes(const Step& s, std::uint8_t address, const std::map<s
   if (!s.command) return DecodeError{0, "step", "a send with a command or raw bytes", "neither"};
   const CommandInfo* info = find_command(s.command->command);
   if (!info) return DecodeError{0, "command", "a command of the catalog", s.command->command};
-  auto r = build_request(*info, s.command->form, s.command->fields);
+  // Statically, a profile expression's value is not known: the default profile's stands in.
+  auto r = build_request(*info, s.command->form, blank_missing_captures ? static_fields(s.command->fields) : s.command->fields);
   if (!r) return r.error();
   return encode_request(r.value(), s.command->address.value_or(address));
 }

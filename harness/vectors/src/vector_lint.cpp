@@ -175,8 +175,9 @@ void lint_motion_positions(const Vector& v, const Step& s, const FrameSketch& sk
         errors.push_back({s.where, v.id, key + ".send.fields." + name,
                           "a literal target in a vector that moves the antenna: derive it from the profile "
                           "(\"{home(az)}\", \"{at(el, 0.3)}\"; vectors/README.md)"});
-  if (acted_on && s.raw && sketch.complete && sketch.command && sketch.command->code == 0x32 && sketch.selector) {
-    const FormInfo* form = sketch.command->form_for_selector(*sketch.selector);
+  if (acted_on && s.raw && sketch.complete && sketch.command && sketch.command->code == 0x32) {
+    // The selector byte cannot tell form 1 from 2A (both ' '): the codecs decode the frame.
+    const FormInfo* form = classify_command(sketch.bytes).form;
     if (form && form->id != "1")  // form 1 names a stored satellite; the others carry a target
       errors.push_back({s.where, v.id, key + ".send.raw",
                         "a raw auto move to a literal target in a vector that moves the antenna: put the target in "

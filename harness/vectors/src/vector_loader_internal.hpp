@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -137,6 +138,10 @@ std::optional<Effects> effects_of(const FrameSketch& s);
 // Whether the catalog's request length applies to a send: a complete command
 // frame of a code whose request length the catalog knows.
 bool has_checked_length(const FrameSketch& k);
+// A structured command's fields as a static check can build them: profile
+// expressions expanded against the default profile (captures read 0); a
+// field it cannot give is left to the codec's default.
+std::map<std::string, std::string> static_fields(const std::map<std::string, std::string>& fields);
 // Why build_request refused a structured command.
 std::string build_error_text(const DecodeError& e);
 
@@ -155,6 +160,7 @@ struct FileInfo {
   std::string paragraph;
   bool cross_cutting = false;
   std::vector<Requirement> requires_;
+  std::vector<std::string> needs;
   std::size_t* work = nullptr;
   SourceLocation loc(const YAML::Mark& m) const { return {name, one_based(m.line), one_based(m.column)}; }
   void spend(const At& at, std::size_t units = 1) const {

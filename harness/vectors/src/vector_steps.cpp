@@ -10,6 +10,7 @@
 #include "sabus/harness/expressions.hpp"
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/nak_rules.hpp"
+#include "sabus/harness/profile_records.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "vector_loader_internal.hpp"
@@ -223,6 +224,15 @@ std::vector<FieldMatcher> read_matchers(const YAML::Node& v, const At& at, const
     if (reply && !contains(reply->names, name))
       fail(fa, "unknown field " + quoted_clip(name) + " of " + reply->what + "; its fields (as describe_frame names them): " +
                    joined(reply->names));
+    // A list: several matchers of one field, each of which must hold.
+    if (value.IsSequence()) {
+      for_each_element(value, fa, kMaxValues, [&](const YAML::Node& e, const At& ea) {
+        if (e.IsSequence()) fail(ea, "a list of matchers holds matchers, not lists");
+        out.push_back(read_matcher(name, e, ea, cx));
+      });
+      if (value.size() == 0) fail(fa, "no matcher given");
+      return;
+    }
     out.push_back(read_matcher(name, value, fa, cx));
   });
   if (out.empty()) fail(at, "no field given");
@@ -285,6 +295,19 @@ RawBytes read_raw(const YAML::Node& v, const At& at, StepContext& cx, std::vecto
   return RawBytes{hex, cx.file.loc(at.mark)};
 }
 
+// The record `from_profile` names: a slot index (a number or a profile
+// expression) for an indexed list, "navigation" for 45h/46h.
+std::string to_record(const YAML::Node& v, const At& at, const CommandInfo& command, const StepContext& cx) {
+  const std::string& s = scalar(v, at, "a slot index or navigation");
+  if (!record_is_indexed(command.code)) {
+    if (s != "navigation") fail(at, std::string(command.key) + " has one record: write from_profile: navigation");
+    return s;
+  }
+  if (has_placeholder(s)) check_expressions(s, at, cx);
+  else (void)to_integer_in(v, at, 1, 20);
+  return s;
+}
+
 Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInfo* command, StepContext& cx) {
   Expectation e;
   e.where = cx.file.loc(at.mark);
@@ -292,7 +315,7 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     e.kind = to_reply_kind(v, at);
     return e;
   }
-  MapReader r(v, at, {"reply", "bytes", "fields", "rule"});
+  MapReader r(v, at, {"reply", "bytes", "fields", "rule", "from_profile"});
   require_keys(r, at, {"reply"}, "expect");
   r.read("reply", e.kind, to_reply_kind);
   r.with("rule", [&](const YAML::Node& n, const At& a) {
@@ -314,6 +337,13 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     check_reply_bytes(sketch_of(elements), e.kind, command, a);
   });
   r.with("fields", [&](const YAML::Node& n, const At& a) { e.fields = read_matchers(n, a, reply_fields(command, e.kind), cx); });
+  r.with("from_profile", [&](const YAML::Node& n, const At& a) {
+    if (e.kind != Expectation::Kind::kAck) fail(a, "from_profile is an ack reply's");
+    if (r.has("bytes")) fail(a, "give bytes or from_profile, not both");
+    const bool read = command && takes_profile_record(command->code) && command->forms.front().effects.changes_stored_data == false;
+    if (!read) fail(a, "from_profile checks the reply of a read of stored data: 3Ah, 3Ch, 44h or 45h");
+    e.from_profile = to_record(n, a, *command, cx);
+  });
   keep_captures(e.fields, cx);
   return e;
 }
@@ -363,24 +393,6 @@ std::string to_field_value(const YAML::Node& v, const At& at, const StepContext&
   return v.Scalar();
 }
 
-// The fields as a load-time check can build them: each profile expression
-// expanded against the default profile, captures read as 0; a field the
-// default profile cannot give (an unavailable capability) is left out, to
-// the codec's default. The run builds the real values.
-std::map<std::string, std::string> static_fields(const std::map<std::string, std::string>& fields) {
-  static const Profile kDefault;
-  std::map<std::string, std::string> out;
-  for (const auto& [name, value] : fields) {
-    if (!has_placeholder(value)) {
-      out.emplace(name, value);
-      continue;
-    }
-    const Expansion e = expand_template(value, ExprContext{kDefault, nullptr, {}});
-    if (e.ok()) out.emplace(name, e.text);
-  }
-  return out;
-}
-
 // Where build_request's error points: `field "NAME": ...` names a field key.
 At build_error_at(const DecodeError& e, const std::map<std::string, At>& field_at, const At& fallback) {
   for (const auto& [name, at] : field_at)
@@ -410,6 +422,12 @@ StructuredCommand read_structured(const MapReader& r, const At& at, StepContext&
     });
   });
   r.with("address", [&](const YAML::Node& n, const At& a) { sc.address = to_address(n, a); });
+  r.with("from_profile", [&](const YAML::Node& n, const At& a) {
+    if (!takes_profile_record(info->code) || !info->forms.front().effects.changes_stored_data)
+      fail(a, "from_profile sends a record of the profile with a write of stored data: 39h, 3Bh, 43h or 46h");
+    if (r.has("fields")) fail(a, "give fields or from_profile, not both");
+    sc.from_profile = to_record(n, a, *info, cx);
+  });
   auto built = build_request(*info, sc.form, static_fields(sc.fields));
   if (!built) fail(build_error_at(built.error(), field_at, r.at("fields")), build_error_text(built.error()));
   sketch = sketch_of(encode_request(*built, sc.address.value_or(kSketchAddress)), true);
@@ -417,10 +435,10 @@ StructuredCommand read_structured(const MapReader& r, const At& at, StepContext&
 }
 
 Send read_send(const YAML::Node& v, const At& at, StepContext& cx) {
-  MapReader r(v, at, {"command", "form", "fields", "address", "raw"});
+  MapReader r(v, at, {"command", "form", "fields", "address", "raw", "from_profile"});
   Send s;
   if (r.has("raw")) {
-    for (auto k : {"command", "form", "fields", "address"})
+    for (auto k : {"command", "form", "fields", "address", "from_profile"})
       if (r.has(k)) fail(r.at(k), std::string("a raw send has no ") + k + ": write the bytes in raw");
     r.with("raw", [&](const YAML::Node& n, const At& a) {
       std::vector<Element> elements;

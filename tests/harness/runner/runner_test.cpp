@@ -126,7 +126,7 @@ Step send_raw(std::string hex, Expectation::Kind kind) {
 Step send_command(std::string command, std::string form, std::map<std::string, std::string> fields,
                   Expectation::Kind kind) {
   Step s;
-  s.command = StructuredCommand{std::move(command), std::move(form), std::move(fields), std::nullopt, {}};
+  s.command = StructuredCommand{std::move(command), std::move(form), std::move(fields), std::nullopt, {}, {}};
   s.expect.kind = kind;
   return s;
 }

@@ -64,8 +64,12 @@ TEST(Expressions, AMissingCapabilityIsUnavailableWithItsReason) {
   for (int i = 1; i <= 20; ++i) p.presets.push_back({static_cast<std::uint8_t>(i), {}, false});
   const Expansion full = expand("{first_empty(presets)}", p);
   EXPECT_EQ(full.kind, Kind::kUnavailable);
-  EXPECT_NE(full.text.find("every slot filled"), std::string::npos) << full.text;
+  EXPECT_NE(full.text.find("every one filled"), std::string::npos) << full.text;
   EXPECT_EQ(expand("{last_filled(presets)}", p).text, "20");
+  EXPECT_EQ(expand("{filled(presets, 7)}", p).text, "7");
+  p.presets.pop_back();  // slot 20
+  EXPECT_EQ(expand("{filled(presets, 20)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{first_filled_upto(presets, 10)}", p).text, "1");
 }
 
 TEST(Expressions, ErrorsNameTheProblem) {

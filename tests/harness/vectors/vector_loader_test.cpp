@@ -281,9 +281,9 @@ groups:
         tags: [timing]
         requires: {address: "2"}
         steps:
-          - send: {command: auto_move, form: 2a, fields: {azimuth: -152.5, elevation: 45.6}, address: 51}
-            expect: {reply: ack, fields: {"az status": {eq: 0x47}, azimuth: {range: [-152.6, -152.4]}, "sat name": {one_of: ["SBS 6", ""]}, agc: {regex: "^ *[0-9]+$"}, "el status": any, pol status: 0x40}}
-          - poll: {send: {command: status}, until: {"az status": 0x40}, timeout_ms: 120000, interval_ms: 2000, expect: ack}
+          - send: {command: auto_move, form: 2a, fields: {azimuth: "{home(az)}", elevation: "{at(el, 0.5)}"}, address: 51}
+            expect: {reply: ack, fields: {"az status": {eq: 0x47}, azimuth: {range: ["{home(az) - 0.1}", "{home(az) + 0.1}"]}, "sat name": {one_of: ["SBS 6", ""]}, agc: {regex: "^ *[0-9]+$"}, "el status": any, pol status: 0x40}}
+          - poll: {send: {command: status}, until: {"az status": 0x40, elevation: {near: "{at(el, 0.5)}"}}, interval_ms: 2000, expect: ack}
           - wait: {ms: 1100}
           - wait_ms: 1200
           - send: {raw: "02 {addr} 31 03 {lrc}"}
@@ -331,8 +331,8 @@ TEST(vectors, EveryFeatureReadsIntoTheModel) {
   EXPECT_EQ(move.kind, Step::Kind::kSend);
   EXPECT_EQ(move.command->command, "auto_move");
   EXPECT_EQ(move.command->form, "2A");  // the catalog's spelling
-  EXPECT_EQ(move.command->fields.at("azimuth"), "-152.5");
-  EXPECT_EQ(move.command->fields.at("elevation"), "45.6");
+  EXPECT_EQ(move.command->fields.at("azimuth"), "{home(az)}");  // profile expressions, computed at run time
+  EXPECT_EQ(move.command->fields.at("elevation"), "{at(el, 0.5)}");
   EXPECT_EQ(move.command->address, std::optional<std::uint8_t>(0x33));
   const auto& m = move.expect.fields;
   ASSERT_EQ(m.size(), 6u);
@@ -340,8 +340,7 @@ TEST(vectors, EveryFeatureReadsIntoTheModel) {
   EXPECT_EQ(m[0].kind, FieldMatcher::Kind::kEq);
   EXPECT_EQ(m[0].values, (std::vector<std::string>{"0x47"}));  // the text as written
   EXPECT_EQ(m[1].kind, FieldMatcher::Kind::kRange);
-  EXPECT_DOUBLE_EQ(m[1].low, -152.6);
-  EXPECT_DOUBLE_EQ(m[1].high, -152.4);
+  EXPECT_EQ(m[1].values, (std::vector<std::string>{"{home(az) - 0.1}", "{home(az) + 0.1}"}));
   EXPECT_EQ(m[2].kind, FieldMatcher::Kind::kOneOf);
   EXPECT_EQ(m[2].values, (std::vector<std::string>{"SBS 6", ""}));
   EXPECT_EQ(m[3].kind, FieldMatcher::Kind::kRegex);
@@ -351,9 +350,11 @@ TEST(vectors, EveryFeatureReadsIntoTheModel) {
 
   const Step& poll = v.steps[1];
   EXPECT_EQ(poll.kind, Step::Kind::kPoll);
-  EXPECT_EQ(poll.timeout, std::chrono::milliseconds(120000));
+  EXPECT_EQ(poll.timeout, std::chrono::milliseconds(0));  // derived by the runner from distance and speed
   EXPECT_EQ(poll.interval, std::chrono::milliseconds(2000));
   EXPECT_EQ(poll.until[0].values, (std::vector<std::string>{"0x40"}));
+  EXPECT_EQ(poll.until[1].kind, FieldMatcher::Kind::kNear);
+  EXPECT_EQ(poll.until[1].values, (std::vector<std::string>{"{at(el, 0.5)}"}));
   EXPECT_EQ(v.steps[2].kind, Step::Kind::kWait);
   EXPECT_EQ(v.steps[2].timeout, std::chrono::milliseconds(1100));
   EXPECT_EQ(v.steps[3].timeout, std::chrono::milliseconds(1200));
@@ -699,7 +700,8 @@ std::string lint_vector(const std::string& steps, const std::string& extra = "",
 }
 
 TEST(vectors, LintMotionNeedsTheMotionTag) {
-  const std::string move = "      - send: {command: auto_move, form: 2A, fields: {azimuth: 10, elevation: 20}}\n        expect: ack\n";
+  const std::string move =
+      "      - send: {command: auto_move, form: 2A, fields: {azimuth: \"{home(az)}\", elevation: \"{home(el)}\"}}\n        expect: ack\n";
   expect_lint(lint_vector(move), {"send", 1, "3.2-x", "steps[0]", "sends auto_move (0x32), which can move the antenna: tag the vector motion"});
   EXPECT_TRUE(lint_text(lint_vector(move, "    tags: [motion]\n")).empty());
   // A raw frame is read for its command byte; a setup step counts too.
@@ -712,6 +714,67 @@ TEST(vectors, LintMotionNeedsTheMotionTag) {
   // A damaged frame still needs the tag: a faulty controller may act on it.
   expect_lint(lint_vector("      - send: {command: keypress, fields: {key code: \"1\"}}\n        modify: {lrc_xor: 1}\n        expect: silence\n"),
               {"send", 1, "3.2-x", "steps[0]", "sends keypress (0x48), which can move the antenna"});
+}
+
+// A vector that moves the antenna rests on the device's profile: no literal
+// position window, no literal target the device acts on, no literal poll
+// timeout (vectors/README.md, "Profile expressions").
+TEST(vectors, LintMotionRestsOnTheProfile) {
+  const std::string tags = "    tags: [motion]\n";
+  expect_lint(lint_vector("      - send: {command: auto_move, form: 2A, fields: {azimuth: 30.0, elevation: \"{home(el)}\"}}\n"
+                          "        expect: ack\n", tags),
+              {"send", 1, "3.2-x", "steps[0].send.fields.azimuth", "a literal target in a vector that moves the antenna"});
+  expect_lint(lint_vector("      - send: {command: status}\n        expect: {reply: ack, fields: {elevation: {range: [9.9, 10.1]}}}\n", tags),
+              {"elevation", 1, "3.2-x", "steps[0].expect.fields.elevation", "a literal position window"});
+  expect_lint(lint_vector("      - poll: {send: {command: status}, until: {az status: 0x40}, timeout_ms: 600000}\n", tags),
+              {"poll", 1, "3.2-x", "steps[0].timeout_ms", "a literal timeout in a vector that moves the antenna"});
+  expect_lint(lint_vector("      - send: {raw: \"02 {addr} 32 20 30 30 33 30 30 30 30 31 30 30 03 {lrc}\"}\n        expect: ack\n", tags),
+              {"send", 1, "3.2-x", "steps[0].send.raw", "a raw auto move to a literal target"});
+  // Near, jogged, expression ranges and a derived timeout are the profile's;
+  // a target the device must refuse (NAK) is not acted on.
+  EXPECT_TRUE(lint_text(lint_vector(
+                  "      - send: {command: jog, form: U, fields: {speed: S, duration: \"{jog_ms(el, S)}\"}}\n"
+                  "        expect: {reply: ack, fields: {elevation: {capture: $from}}}\n"
+                  "      - poll: {send: {command: status}, until: {el status: {regex: \"^0x[45]0$\"}, elevation: {near: \"{home(el)}\"}}}\n"
+                  "      - send: {command: status}\n"
+                  "        expect: {reply: ack, fields: {elevation: {jogged: {jog: U, speed: S, from: \"{$from}\", ms: 50}}, azimuth: {range: [\"{min_deg(az)}\", \"{max_deg(az)}\"]}}}\n"
+                  "      - send: {command: auto_move, form: 2A, fields: {azimuth: 999.0, elevation: 0.0}}\n        expect: nak\n",
+                  tags))
+                  .empty());
+}
+
+TEST(vectors, RequirementsNameCapabilitiesNeverAProfile) {
+  expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    requires: {name: rc3000-1.59}\n"),
+               {"name", 1, "3.2-x", "requires.name", "a vector requires capabilities, never a profile's name"});
+  VectorFile f = load_ok(one_vector("      - send: {command: status}\n        expect: ack\n",
+                                    "    needs: [\"{first_empty(presets)}\", \"{store_room('SABUS TEST')}\"]\n"));
+  ASSERT_EQ(f.vectors.size(), 1u);
+  EXPECT_EQ(f.vectors[0].needs, (std::vector<std::string>{"{first_empty(presets)}", "{store_room('SABUS TEST')}"}));
+  expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    needs: [first_empty]\n"),
+               {"first_empty", 1, "3.2-x", "needs[0]", "is not a profile expression"});
+  expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    needs: [\"{nope()}\"]\n"),
+               {"\"{nope()}", 1, "3.2-x", "needs[0]", "unknown function nope()"});
+}
+
+TEST(vectors, ProfileExpressionsAreCheckedWhenLoaded) {
+  expect_error(one_vector("      - send: {command: auto_move, form: 2A, fields: {azimuth: \"{home(az, el)}\", elevation: 0}}\n        expect: nak\n"),
+               {"azimuth", 1, "3.2-x", "steps[0].send.fields.azimuth", "home() takes 1 argument"});
+  expect_error(one_vector("      - send: {command: status}\n        expect: {reply: ack, fields: {elevation: {near: \"{$x}\"}}}\n"),
+               {"near", 1, "3.2-x", "steps[0].expect.fields.elevation.near", "$x is not captured by an earlier step"});
+  expect_error(one_vector("      - send: {command: status}\n        expect: {reply: ack, fields: {agc: {near: 5}}}\n"),
+               {"near", 1, "3.2-x", "steps[0].expect.fields.agc.near", "not an axis position"});
+  expect_error(one_vector("      - send: {command: status}\n        expect: {reply: ack, fields: {azimuth: {jogged: {jog: U, speed: F, from: 0, ms: 50}}}}\n"),
+               {"jogged", 1, "3.2-x", "steps[0].expect.fields.azimuth.jogged", "a 'U' jog moves the elevation"});
+  expect_error(one_vector("      - send: {command: read_satellite, fields: {index: 1}}\n        expect: {reply: ack, from_profile: navigation}\n"),
+               {"from_profile", 1, "3.2-x", "steps[0].expect.from_profile", "expected a whole number"});
+  expect_error(one_vector("      - send: {command: status, from_profile: 1}\n        expect: ack\n"),
+               {"from_profile", 1, "3.2-x", "steps[0].send.from_profile", "from_profile sends a record of the profile"});
+  // A list of matchers for one field: each must hold.
+  VectorFile f = load_ok(one_vector(
+      "      - send: {command: status}\n        expect: {reply: ack, fields: {azimuth: [{regex: \"^ \"}, {near: \"{home(az)}\"}]}}\n"));
+  ASSERT_EQ(f.vectors.size(), 1u);
+  ASSERT_EQ(f.vectors[0].steps[0].expect.fields.size(), 2u);
+  EXPECT_EQ(f.vectors[0].steps[0].expect.fields[1].kind, FieldMatcher::Kind::kNear);
 }
 
 TEST(vectors, LintStoredDataNeedsTheDestructiveTag) {

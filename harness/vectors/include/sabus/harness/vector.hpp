@@ -34,6 +34,10 @@ struct StructuredCommand {
   std::map<std::string, std::string> fields; // field name (as describe_frame names it) -> value text
   std::optional<std::uint8_t> address;       // default: the device's address
   SourceLocation where;
+  // Instead of fields: the profile's stored record, as the codecs write it
+  // (profile_records.hpp): a slot index (a number or a profile expression)
+  // for 39h/3Bh/43h, "navigation" for 46h.
+  std::string from_profile;
 };
 
 // Raw bytes of 7-bit characters, hex with placeholders: "02 {addr} 31 03 {lrc}".
@@ -90,6 +94,9 @@ struct FieldMatcher {
   char jog = 0, speed = 0;          // jogged: the direction letter (E W D U O L) and F/S
   std::string near_axis;            // near: "az", "el", "pol" when the field does not name the axis
   std::string expected;             // a resolved matcher's own words for its failure message
+  // Resolved for a compass heading (§3.2 NOTE: a fluxgate azimuth reads
+  // 0.0-359.9): the reading is taken modulo 360, nearest the window.
+  bool angular = false;
 };
 
 struct Expectation {
@@ -102,6 +109,9 @@ struct Expectation {
   // holds against the reference controller only, so that a vector written
   // for one rule cannot pass by tripping another (a wrong length, say).
   std::string nak_rule;
+  // ack of 3Ah/3Ch/44h/45h: the reply must be what the profile says the slot
+  // (an index, a number or a profile expression) or the navigation data holds.
+  std::string from_profile;
   SourceLocation where;
 };
 
@@ -137,6 +147,10 @@ struct Vector {
   std::vector<std::string> flags;    // defined in the file's notes
   std::vector<std::string> tags;     // motion, destructive, option:dvb, pol:circular, parity, ...
   std::vector<Requirement> requires_;  // the file's, the group's and the vector's
+  // Profile expressions that must be available on the device's profile (a
+  // capability: "{store_room('SABUS TEST')}", "{first_empty(presets)}"):
+  // the file's, the group's and the vector's.
+  std::vector<std::string> needs;
   std::vector<Step> setup;           // the group's, then the vector's
   std::vector<Step> steps;
   std::vector<Step> teardown;
