@@ -15,6 +15,7 @@
 #include <initializer_list>
 #include <span>
 
+#include "sabus/harness/data_dir.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/harness/yaml_reader.hpp"
 
@@ -489,7 +490,7 @@ ProfileResult load_profile_file(const std::string& path) {
   return load_profile_text(*text, path);
 }
 
-std::string default_profile_path() { return SABUS_SOURCE_DIR "/vectors/profiles/rc3000-1.59.yaml"; }
+std::string default_profile_path() { return data_path("vectors/profiles/rc3000-1.59.yaml"); }
 
 // ---------------------------------------------------------------------------
 // Writing

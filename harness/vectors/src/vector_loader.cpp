@@ -21,6 +21,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "sabus/harness/data_dir.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
@@ -82,10 +83,11 @@ constexpr std::string_view kKnownTags[] = {"motion",          "destructive", "op
 constexpr std::string_view kCrossCutting[] = {"framing", "ignore",    "nak",   "offline",
                                               "parity",  "multidrop", "timing", "pacing"};
 
-constexpr std::string_view kErrataPath = SABUS_SOURCE_DIR "/protocol/ERRATA.md";
+// In the data directory (data_dir.hpp).
+constexpr std::string_view kErrataFile = "protocol/ERRATA.md";
 // The spec text the quotes come from (protocol/ERRATA.md: "the project reads
-// it from ../shared/spec/"). Outside the repository: skipped when absent.
-constexpr std::string_view kSpecTextPath = SABUS_SOURCE_DIR "/../shared/spec/000_ebbe2d50858e9e24.txt";
+// it from ../shared/spec/"), by its file name (spec_text_path says where).
+constexpr std::string_view kSpecTextName = "000_ebbe2d50858e9e24.txt";
 
 template <class Range>
 bool contains(const Range& range, std::string_view s) {
@@ -1133,14 +1135,16 @@ bool by_position(const LoadError& a, const LoadError& b) {
 
 // ERRATA.md entries by number ("### E-7: ..."), and whether each is withdrawn.
 struct ErrataIndex {
+  std::string path;
   std::optional<std::string> error;
   std::map<std::size_t, bool> withdrawn;
 };
 
 ErrataIndex read_errata() {
   ErrataIndex index;
+  index.path = data_path(kErrataFile);
   std::string error;
-  auto text = read_capped(std::string(kErrataPath), 4 << 20, error);
+  auto text = read_capped(index.path, 4 << 20, error);
   if (!text) {
     index.error = error;
     return index;
@@ -1203,7 +1207,7 @@ void lint_notes(const VectorFile& f, const ErrataIndex& errata, std::vector<Load
     if (note.errata.rfind("E-", 0) != 0 || !parse_whole(std::string_view(note.errata).substr(2), n))
       errors.push_back({note.where, "", key, quoted_clip(note.errata) + " is not an errata entry id like E-7"});
     else if (errata.error)
-      errors.push_back({note.where, "", key, "cannot check " + note.errata + ": " + std::string(kErrataPath) + ": " + *errata.error});
+      errors.push_back({note.where, "", key, "cannot check " + note.errata + ": " + errata.path + ": " + *errata.error});
     else if (!errata.withdrawn.count(n))
       errors.push_back({note.where, "", key, note.errata + " is not an entry of protocol/ERRATA.md"});
     else if (errata.withdrawn.at(n))
@@ -1385,7 +1389,15 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
   return result;
 }
 
-std::string spec_text_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
+std::string spec_text_path() {
+  const DataDir data = require_data_dir();
+  // The vendor's manual is not ours to ship: a source tree finds it where
+  // the project keeps it, beside the repository; an installation (or any
+  // data directory given) where its owner puts a copy, spec/ inside it.
+  const std::filesystem::path dir = std::filesystem::path(*data.path) /
+                                    (data.source == DataDirSource::kSourceTree ? "../shared/spec" : "spec");
+  return (dir / kSpecTextName).lexically_normal().string();
+}
 
 std::optional<std::string> read_spec_text() {
   std::string error;
@@ -1414,7 +1426,7 @@ std::vector<LoadError> lint(const std::vector<VectorFile>& files, const std::opt
   return errors;
 }
 
-std::string default_vectors_dir() { return SABUS_SOURCE_DIR "/vectors"; }
+std::string default_vectors_dir() { return data_path("vectors"); }
 
 Expected<Bytes> expand_raw_bytes(std::string_view hex, std::uint8_t address, const std::map<std::string, std::string>& captures) {
   std::vector<Element> elements;
