@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev                    # JSON output
   socat                                 # pty pairs for integration tests
   libxml2-utils                         # xmllint: the JUnit report validates against reports/junit.xsd
+  dpkg-dev file                         # cpack -G DEB: dpkg-shlibdeps computes the package's Depends
 )
 
 missing=()

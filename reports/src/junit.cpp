@@ -63,6 +63,7 @@ std::string junit_xml(const RunDocument& doc) {
         "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\" time=\"{:.3f}\" "
         "timestamp=\"{}\" package=\"sabus\">\n",
         xml_escape("§" + paragraph), vectors.size(), failures, skipped, ms / 1000.0, xml_escape(doc.started_at));
+    out += fmt::format("    <properties><property name=\"generator\" value=\"{}\"/></properties>\n", xml_escape(doc.generator));
     for (const auto* v : vectors) {
       out += fmt::format("    <testcase name=\"{}\" classname=\"sabus.{}.{}\" time=\"{:.3f}\">", xml_escape(v->id),
                          xml_escape(paragraph), xml_escape(v->level), v->duration_ms / 1000.0);

@@ -185,5 +185,16 @@ TEST(Diff, TimingThresholds) {
   EXPECT_FALSE(parse_timing_threshold(""));
 }
 
+// The version of the suite that ran (sabus --version) is in every report.
+TEST(Reports, EveryReportCarriesTheGenerator) {
+  RunDocument d = sample();
+  d.generator = "sabus 9.8.7 (git v9.8.7-3-gabc1234-dirty)";
+  EXPECT_EQ(nlohmann::json::parse(json_text(d)).at("generator"), d.generator);
+  EXPECT_NE(junit_xml(d).find("<property name=\"generator\" value=\"sabus 9.8.7 (git v9.8.7-3-gabc1234-dirty)\"/>"),
+            std::string::npos);
+  EXPECT_NE(html_report(d).find(d.generator), std::string::npos);
+  EXPECT_NE(markdown_summary(d).find(d.generator), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sabus::reports

@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "device.hpp"
+#include "version.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
@@ -135,7 +136,7 @@ int run_run(RunCliOptions o) {
                                              : "sabus-backup.json";
 
   reports::RunDocument doc;
-  doc.generator = "sabus " SABUS_VERSION;
+  doc.generator = "sabus " + full_version();
   doc.started_at = reports::utc_now();
   doc.device = transport->describe();
   doc.profile = profile.name;

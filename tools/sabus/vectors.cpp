@@ -276,7 +276,8 @@ Command add_vectors_command(CLI::App& app) {
   auto opts = std::make_shared<VectorsOptions>();
   CLI::App* sub = app.add_subcommand("vectors", "Check and list the conformance vectors (vectors/*.yaml)");
   sub->require_subcommand(1);
-  const std::string where = "vector files or directories (default: " + harness::default_vectors_dir() + ")";
+  // Not looked up here: the data directory may be given after this (--data-dir).
+  const std::string where = "vector files or directories (default: vectors/ in the data directory, see sabus --version)";
   CLI::App* lint = sub->add_subcommand("lint", "Load and lint the vectors; print every error, then a summary");
   lint->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   CLI::App* list = sub->add_subcommand("list", "List the vectors: id, paragraph, level, tags");

@@ -12,6 +12,7 @@
 #include <map>
 #include <tuple>
 
+#include "sabus/harness/data_dir.hpp"
 #include "vector_loader_internal.hpp"
 
 namespace sabus::harness::vector_loader_internal {
@@ -328,6 +329,6 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
   return result;
 }
 
-std::string default_vectors_dir() { return SABUS_SOURCE_DIR "/vectors"; }
+std::string default_vectors_dir() { return data_path("vectors"); }
 
 }  // namespace sabus::harness
