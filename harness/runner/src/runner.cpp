@@ -673,6 +673,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     });
     result.vectors.push_back(r);
     if (options_.on_result) options_.on_result(result.vectors.back());
+    if (!options_.keep_transcripts) result.vectors.back().transcript = {};
     if (result.aborted) break;
     // After an ignore path, make sure the device did not silently die.
     if (expected_silence && r.verdict != Verdict::kSkip) {
