@@ -3,11 +3,12 @@
 #include "sabus/reports/journal.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "temp_dir.hpp"
 
 namespace sabus::reports {
 namespace {
@@ -53,25 +54,11 @@ RunDocument header() {
   return d;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::slurp;
 
-class Journal : public ::testing::Test {
+class Journal : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sabus-journal-test-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  Journal() : TempDirTest("sabus-journal-test") {}
   // A journal of three vectors; `end` writes the end record of a finished run.
   RunDocument write_journal(const std::string& file, bool end) {
     RunDocument d = header();
@@ -90,7 +77,6 @@ class Journal : public ::testing::Test {
     }
     return d;
   }
-  fs::path dir_;
 };
 
 TEST(JsonStreamWriter, OneMemberOrElementALineEachSerializedByTheLibrary) {

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "process.hpp"
+#include "temp_dir.hpp"
 
 namespace sabus::reports {
 namespace {
@@ -37,26 +38,11 @@ Output shell(const std::string& command) {
   return o;
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::slurp;
 
-class ReportsCli : public ::testing::Test {
+class ReportsCli : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sabus-reports-test-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  ReportsCli() : TempDirTest("sabus-reports-test") {}
 };
 
 const std::string kSabus = SABUS_BIN;
