@@ -71,7 +71,8 @@ check "?$filter shows only vectors that match" test -z "$(grep -vF -- "$match" <
 check "?$filter counts what it shows" has "<output id=\"shown\">$expected of $total vectors shown</output>" "$filtered"
 
 browse --window-size=1280,3000 --screenshot="$work/report.png" "file://$html" >/dev/null
-browse --window-size=1280,1200 --screenshot="$work/report-filtered.png" "file://$html?$filter" >/dev/null
+# Tall enough to reach the vectors the filter leaves.
+browse --window-size=1280,7000 --screenshot="$work/report-filtered.png" "file://$html?$filter" >/dev/null
 for png in "$work/report.png" "$work/report-filtered.png"; do
   check "a screenshot was written to $png" test -s "$png"
 done
