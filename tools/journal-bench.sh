@@ -5,9 +5,11 @@
 #     reports: median wall time of RUNS runs each, and the ratio
 #     (target <= 1.3);
 #  2. synthetic runs of 1,000, 5,000 and 20,000 vector results (a generated
-#     suite of status polls, each reply decoded field by field) with
-#     --report-dir: wall time and peak resident memory (/usr/bin/time), which
-#     should grow linearly with the count, and the size of what was written.
+#     suite of status polls, each reply decoded field by field) without
+#     reports and with --report-dir: wall time and peak resident memory
+#     (/usr/bin/time), which should grow linearly with the count, and the
+#     size of what was written. (Most of the memory is the loaded suite:
+#     the difference between the two runs is what the reports cost.)
 # Usage: tools/journal-bench.sh [RUNS]   (default 5)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -66,21 +68,30 @@ make_suite() {
   exec 3>&-
 }
 
-echo "synthetic runs (--sim --report-dir, N status polls):"
-printf '  %6s  %8s  %10s  %12s  %12s  %12s\n' N "wall s" "peak MiB" "run.json MiB" "report.html" "µs/vector"
+# Wall seconds and peak KiB of one run, "wall kib" into FILE; exits on failure.
+measure() {
+  local file=$1
+  shift
+  if ! /usr/bin/time -f '%e %M' -o "$file" "$@" >"$file.console" 2>&1; then
+    echo "journal-bench: $* failed:" >&2
+    tail -n 5 "$file.console" >&2
+    exit 1
+  fi
+}
+
+echo "synthetic runs (--sim, N status polls): wall time and peak memory without reports (plain) and with --report-dir (report):"
+printf '  %6s  %9s  %9s  %9s  %10s  %12s  %11s  %11s\n' N "plain s" "plain MiB" "report s" "report MiB" "run.json MiB" "report.html" "µs/vector"
 for n in 1000 5000 20000; do
   make_suite "$n" "$work/suite-$n"
   rm -rf "$work/out-$n"
-  if ! /usr/bin/time -f '%e %M' -o "$work/time-$n" "$sabus" run --sim --vectors "$work/suite-$n" \
-    --report-dir "$work/out-$n" >"$work/console-$n" 2>&1; then
-    echo "journal-bench: the synthetic run of $n failed:" >&2
-    tail -n 5 "$work/console-$n" >&2
-    exit 1
-  fi
+  measure "$work/plain-$n" "$sabus" run --sim --vectors "$work/suite-$n"
+  measure "$work/time-$n" "$sabus" run --sim --vectors "$work/suite-$n" --report-dir "$work/out-$n"
+  read -r wall0 kib0 <"$work/plain-$n"
   read -r wall kib <"$work/time-$n"
-  printf '  %6d  %8.2f  %10.1f  %12.1f  %10.1f MiB  %12.0f\n' "$n" "$wall" "$(echo "$kib / 1024" | bc -l)" \
+  printf '  %6d  %9.2f  %9.1f  %9.2f  %10.1f  %12.1f  %7.1f MiB  %11.0f\n' "$n" "$wall0" "$(echo "$kib0 / 1024" | bc -l)" \
+    "$wall" "$(echo "$kib / 1024" | bc -l)" \
     "$(echo "$(stat -c %s "$work/out-$n/run.json") / 1048576" | bc -l)" \
     "$(echo "$(stat -c %s "$work/out-$n/report.html") / 1048576" | bc -l)" \
     "$(echo "$wall * 1000000 / $n" | bc -l)"
-  rm -rf "$work/out-$n"
+  rm -rf "$work/out-$n" "$work/suite-$n"
 done
