@@ -151,6 +151,7 @@ void journal(RunResult& result, VectorResult r, const RunOptions& o) {
   }
   result.vectors.push_back(std::move(r));
   if (o.on_result) o.on_result(result.vectors.back());
+  if (!o.keep_transcripts) result.vectors.back().transcript = {};
 }
 
 bool expects_silence(const Vector& v) {
