@@ -16,6 +16,9 @@ packages=(
   nlohmann-json3-dev                    # JSON output
   socat                                 # pty pairs for integration tests
   libxml2-utils                         # xmllint: the JUnit report validates against reports/junit.xsd
+  dpkg-dev file                         # cpack -G DEB: dpkg-shlibdeps computes the package's Depends
+  chromium                              # headless: the HTML report's test renders it (tests/reports)
+  time                                  # /usr/bin/time: peak memory in tools/journal-bench.sh
 )
 
 missing=()

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: installs what is missing, builds the release and the sanitizer
-# (ASan+UBSan) flavours, and runs the whole ctest suite in both; with clang
+# (ASan+UBSan) flavours, and runs the whole ctest suite in both (the release
+# suite builds the Debian package and runs it from a fresh prefix); with clang
 # present it also builds the libFuzzer targets, runs each for FUZZ_SECONDS
 # (default 30) from its seed corpus, and builds them as ClusterFuzzLite does
 # (fuzz/build_like_ossfuzz.sh).
@@ -37,6 +38,10 @@ run_ctest() {
 run_ctest "release build" --test-dir build
 # The vector suite's gates (ctest -L gate): their figures, from ctest's log.
 grep -hE "^(mutation score:|suite gates:|[0-9]+ of [0-9]+ cells covered)" build/Testing/Temporary/LastTest.log || true
+# The Debian package, unpacked into a fresh prefix and run from there (ctest
+# -L install, tests/install/package_test.sh): its size, files, Depends, and
+# what its sabus printed.
+grep -h "^package: " build/Testing/Temporary/LastTest.log || true
 run_ctest "sanitizer build (ASan+UBSan)" --test-dir build-sanitize
 if command -v clang++-14 >/dev/null; then
   bash tools/build.sh fuzz

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace sabus::reports {
 
@@ -68,7 +69,45 @@ std::optional<std::string> reply_change(const VectorRecord& o, const VectorRecor
 
 bool ran(const VectorRecord& v) { return v.outcome != "skip"; }
 
+std::string list_text(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
+  return out.empty() ? "none" : out;
+}
+
 }  // namespace
+
+std::vector<std::string> comparability_warnings(const RunDocument& o, const RunDocument& n) {
+  std::vector<std::string> w;
+  // Every option, also those only one run recorded (older schema versions
+  // have fewer): a run with other options is another experiment.
+  std::set<std::string> keys;
+  for (const auto& [k, v] : o.options.items()) keys.insert(k);
+  for (const auto& [k, v] : n.options.items()) keys.insert(k);
+  for (const auto& k : keys) {
+    const auto a = o.options.find(k), b = n.options.find(k);
+    const std::string av = a == o.options.end() ? "(not recorded)" : a->dump();
+    const std::string bv = b == n.options.end() ? "(not recorded)" : b->dump();
+    if (av != bv) w.push_back(fmt::format("option {}: {} -> {}", k, av, bv));
+  }
+  if (o.profile != n.profile) w.push_back("profile: " + o.profile + " -> " + n.profile);
+  if (o.address != n.address) w.push_back(fmt::format("address: {} -> {}", o.address, n.address));
+  std::set<std::string> ran_old, ran_new;
+  for (const auto& v : o.vectors)
+    if (ran(v)) ran_old.insert(v.id);
+  for (const auto& v : n.vectors)
+    if (ran(v)) ran_new.insert(v.id);
+  std::size_t only_old = 0, only_new = 0;
+  for (const auto& id : ran_old) only_old += !ran_new.count(id);
+  for (const auto& id : ran_new) only_new += !ran_old.count(id);
+  if (only_old || only_new)
+    w.push_back(fmt::format("selection: OLD ran {} vectors, NEW ran {}; {} ran only in OLD, {} only in NEW", ran_old.size(),
+                            ran_new.size(), only_old, only_new));
+  if (!w.empty())
+    w.push_back("the runs put the controller through other states: a reply or a timing that changed may come from that, "
+                "not from the device");
+  return w;
+}
 
 RunDiff diff_runs(const RunDocument& o, const RunDocument& n, const TimingThreshold& threshold) {
   RunDiff d;
@@ -76,7 +115,8 @@ RunDiff diff_runs(const RunDocument& o, const RunDocument& n, const TimingThresh
     return r.identity.ok ? r.identity.controller_type + " " + r.identity.firmware_version : "unknown";
   };
   if (identity(o) != identity(n)) d.run_changes.push_back("device: " + identity(o) + " -> " + identity(n));
-  if (o.profile != n.profile) d.run_changes.push_back("profile: " + o.profile + " -> " + n.profile);
+  d.warnings = comparability_warnings(o, n);
+  if (o.faults != n.faults) d.run_changes.push_back("faults: " + list_text(o.faults) + " -> " + list_text(n.faults));
   if (o.status != n.status) d.run_changes.push_back("status: " + o.status + " -> " + n.status);
   if (n.status != "complete") {
     d.new_run_incomplete = true;
@@ -168,6 +208,7 @@ std::string md(std::string_view s) {
 
 std::string diff_text(const RunDiff& d) {
   std::string out;
+  for (const auto& w : d.warnings) out += "WARNING " + w + "\n";
   for (const auto& c : d.run_changes) out += c + "\n";
   for (const auto& s : sections(d)) {
     if (s.entries->empty()) continue;
@@ -181,6 +222,8 @@ std::string diff_text(const RunDiff& d) {
 
 std::string diff_markdown(const RunDiff& d) {
   std::string out = fmt::format("### SAbus run diff: **{}**\n\n", d.regressed() ? "regressed" : "no regression");
+  for (const auto& w : d.warnings) out += "> **Warning:** " + md(w) + "\n>\n";
+  if (!d.warnings.empty()) out += "\n";
   for (const auto& c : d.run_changes) out += "- " + md(c) + "\n";
   if (!d.run_changes.empty()) out += "\n";
   for (const auto& s : sections(d)) {

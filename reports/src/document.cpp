@@ -13,6 +13,7 @@
 namespace sabus::reports {
 
 using nlohmann::json;
+using nlohmann::ordered_json;
 
 std::string VectorRecord::difference() const {
   if (!failures.empty()) return failures.front();
@@ -81,7 +82,7 @@ void assign_paths(std::vector<FrameRecord>& t) {
     if (t[i].dir != "tx" || t[i].expect.empty()) continue;
     if (t[i].expect == "silence") {
       t[i].path = "ignore";
-    } else if (t[i].expect != "any") {
+    } else if (t[i].expect != "any" && t[i].expect != "answered") {
       t[i].path = t[i].expect;
     } else {
       std::string seen;
@@ -111,6 +112,14 @@ VectorRecord vector_record(const harness::VectorResult& r) {
   return v;
 }
 
+void compact_for_reports(VectorRecord& v) {
+  if (v.has_failed_steps()) return;
+  for (auto& f : v.transcript) {
+    f.fields.clear();
+    f.fields.shrink_to_fit();
+  }
+}
+
 void finish(RunDocument& doc, const harness::RunResult& run, std::string finished_at) {
   doc.status = run.aborted ? "aborted" : "complete";
   doc.abort_reason = run.abort_reason;
@@ -128,75 +137,102 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
 
 // ---- JSON ------------------------------------------------------------------------
 
-json to_json(const FrameRecord& f) {
-  json fields = json::array();
-  for (const auto& x : f.fields)
-    fields.push_back({{"first", x.first}, {"last", x.last}, {"name", x.name}, {"raw", x.raw}, {"meaning", x.meaning}, {"ok", x.ok}});
-  json j = {{"t_ms", f.t_ms}, {"dir", f.dir}, {"hex", f.hex}, {"note", f.note}, {"command", f.command}, {"fields", fields}};
-  if (f.dir == "tx") {
-    j["form"] = f.form;
-    j["expect"] = f.expect;
-    j["path"] = f.path;
+namespace {
+
+// An object of `n` members, added in order with member(): nlohmann builds an
+// object from a braced list by way of a temporary array per member, which a
+// run pays for every field of every frame.
+ordered_json object(std::size_t n) {
+  ordered_json j(ordered_json::value_t::object);
+  j.get_ref<ordered_json::object_t&>().reserve(n);
+  return j;
+}
+template <class T>
+void member(ordered_json& j, const char* key, T&& value) {
+  j.get_ref<ordered_json::object_t&>().emplace(key, std::forward<T>(value));
+}
+
+}  // namespace
+
+ordered_json to_json(const FrameRecord& f) {
+  ordered_json fields = ordered_json::array();
+  fields.get_ref<ordered_json::array_t&>().reserve(f.fields.size());
+  for (const auto& x : f.fields) {
+    ordered_json field = object(6);
+    member(field, "first", x.first);
+    member(field, "last", x.last);
+    member(field, "name", x.name);
+    member(field, "raw", x.raw);
+    member(field, "meaning", x.meaning);
+    member(field, "ok", x.ok);
+    fields.push_back(std::move(field));
+  }
+  const bool tx = f.dir == "tx";
+  ordered_json j = object(tx ? 9 : 6);
+  member(j, "t_ms", f.t_ms);
+  member(j, "dir", f.dir);
+  member(j, "hex", f.hex);
+  member(j, "note", f.note);
+  member(j, "command", f.command);
+  member(j, "fields", std::move(fields));
+  if (tx) {
+    member(j, "form", f.form);
+    member(j, "expect", f.expect);
+    member(j, "path", f.path);
   }
   return j;
 }
 
-json to_json(const VectorRecord& v) {
-  json transcript = json::array();
+ordered_json to_json(const VectorRecord& v) {
+  ordered_json transcript = ordered_json::array();
   for (const auto& f : v.transcript) transcript.push_back(to_json(f));
-  return {{"id", v.id},
-          {"paragraph", v.paragraph},
-          {"file", v.file},
-          {"level", v.level},
-          {"outcome", v.outcome},
-          {"failures", v.failures},
-          {"skip_reason", v.skip_reason},
-          {"known_issue", v.known_issue},
-          {"quote", v.quote},
-          {"comment", v.comment},
-          {"duration_ms", v.duration_ms},
-          {"repeats", v.repeats},
-          {"repeat_failures", v.repeat_failures},
-          {"transcript", transcript}};
+  ordered_json j = {{"id", v.id},
+                    {"paragraph", v.paragraph},
+                    {"file", v.file},
+                    {"level", v.level},
+                    {"outcome", v.outcome},
+                    {"failures", v.failures},
+                    {"skip_reason", v.skip_reason},
+                    {"known_issue", v.known_issue},
+                    {"quote", v.quote},
+                    {"comment", v.comment},
+                    {"duration_ms", v.duration_ms}};
+  if (v.wall_ms) j["wall_ms"] = *v.wall_ms;
+  j["repeats"] = v.repeats;
+  j["repeat_failures"] = v.repeat_failures;
+  j["transcript"] = std::move(transcript);
+  return j;
 }
 
-json header_json(const RunDocument& d) {
-  json j = {{"schema", kSchemaName},
-            {"schema_version", d.schema_version},
-            {"generator", d.generator},
-            {"started_at", d.started_at},
-            {"finished_at", d.finished_at},
-            {"status", d.status},
-            {"abort_reason", d.abort_reason},
-            {"device", d.device},
-            {"identity",
-             {{"ok", d.identity.ok},
-              {"controller_type", d.identity.controller_type},
-              {"firmware_version", d.identity.firmware_version},
-              {"reply_hex", d.identity.reply_hex},
-              {"error", d.identity.error}}},
-            {"profile", d.profile},
-            {"address", d.address},
-            {"faults", d.faults},
-            {"options", d.options},
-            {"planned", d.planned}};
+ordered_json header_json(const RunDocument& d) {
+  ordered_json j = {{"schema", kSchemaName},
+                    {"schema_version", d.schema_version},
+                    {"generator", d.generator},
+                    {"started_at", d.started_at},
+                    {"finished_at", d.finished_at},
+                    {"status", d.status},
+                    {"abort_reason", d.abort_reason}};
+  if (!d.journal.empty()) j["journal"] = d.journal;
+  j["device"] = d.device;
+  j["identity"] = {{"ok", d.identity.ok},
+                   {"controller_type", d.identity.controller_type},
+                   {"firmware_version", d.identity.firmware_version},
+                   {"reply_hex", d.identity.reply_hex},
+                   {"error", d.identity.error}};
+  j["profile"] = d.profile;
+  j["address"] = d.address;
+  j["faults"] = d.faults;
+  j["options"] = d.options;
+  j["planned"] = d.planned;
   if (d.summary)
     j["summary"] = {{"passed", d.summary->passed},   {"failed", d.summary->failed},
                     {"skipped", d.summary->skipped}, {"known", d.summary->known},
                     {"unexpected", d.summary->unexpected}, {"exit_code", d.summary->exit_code}};
-  json live = json::array();
+  ordered_json live = ordered_json::array();
   for (const auto& l : d.liveness) live.push_back({{"when", l.when}, {"alive", l.alive}, {"detail", l.detail}});
   j["liveness"] = live;
   j["restore"] = d.restore;
   j["traffic"] = d.traffic;
-  return j;
-}
-
-json to_json(const RunDocument& d) {
-  json j = header_json(d);
-  json vectors = json::array();
-  for (const auto& v : d.vectors) vectors.push_back(to_json(v));
-  j["vectors"] = vectors;
   return j;
 }
 
@@ -210,6 +246,40 @@ T get(const json& j, const char* key, T fallback) {
 }
 
 }  // namespace
+
+VectorRecord vector_from_json(const json& v) {
+  VectorRecord r;
+  r.id = v.at("id").get<std::string>();
+  r.paragraph = get<std::string>(v, "paragraph", "");
+  r.file = get<std::string>(v, "file", "");
+  r.level = get<std::string>(v, "level", "");
+  r.outcome = v.at("outcome").get<std::string>();
+  r.failures = get<std::vector<std::string>>(v, "failures", {});
+  r.skip_reason = get<std::string>(v, "skip_reason", "");
+  r.known_issue = get<std::string>(v, "known_issue", "");
+  r.quote = get<std::string>(v, "quote", "");
+  r.comment = get<std::string>(v, "comment", "");
+  r.duration_ms = get<double>(v, "duration_ms", 0);
+  if (const auto it = v.find("wall_ms"); it != v.end() && !it->is_null()) r.wall_ms = it->get<double>();
+  r.repeats = get<int>(v, "repeats", 0);
+  r.repeat_failures = get<int>(v, "repeat_failures", 0);
+  for (const auto& t : get<json>(v, "transcript", json::array())) {
+    FrameRecord f;
+    f.t_ms = get<double>(t, "t_ms", 0);
+    f.dir = get<std::string>(t, "dir", "");
+    f.hex = get<std::string>(t, "hex", "");
+    f.note = get<std::string>(t, "note", "");
+    f.command = get<std::string>(t, "command", "");
+    f.form = get<std::string>(t, "form", "");
+    f.expect = get<std::string>(t, "expect", "");
+    f.path = get<std::string>(t, "path", "");
+    for (const auto& x : get<json>(t, "fields", json::array()))
+      f.fields.push_back({get<std::size_t>(x, "first", 0), get<std::size_t>(x, "last", 0), get<std::string>(x, "name", ""),
+                          get<std::string>(x, "raw", ""), get<std::string>(x, "meaning", ""), get<bool>(x, "ok", true)});
+    r.transcript.push_back(std::move(f));
+  }
+  return r;
+}
 
 std::optional<RunDocument> from_json(const json& j, std::string& error) {
   if (!j.is_object()) {
@@ -225,7 +295,7 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
   try {
     d.schema_version = get<int>(j, "schema_version", 0);
     if (d.schema_version < 1 || d.schema_version > kSchemaVersion) {
-      error = "schema_version: " + std::to_string(d.schema_version) + " is not 1 or 2";
+      error = "schema_version: " + std::to_string(d.schema_version) + " is not 1 to " + std::to_string(kSchemaVersion);
       return std::nullopt;
     }
     d.generator = get<std::string>(j, "generator", "sabus");
@@ -233,6 +303,7 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
     d.finished_at = get<std::string>(j, "finished_at", "");
     d.status = get<std::string>(j, "status", "running");
     d.abort_reason = get<std::string>(j, "abort_reason", "");
+    d.journal = get<std::string>(j, "journal", "");
     d.device = get<std::string>(j, "device", "");
     if (auto it = j.find("identity"); it != j.end() && it->is_object()) {
       where = "identity";
@@ -262,41 +333,15 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
     }
     d.restore = get<std::vector<std::string>>(j, "restore", {});
     d.traffic = get<json>(j, "traffic", json::object());
-    const json vectors = get<json>(j, "vectors", json::array());
-    for (std::size_t i = 0; i < vectors.size(); ++i) {
-      const json& v = vectors[i];
-      where = "vectors[" + std::to_string(i) + "]";
-      VectorRecord r;
-      r.id = v.at("id").get<std::string>();
-      where += " (" + r.id + ")";
-      r.paragraph = get<std::string>(v, "paragraph", "");
-      r.file = get<std::string>(v, "file", "");
-      r.level = get<std::string>(v, "level", "");
-      r.outcome = v.at("outcome").get<std::string>();
-      r.failures = get<std::vector<std::string>>(v, "failures", {});
-      r.skip_reason = get<std::string>(v, "skip_reason", "");
-      r.known_issue = get<std::string>(v, "known_issue", "");
-      r.quote = get<std::string>(v, "quote", "");
-      r.comment = get<std::string>(v, "comment", "");
-      r.duration_ms = get<double>(v, "duration_ms", 0);
-      r.repeats = get<int>(v, "repeats", 0);
-      r.repeat_failures = get<int>(v, "repeat_failures", 0);
-      for (const auto& t : get<json>(v, "transcript", json::array())) {
-        FrameRecord f;
-        f.t_ms = get<double>(t, "t_ms", 0);
-        f.dir = get<std::string>(t, "dir", "");
-        f.hex = get<std::string>(t, "hex", "");
-        f.note = get<std::string>(t, "note", "");
-        f.command = get<std::string>(t, "command", "");
-        f.form = get<std::string>(t, "form", "");
-        f.expect = get<std::string>(t, "expect", "");
-        f.path = get<std::string>(t, "path", "");
-        for (const auto& x : get<json>(t, "fields", json::array()))
-          f.fields.push_back({get<std::size_t>(x, "first", 0), get<std::size_t>(x, "last", 0), get<std::string>(x, "name", ""),
-                              get<std::string>(x, "raw", ""), get<std::string>(x, "meaning", ""), get<bool>(x, "ok", true)});
-        r.transcript.push_back(std::move(f));
+    if (const auto vectors = j.find("vectors"); vectors != j.end() && !vectors->is_null()) {
+      where = "vectors";
+      if (!vectors->is_array()) throw json::type_error::create(302, "not an array", &*vectors);
+      for (std::size_t i = 0; i < vectors->size(); ++i) {
+        const json& v = (*vectors)[i];
+        where = "vectors[" + std::to_string(i) + "]";
+        if (const auto id = v.find("id"); id != v.end() && id->is_string()) where += " (" + id->get<std::string>() + ")";
+        d.vectors.push_back(vector_from_json(v));
       }
-      d.vectors.push_back(std::move(r));
     }
   } catch (const json::exception& e) {
     error = where + ": " + e.what();

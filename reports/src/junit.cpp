@@ -1,10 +1,15 @@
 // JUnit XML (reports/junit.xsd, the format Jenkins and GitLab read): one
-// testsuite per spec paragraph, one testcase per vector. A failure carries
-// the decoded difference and the hex transcript; a skipped vector its reason
-// (a known failure is reported as skipped, with the known issue).
+// testsuite per spec paragraph, one testcase per vector. Times are the wall
+// clock's; the transport clock's (virtual in-process) is a property. Every
+// testsuite carries the run's properties: suite version, firmware, profile,
+// seed. A failure carries the decoded difference and the hex transcript; a
+// skipped vector its reason (a known failure is reported as skipped, with the
+// known issue).
 #include <fmt/format.h>
 
+#include <cctype>
 #include <map>
+#include <optional>
 
 #include "sabus/reports/writers.hpp"
 
@@ -40,47 +45,104 @@ std::string transcript_text(const VectorRecord& v) {
   return text;
 }
 
+std::string property(std::string_view name, std::string_view value, std::string_view indent) {
+  return fmt::format("{}<property name=\"{}\" value=\"{}\"/>\n", indent, xml_escape(name), xml_escape(value));
+}
+
+std::string seconds(double ms) { return fmt::format("{:.3f}", ms / 1000.0); }
+
+// Jenkins splits a classname at its last dot into package and class: one
+// package "sabus", one class per paragraph and level ("sabus.section_3_2_must").
+std::string classname(const VectorRecord& v) {
+  std::string paragraph = v.paragraph;
+  for (char& c : paragraph)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return "sabus.section_" + paragraph + "_" + v.level;
+}
+
+// What every testsuite of the run shares: the suite version, the device
+// under test, the selection.
+std::string run_properties(const RunDocument& doc) {
+  constexpr std::string_view in = "      ";
+  std::string out = property("suite_version", doc.generator, in);
+  out += property("firmware", doc.identity.ok ? doc.identity.firmware_version : "unknown: " + doc.identity.error, in);
+  if (doc.identity.ok) out += property("controller_type", doc.identity.controller_type, in);
+  out += property("profile", doc.profile, in);
+  const auto seed = doc.options.find("seed");
+  out += property("seed", seed == doc.options.end() ? "" : seed->dump(), in);
+  out += property("device", doc.device, in);
+  std::string faults;
+  for (const auto& f : doc.faults) faults += (faults.empty() ? "" : ",") + f;
+  if (!faults.empty()) out += property("faults", faults, in);
+  out += property("options", doc.options.dump(), in);
+  out += property("started_at", doc.started_at, in);
+  out += property("status", doc.status + (doc.abort_reason.empty() ? "" : ": " + doc.abort_reason), in);
+  out += property("schema", std::string(kSchemaName) + " " + std::to_string(doc.schema_version), in);
+  return out;
+}
+
+// Times are wall-clock seconds; a document without them (schema 1 or 2)
+// gives none rather than the transport clock's, which is virtual in-process.
+std::string time_attribute(std::optional<double> wall_ms) {
+  return wall_ms ? " time=\"" + seconds(*wall_ms) + "\"" : "";
+}
+
+std::optional<double> wall_sum(const std::vector<const VectorRecord*>& vectors) {
+  std::optional<double> sum;
+  for (const auto* v : vectors)
+    if (v->wall_ms) sum = sum.value_or(0) + *v->wall_ms;
+  return sum;
+}
+
 }  // namespace
 
 std::string junit_xml(const RunDocument& doc) {
   std::map<std::string, std::vector<const VectorRecord*>> by_paragraph;
-  for (const auto& v : doc.vectors) by_paragraph[v.paragraph].push_back(&v);
+  std::vector<const VectorRecord*> all;
+  for (const auto& v : doc.vectors) {
+    by_paragraph[v.paragraph].push_back(&v);
+    all.push_back(&v);
+  }
   const Summary c = doc.counts();
-  double total_ms = 0;
-  for (const auto& v : doc.vectors) total_ms += v.duration_ms;
+  const std::string shared = run_properties(doc);
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out += fmt::format("<testsuites name=\"sabus\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n",
-                     doc.vectors.size(), c.failed + c.unexpected, total_ms / 1000.0);
+  out += fmt::format("<testsuites name=\"sabus\" tests=\"{}\" failures=\"{}\" errors=\"0\"{}>\n", doc.vectors.size(),
+                     c.failed + c.unexpected, time_attribute(wall_sum(all)));
   for (const auto& [paragraph, vectors] : by_paragraph) {
     std::size_t failures = 0, skipped = 0;
-    double ms = 0;
+    double transport_ms = 0;
     for (const auto* v : vectors) {
       failures += v->is_failure();
       skipped += v->is_skip();
-      ms += v->duration_ms;
+      transport_ms += v->duration_ms;
     }
     out += fmt::format(
-        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\" time=\"{:.3f}\" "
+        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\"{} "
         "timestamp=\"{}\" package=\"sabus\">\n",
-        xml_escape("§" + paragraph), vectors.size(), failures, skipped, ms / 1000.0, xml_escape(doc.started_at));
+        xml_escape("§" + paragraph), vectors.size(), failures, skipped, time_attribute(wall_sum(vectors)),
+        xml_escape(doc.started_at));
+    out += "    <properties>\n" + shared + property("transport_time", seconds(transport_ms), "      ") + "    </properties>\n";
     for (const auto* v : vectors) {
-      out += fmt::format("    <testcase name=\"{}\" classname=\"sabus.{}.{}\" time=\"{:.3f}\">", xml_escape(v->id),
-                         xml_escape(paragraph), xml_escape(v->level), v->duration_ms / 1000.0);
+      out += fmt::format("    <testcase name=\"{}\" classname=\"{}\"{}>\n", xml_escape(v->id), xml_escape(classname(*v)),
+                         time_attribute(v->wall_ms));
+      // The transport clock (virtual in-process), beside the wall-clock time.
+      out += "      <properties>\n" + property("level", v->level, "        ") +
+             property("transport_time", seconds(v->duration_ms), "        ") + "      </properties>\n";
       if (v->is_failure()) {
         std::string text;
         for (const auto& f : v->failures) text += f + "\n";
         if (v->outcome == "unexpected pass") text += "unexpected pass: listed as a known issue: " + v->known_issue + "\n";
         text += "\n";
         text += transcript_text(*v);
-        out += fmt::format("\n      <failure message=\"{}\" type=\"{}\">{}</failure>\n    ", xml_escape(v->difference()),
+        out += fmt::format("      <failure message=\"{}\" type=\"{}\">{}</failure>\n", xml_escape(v->difference()),
                            xml_escape(v->outcome), xml_escape(text));
       } else if (v->is_skip()) {
         // Built with append: g++ 12 -O3 warns (-Wrestrict, a false positive) on literal + string here.
         std::string why = v->outcome == "skip" ? std::string() : std::string("known issue: ");
         why.append(v->outcome == "skip" ? v->skip_reason : v->known_issue);
-        out += fmt::format("\n      <skipped message=\"{}\"/>\n    ", xml_escape(why));
+        out += fmt::format("      <skipped message=\"{}\"/>\n", xml_escape(why));
       }
-      out += "</testcase>\n";
+      out += "    </testcase>\n";
     }
     out += "  </testsuite>\n";
   }

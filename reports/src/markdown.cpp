@@ -34,7 +34,8 @@ std::string markdown_summary(const RunDocument& d) {
   const std::string who = d.identity.ok ? "controller " + md(d.identity.controller_type) + ", firmware " +
                                               md(d.identity.firmware_version)
                                         : "identity unknown (" + md(d.identity.error) + ")";
-  out += fmt::format("{} · {} · profile {} · {}\n\n", who, md(d.device), md(d.profile), md(d.started_at));
+  out += fmt::format("{} · {} · profile {} · {} · {}\n\n", who, md(d.device), md(d.profile), md(d.started_at),
+                     md(d.generator));
   out += summary_line(c) + "\n\n";
   if (!d.abort_reason.empty()) out += "Aborted: " + md(d.abort_reason) + "\n\n";
   out += "| Level | passed | failed | known | skipped |\n|---|---:|---:|---:|---:|\n";

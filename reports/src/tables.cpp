@@ -1,6 +1,7 @@
 // Summary tables shared by the HTML and Markdown reports.
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <set>
 
 #include "sabus/protocol/catalog.hpp"
@@ -77,6 +78,53 @@ std::vector<CoverageRow> coverage(const RunDocument& doc) {
       if (auto it = find_row(f); it != rows.end()) cells.insert({static_cast<std::size_t>(it - rows.begin()), f.path});
     }
     for (const auto& [row, path] : cells) rows[row].paths[path].add(v);
+  }
+  return rows;
+}
+
+}  // namespace sabus::reports
+
+namespace sabus::reports {
+
+std::vector<FailureGroup> failure_groups(const RunDocument& doc) {
+  std::vector<FailureGroup> groups;
+  std::map<std::string, std::size_t> index;  // reason -> position in groups
+  for (const auto& v : doc.vectors) {
+    if (!v.is_failure()) continue;
+    const std::string reason = v.difference();
+    const auto [it, added] = index.emplace(reason, groups.size());
+    if (added) groups.push_back({reason, {}});
+    groups[it->second].vectors.push_back(&v);
+  }
+  // Largest first; equal sizes keep the order of their first failure.
+  std::stable_sort(groups.begin(), groups.end(),
+                   [](const FailureGroup& a, const FailureGroup& b) { return a.vectors.size() > b.vectors.size(); });
+  return groups;
+}
+
+std::vector<Turnaround> turnaround_by_command(const RunDocument& doc) {
+  std::map<std::string, std::vector<double>> samples;  // command key -> ms
+  for (const auto& v : doc.vectors) {
+    const auto& t = v.transcript;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (t[i].dir != "tx" || t[i].command.empty()) continue;
+      // The first reply frame before the next command; ignore notes have no bytes.
+      for (std::size_t j = i + 1; j < t.size() && t[j].dir == "rx"; ++j)
+        if (!t[j].hex.empty()) {
+          samples[t[i].command].push_back(t[j].t_ms - t[i].t_ms);
+          break;
+        }
+    }
+  }
+  std::vector<Turnaround> rows;
+  for (const auto& c : catalog()) {
+    auto it = samples.find(std::string(c.key));
+    if (it == samples.end()) continue;
+    auto& s = it->second;
+    std::sort(s.begin(), s.end());
+    const std::size_t n = s.size();
+    const double median = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    rows.push_back({std::string(c.key), std::string(c.name), std::string(c.paragraph), n, s.front(), median, s.back()});
   }
   return rows;
 }

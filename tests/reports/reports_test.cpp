@@ -1,7 +1,14 @@
 // The report writers, from a run document built in the test.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "sabus/reports/diff.hpp"
+#include "sabus/reports/journal.hpp"
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::reports {
@@ -16,6 +23,7 @@ VectorRecord vector(std::string id, std::string outcome, std::string paragraph =
   v.paragraph = std::move(paragraph);
   v.level = std::move(level);
   v.duration_ms = 10;
+  v.wall_ms = 0.25;
   if (v.outcome == "fail") v.failures = {"byte 36 az status: expected 0x57, got 0x44 (slow)"};
   if (v.outcome == "skip") v.skip_reason = "moves the antenna: needs --allow-motion";
   return v;
@@ -40,8 +48,14 @@ RunDocument sample() {
                vector("d-known", "known failure", "1", "should")};
   d.vectors[0].transcript = {status_exchange(true, "02 32 31 03 02"), status_exchange(false, "06 32 31 30 03 00")};
   d.summary = Summary{1, 1, 1, 1, 0, 1};
+  d.generator = "sabus 9.8.7-test";
+  d.profile = "rc3000-1.59";
+  d.options = {{"level", "informative"}, {"seed", 42}, {"filters", {"3.*"}}, {"allow_motion", false}};
   return d;
 }
+
+// A field-by-field reply, as describe_frame gives it.
+std::vector<Field> reply_fields() { return {{0, 0, "start", "0x06", "ACK", true}, {3, 3, "az status", "0x44", "slow", false}}; }
 
 TEST(Console, ProgressLineShowsCountsElapsedAndRemaining) {
   const Progress p{10, 40, 7, 2, 1, 20s, "3.3-form2A-basic"};
@@ -91,10 +105,41 @@ TEST(Junit, OneSuitePerParagraphFailuresWithTranscriptSkipsWithReason) {
   const std::string x = junit_xml(d);
   EXPECT_NE(x.find("<testsuite name=\"§3.2\" tests=\"2\" failures=\"1\" errors=\"0\" skipped=\"0\""), std::string::npos) << x;
   EXPECT_NE(x.find("<testsuite name=\"§3.10\" tests=\"1\" failures=\"0\" errors=\"0\" skipped=\"1\""), std::string::npos);
-  EXPECT_NE(x.find("<testcase name=\"b-fail\" classname=\"sabus.3.2.must\""), std::string::npos);
   EXPECT_NE(x.find("02 32 31 03 02"), std::string::npos) << "the hex transcript";
   EXPECT_NE(x.find("<skipped message=\"moves the antenna: needs --allow-motion\"/>"), std::string::npos);
   EXPECT_NE(x.find("<skipped message=\"known issue: "), std::string::npos);
+}
+
+TEST(Junit, ClassnamesHaveOneDotSoJenkinsKeepsOnePackage) {
+  const std::string x = junit_xml(sample());
+  EXPECT_NE(x.find("<testcase name=\"b-fail\" classname=\"sabus.section_3_2_must\""), std::string::npos) << x;
+  EXPECT_NE(x.find("classname=\"sabus.section_3_10_must\""), std::string::npos);
+  EXPECT_NE(x.find("classname=\"sabus.section_1_should\""), std::string::npos);
+  for (std::size_t at = x.find("classname=\""); at != std::string::npos; at = x.find("classname=\"", at + 1)) {
+    const std::string name = x.substr(at + 11, x.find('"', at + 11) - at - 11);
+    EXPECT_EQ(std::count(name.begin(), name.end(), '.'), 1) << name;
+  }
+}
+
+TEST(Junit, WallClockTimesTransportTimeAndRunPropertiesFromTheDocument) {
+  RunDocument d = sample();
+  d.vectors[0].wall_ms = 1500;       // a vector that took 1.5 s of real time
+  d.vectors[0].duration_ms = 340995;  // and 341 s of virtual time in-process
+  const std::string x = junit_xml(d);
+  EXPECT_NE(x.find("<testcase name=\"a-pass\" classname=\"sabus.section_3_2_must\" time=\"1.500\">"), std::string::npos) << x;
+  EXPECT_NE(x.find("<property name=\"transport_time\" value=\"340.995\"/>"), std::string::npos);
+  EXPECT_EQ(x.find("time=\"340.995\""), std::string::npos) << "virtual time is never a JUnit time";
+  EXPECT_NE(x.find("<testsuites name=\"sabus\" tests=\"4\" failures=\"1\" errors=\"0\" time=\"1.501\">"), std::string::npos);
+  for (const char* want : {"<property name=\"suite_version\" value=\"sabus 9.8.7-test\"/>", "<property name=\"firmware\" value=\"1.59\"/>",
+                           "<property name=\"profile\" value=\"rc3000-1.59\"/>", "<property name=\"seed\" value=\"42\"/>",
+                           "<property name=\"level\" value=\"must\"/>"})
+    EXPECT_NE(x.find(want), std::string::npos) << want;
+  // Without wall-clock times (schema 1 and 2) there is no time at all.
+  for (auto& v : d.vectors) v.wall_ms.reset();
+  const std::string old = junit_xml(d);
+  EXPECT_EQ(old.find(" time=\""), std::string::npos) << old;
+  d.identity = {false, "", "", "", "no answer"};
+  EXPECT_NE(junit_xml(d).find("<property name=\"firmware\" value=\"unknown: no answer\"/>"), std::string::npos);
 }
 
 TEST(Html, EscapesEveryDeviceStringAndLoadsNothing) {
@@ -106,7 +151,13 @@ TEST(Html, EscapesEveryDeviceStringAndLoadsNothing) {
   d.vectors[0].transcript[1].fields = {{3, 4, "controller type", "\"<script>\"", "</td></table><script>x()</script>", true}};
   d.vectors[0].transcript[1].note = "<iframe src=//evil>";
   const std::string h = html_report(d);
-  EXPECT_EQ(h.find("<script"), std::string::npos);
+  // One script, the filter's, allowed by its hash and nothing else.
+  const auto script = h.find("<script");
+  ASSERT_NE(script, std::string::npos);
+  EXPECT_EQ(h.find("<script", script + 1), std::string::npos) << "a second script";
+  EXPECT_EQ(h.compare(script, 49, "<script>// The HTML report's vector filter (repor"), 0) << h.substr(script, 60);
+  EXPECT_NE(h.find("script-src 'sha256-"), std::string::npos);
+  EXPECT_EQ(h.find("unsafe-inline'; script-src 'unsafe"), std::string::npos);
   EXPECT_EQ(h.find("<img"), std::string::npos);
   EXPECT_EQ(h.find("<iframe"), std::string::npos);
   EXPECT_EQ(h.find("</table><script"), std::string::npos);
@@ -128,12 +179,108 @@ TEST(Html, CoverageMatrixCountsCommandFormAndPath) {
   EXPECT_GE(rows.size(), 25u) << "every catalog command has a row";
 }
 
+TEST(Html, FilterChartsOptionsTimingAndGroupedFailures) {
+  RunDocument d = sample();
+  d.vectors.push_back(vector("e-fail", "fail", "3.3"));  // the same difference as b-fail
+  d.vectors[1].transcript = {status_exchange(true, "02 32 31 03 02"), status_exchange(false, "06 32 31 44 03 00")};
+  d.vectors[1].transcript[0].fields = {{0, 0, "start", "0x02", "STX command", true}};
+  d.vectors[1].transcript[1].fields = reply_fields();
+  d.vectors[1].transcript[1].t_ms = 4.5;
+  d.vectors[0].transcript[1].t_ms = 2;
+  d.traffic = {{"measured_turnaround_ms", 12.5}, {"silence_windows", 3}, {"silence_listened_ms", 1500}, {"bytes_sent", 10}, {"bytes_received", 20}};
+  const std::string h = html_report(d);
+  // The filter, with every paragraph of the run; each vector carries what it filters on.
+  EXPECT_NE(h.find("<form id=\"filter\" hidden>"), std::string::npos);
+  EXPECT_NE(h.find("<select name=\"paragraph\" id=\"f-paragraph\"><option value=\"\">all</option><option value=\"1\">§1</option>"
+                   "<option value=\"3.2\">§3.2</option><option value=\"3.3\">§3.3</option><option value=\"3.10\">§3.10</option></select>"),
+            std::string::npos);
+  EXPECT_NE(h.find("<details class=\"v\" id=\"v-e-fail\" data-status=\"fail\" data-level=\"must\" data-paragraph=\"3.3\" open>"),
+            std::string::npos);
+  EXPECT_NE(h.find("id=\"v-d-known\" data-status=\"known\" data-level=\"should\" data-paragraph=\"1\">"), std::string::npos);
+  // 2 vectors, one reason: one group.
+  EXPECT_NE(h.find("<h2 id=\"failures\">Failures: 2 vectors, 1 reasons</h2>"), std::string::npos);
+  EXPECT_NE(h.find("<b class=\"count\">2 ×</b> byte 36 az status: expected 0x57, got 0x44 (slow)</summary>"), std::string::npos);
+  // Options as a table, lists joined.
+  EXPECT_NE(h.find("<tr><th>filters</th><td>3.*</td></tr>"), std::string::npos);
+  EXPECT_NE(h.find("<tr><th>seed</th><td>42</td></tr>"), std::string::npos);
+  // Timing, both charts, the suite version in the header.
+  EXPECT_NE(h.find("<tr><th>Measured turnaround</th><td>12.5 ms"), std::string::npos);
+  EXPECT_NE(h.find("<tr><th>Wall clock, all vectors</th><td>0.001 s</td></tr>"), std::string::npos);
+  EXPECT_NE(h.find("<svg id=\"chart-turnaround\""), std::string::npos);
+  EXPECT_NE(h.find("status (Device Status Poll, §3.2): 2 replies, min 2.00 ms, median 3.25 ms, max 4.50 ms"), std::string::npos)
+      << "the chart's title for the status poll";
+  EXPECT_NE(h.find("<svg id=\"chart-coverage\""), std::string::npos);
+  EXPECT_NE(h.find("<rect class=\"cell fail\""), std::string::npos);
+  EXPECT_NE(h.find("<p id=\"suite\">sabus 9.8.7-test · schema sabus-run v"), std::string::npos);
+  // A failing vector shows its reply field by field; a passing one its frames as lines.
+  const std::string failing = h.substr(h.find("id=\"v-b-fail\""), h.find("id=\"v-c-skip\"") - h.find("id=\"v-b-fail\""));
+  EXPECT_NE(failing.find("<td>az status</td>"), std::string::npos);
+  EXPECT_EQ(failing.find("STX command"), std::string::npos) << "commands as hex and summary only";
+  const std::string passing = h.substr(h.find("id=\"v-a-pass\""), h.find("id=\"v-b-fail\"") - h.find("id=\"v-a-pass\""));
+  EXPECT_NE(passing.find("<pre class=\"transcript\">     0.000 tx 02 32 31 03 02"), std::string::npos) << passing;
+  EXPECT_EQ(passing.find("<table"), std::string::npos);
+}
+
+TEST(Html, CompactingADocumentChangesNoReport) {
+  RunDocument d = sample();
+  d.vectors[0].transcript[1].fields = reply_fields();  // a passing vector's reply fields
+  d.vectors[1].transcript = {status_exchange(true, "02 32 31 03 02"), status_exchange(false, "06 32 31 44 03 00")};
+  d.vectors[1].transcript[1].fields = reply_fields();
+  RunDocument compact = d;
+  for (auto& v : compact.vectors) compact_for_reports(v);
+  EXPECT_TRUE(compact.vectors[0].transcript[1].fields.empty());
+  EXPECT_FALSE(compact.vectors[1].transcript[1].fields.empty()) << "a failure keeps its fields";
+  EXPECT_EQ(html_report(compact), html_report(d));
+  EXPECT_EQ(junit_xml(compact), junit_xml(d));
+  EXPECT_EQ(markdown_summary(compact), markdown_summary(d));
+}
+
+TEST(Tables, FailureGroupsLargestFirstThenInRunOrder) {
+  RunDocument d;
+  for (const char* id : {"a", "b", "c", "d"}) d.vectors.push_back(vector(id, "fail"));
+  d.vectors[0].failures = {"one"};
+  d.vectors[2].failures = {"one"};
+  d.vectors[1].failures = {"two"};
+  d.vectors[3].failures = {"three"};
+  d.vectors.push_back(vector("e", "pass"));
+  const auto g = failure_groups(d);
+  ASSERT_EQ(g.size(), 3u);
+  EXPECT_EQ(g[0].reason, "one");
+  ASSERT_EQ(g[0].vectors.size(), 2u);
+  EXPECT_EQ(g[0].vectors[1]->id, "c");
+  EXPECT_EQ(g[1].reason, "two");
+  EXPECT_EQ(g[2].reason, "three");
+}
+
+TEST(Tables, TurnaroundFromEachCommandToItsFirstReply) {
+  RunDocument d;
+  VectorRecord v = vector("a", "pass");
+  auto at = [](FrameRecord f, double t) {
+    f.t_ms = t;
+    return f;
+  };
+  FrameRecord note = status_exchange(false, "");  // bytes the receiver ignored: not a reply
+  v.transcript = {at(status_exchange(true, "02 32 31 03 02"), 10), at(note, 11), at(status_exchange(false, "06"), 13),
+                  at(status_exchange(true, "02 32 31 03 02"), 20), at(status_exchange(false, "06"), 21),
+                  at(status_exchange(true, "02 32 31 03 02"), 30), at(status_exchange(false, "06"), 38),
+                  at(status_exchange(true, "02 32 31 03 02"), 40)};  // no reply: no sample
+  d.vectors = {v};
+  const auto rows = turnaround_by_command(d);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].command, "status");
+  EXPECT_EQ(rows[0].count, 3u);
+  EXPECT_DOUBLE_EQ(rows[0].min_ms, 1);
+  EXPECT_DOUBLE_EQ(rows[0].median_ms, 3);
+  EXPECT_DOUBLE_EQ(rows[0].max_ms, 8);
+}
+
 TEST(Markdown, ShortSummaryWithFailures) {
   RunDocument d = sample();
   d.vectors[1].failures = {"a | b"};
   const std::string m = markdown_summary(d);
   EXPECT_NE(m.find("**FAIL**"), std::string::npos);
   EXPECT_NE(m.find("controller 3K, firmware 1.59"), std::string::npos);
+  EXPECT_NE(m.find("sabus 9.8.7-test"), std::string::npos) << "the suite version";
   EXPECT_NE(m.find("- `b-fail` §3.2 must: a \\| b"), std::string::npos) << m;
 }
 
@@ -175,6 +322,29 @@ TEST(Diff, MustPassToSkipAndAnAbortedRunRegress) {
   EXPECT_TRUE(diff_runs(a, c, {}).regressed());
 }
 
+TEST(Diff, WarnsWhenOptionsProfileOrSelectionDiffer) {
+  const RunDocument a = sample();
+  EXPECT_TRUE(diff_runs(a, a, {}).warnings.empty());
+  RunDocument filtered = sample();
+  filtered.options["filters"] = {"3.2-*"};
+  filtered.vectors.resize(2);  // c-skip and d-known did not run
+  const RunDiff d = diff_runs(a, filtered, {});
+  ASSERT_GE(d.warnings.size(), 3u);
+  EXPECT_EQ(d.warnings[0], "option filters: [\"3.*\"] -> [\"3.2-*\"]");
+  EXPECT_EQ(d.warnings[1], "selection: OLD ran 3 vectors, NEW ran 2; 1 ran only in OLD, 0 only in NEW");
+  EXPECT_NE(d.warnings.back().find("may come from that, not from the device"), std::string::npos);
+  EXPECT_NE(diff_text(d).find("WARNING option filters"), std::string::npos) << diff_text(d);
+  EXPECT_NE(diff_markdown(d).find("> **Warning:** selection"), std::string::npos);
+  RunDocument other = sample();
+  other.profile = "rc3000-dvb";
+  other.faults = {"short-status"};
+  const RunDiff p = diff_runs(a, other, {});
+  ASSERT_EQ(p.warnings.size(), 2u);
+  EXPECT_EQ(p.warnings[0], "profile: rc3000-1.59 -> rc3000-dvb");
+  EXPECT_NE(std::find(p.run_changes.begin(), p.run_changes.end(), "faults: none -> short-status"), p.run_changes.end())
+      << "injected faults stand in for a firmware: a change, not a warning";
+}
+
 TEST(Diff, TimingThresholds) {
   EXPECT_TRUE(parse_timing_threshold("50ms")->exceeded(100, 151));
   EXPECT_FALSE(parse_timing_threshold("50")->exceeded(100, 149));
@@ -183,6 +353,17 @@ TEST(Diff, TimingThresholds) {
   EXPECT_FALSE(parse_timing_threshold("fast"));
   EXPECT_FALSE(parse_timing_threshold("-5ms"));
   EXPECT_FALSE(parse_timing_threshold(""));
+}
+
+// The version of the suite that ran (sabus --version) is in every report.
+TEST(Reports, EveryReportCarriesTheGenerator) {
+  RunDocument d = sample();
+  d.generator = "sabus 9.8.7 (git v9.8.7-3-gabc1234-dirty)";
+  EXPECT_EQ(nlohmann::json::parse(json_text(d)).at("generator"), d.generator);
+  EXPECT_NE(junit_xml(d).find("name=\"suite_version\" value=\"sabus 9.8.7 (git v9.8.7-3-gabc1234-dirty)\""),
+            std::string::npos);
+  EXPECT_NE(html_report(d).find(d.generator), std::string::npos);
+  EXPECT_NE(markdown_summary(d).find(d.generator), std::string::npos);
 }
 
 }  // namespace

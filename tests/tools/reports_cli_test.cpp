@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
 #include "process.hpp"
+#include "temp_dir.hpp"
 
 namespace sabus::reports {
 namespace {
@@ -36,26 +38,11 @@ Output shell(const std::string& command) {
   return o;
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::slurp;
 
-class ReportsCli : public ::testing::Test {
+class ReportsCli : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sabus-reports-test-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  ReportsCli() : TempDirTest("sabus-reports-test") {}
 };
 
 const std::string kSabus = SABUS_BIN;
@@ -76,14 +63,17 @@ TEST_F(ReportsCli, EveryReportFromOneRunAndFromItsJson) {
   EXPECT_EQ(slurp(dir_ / "run/summary.md"), slurp(path("again.md")));
   EXPECT_NE(slurp(path("again.html")).find("3.2-status-track-byte"), std::string::npos);
 
+  EXPECT_FALSE(fs::exists(dir_ / "run" / "run.journal.jsonl")) << "the JSON holds every vector: the journal is gone";
   const auto doc = nlohmann::json::parse(slurp(dir_ / "run/run.json"));
-  EXPECT_EQ(doc["schema_version"], 2);
+  EXPECT_EQ(doc["schema_version"], 3);
   EXPECT_EQ(doc["status"], "complete");
+  EXPECT_FALSE(doc.contains("journal"));
   EXPECT_EQ(doc["identity"]["controller_type"], "3K");
   EXPECT_EQ(doc["identity"]["firmware_version"], "1.59");
   bool known_failure = false, has_fields = false, has_quote = false;
   for (const auto& v : doc["vectors"]) {
     known_failure |= v["id"] == "3.2-status-track-byte" && v["outcome"] == "known failure";
+    EXPECT_GE(v["wall_ms"].get<double>(), 0) << v["id"];
     has_quote |= !v["quote"].get<std::string>().empty();
     for (const auto& t : v["transcript"]) {
       for (const char* key : {"t_ms", "dir", "hex", "note"}) EXPECT_TRUE(t.contains(key)) << key;
@@ -130,34 +120,76 @@ TEST_F(ReportsCli, DiffNamesAnInjectedFaultAsARegression) {
   EXPECT_EQ(back.status, 0) << back.out;
   const int failed = nlohmann::json::parse(slurp(path("bad.json")))["summary"]["failed"].get<int>();
   EXPECT_NE(back.out.find("Fixed (" + std::to_string(failed) + ")"), std::string::npos) << back.out;
-  EXPECT_EQ(shell(kSabus + " diff " + path("good.json") + " " + path("good.json")).status, 0);
+  const Output same = shell(kSabus + " diff " + path("good.json") + " " + path("good.json"));
+  EXPECT_EQ(same.status, 0);
+  EXPECT_EQ(same.out.find("WARNING"), std::string::npos) << same.out;
+  // A filtered run against a full one: said before anything else.
+  ASSERT_EQ(shell(kSabus + " run --sim --filter '3.2-*' --json " + path("filtered.json") + " >/dev/null 2>&1").status, 0);
+  const Output filtered = shell(kSabus + " diff " + path("good.json") + " " + path("filtered.json"));
+  EXPECT_EQ(filtered.out.rfind("WARNING option filters: [] -> [\"3.2-*\"]\nWARNING selection: OLD ran ", 0), 0u) << filtered.out;
   EXPECT_EQ(shell(kSabus + " diff --timing-threshold soon " + path("good.json") + " " + path("good.json") + " 2>/dev/null").status, 2);
 }
 
-// A run over TCP with pacing takes seconds; SIGINT half-way must leave a JSON
-// marked aborted with every finished vector.
-TEST_F(ReportsCli, SigintHalfWayLeavesAnAbortedJsonWithEveryFinishedVector) {
-  Process sim({kSabus, "sim", "--tcp", "127.0.0.1:0"});
-  const std::string ready = sim.line(5s);
-  ASSERT_EQ(ready.rfind("READY tcp 127.0.0.1:", 0), 0u) << ready;
-  const std::string port = ready.substr(ready.rfind(':') + 1);
-  const std::string json = path("run.json");
-  Process run({kSabus, "run", "--tcp", "127.0.0.1:" + port, "--pace", "150", "--json", json});
-  std::size_t seen = 0;
-  std::size_t planned = 0;
-  for (int i = 0; i < 600 && seen < 2; ++i) {
-    std::this_thread::sleep_for(50ms);
-    if (!fs::exists(json)) continue;
-    const auto doc = nlohmann::json::parse(slurp(json), nullptr, false);
-    if (doc.is_discarded()) continue;
-    EXPECT_EQ(doc["status"], "running");
-    seen = doc["vectors"].size();
-    planned = doc["planned"].get<std::size_t>();
+// The vector records in a run's journal so far.
+std::size_t journaled_vectors(const fs::path& journal) {
+  std::ifstream in(journal);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) {
+    const auto r = nlohmann::json::parse(line, nullptr, false);
+    n += r.is_object() && !r.contains("record");  // a vector; the header and end records say what they are
   }
+  return n;
+}
+
+// `sabus run` over TCP with pacing against `sabus sim`: seconds, time enough
+// to interrupt it half-way.
+class InterruptedRun : public ReportsCli {
+ protected:
+  void SetUp() override {
+    ReportsCli::SetUp();
+    sim_ = std::make_unique<Process>(std::vector<std::string>{kSabus, "sim", "--tcp", "127.0.0.1:0"});
+    const std::string ready = sim_->line(5s);
+    ASSERT_EQ(ready.rfind("READY tcp 127.0.0.1:", 0), 0u) << ready;
+    port_ = ready.substr(ready.rfind(':') + 1);
+  }
+  void TearDown() override {
+    if (sim_) {
+      EXPECT_EQ(sim_->interrupt(), 0);
+    }
+    ReportsCli::TearDown();
+  }
+  std::unique_ptr<Process> start_run() {
+    return std::make_unique<Process>(
+        std::vector<std::string>{kSabus, "run", "--tcp", "127.0.0.1:" + port_, "--pace", "150", "--json", path("run.json")});
+  }
+  // Waits until the journal holds `n` vectors; the JSON meanwhile says the
+  // run goes on and names the journal. Returns the vectors planned.
+  std::size_t wait_for(std::size_t n) {
+    std::size_t planned = 0;
+    for (int i = 0; i < 600 && journaled_vectors(dir_ / "run.journal.jsonl") < n; ++i) std::this_thread::sleep_for(50ms);
+    const auto doc = nlohmann::json::parse(slurp(dir_ / "run.json"), nullptr, false);
+    EXPECT_FALSE(doc.is_discarded()) << "the JSON is whole while the run goes on";
+    if (doc.is_discarded()) return 0;
+    EXPECT_EQ(doc["status"], "running");
+    EXPECT_EQ(doc["journal"], "run.journal.jsonl");
+    EXPECT_TRUE(doc["vectors"].empty()) << "the vectors are in the journal until the end";
+    planned = doc["planned"].get<std::size_t>();
+    return planned;
+  }
+  std::unique_ptr<Process> sim_;
+  std::string port_;
+};
+
+// SIGINT half-way leaves a JSON marked aborted with every finished vector,
+// written from the journal once.
+TEST_F(InterruptedRun, SigintHalfWayLeavesAnAbortedJsonWithEveryFinishedVector) {
+  auto run = start_run();
+  const std::size_t planned = wait_for(2);
+  const std::size_t seen = journaled_vectors(dir_ / "run.journal.jsonl");
   ASSERT_GE(seen, 2u) << "the run did not get going";
   ASSERT_GT(planned, seen + 2) << "the run is too fast to interrupt half-way";
-  EXPECT_EQ(run.interrupt(), 1);
-  const auto doc = nlohmann::json::parse(slurp(json));
+  EXPECT_EQ(run->interrupt(), 1);
+  const auto doc = nlohmann::json::parse(slurp(path("run.json")));
   EXPECT_EQ(doc["status"], "aborted");
   EXPECT_EQ(doc["abort_reason"], "stopped by SIGINT");
   EXPECT_GE(doc["vectors"].size(), seen) << "every vector finished before the SIGINT is kept";
@@ -167,7 +199,34 @@ TEST_F(ReportsCli, SigintHalfWayLeavesAnAbortedJsonWithEveryFinishedVector) {
     EXPECT_FALSE(v["transcript"].empty()) << v["id"];
   }
   EXPECT_EQ(doc["summary"]["passed"].get<std::size_t>(), doc["vectors"].size());
-  EXPECT_EQ(sim.interrupt(), 0);
+  EXPECT_FALSE(doc.contains("journal"));
+  EXPECT_FALSE(fs::exists(dir_ / "run.journal.jsonl"));
+}
+
+// A run killed outright (SIGKILL: no end record, no final JSON) leaves its
+// journal; `sabus report` makes the run JSON and the reports from it.
+TEST_F(InterruptedRun, AKilledRunsJournalBecomesItsJsonThroughSabusReport) {
+  auto run = start_run();
+  const std::size_t planned = wait_for(3);
+  run.reset();  // SIGKILL
+  const std::size_t journaled = journaled_vectors(dir_ / "run.journal.jsonl");
+  ASSERT_GE(journaled, 3u);
+  ASSERT_LT(journaled, planned);
+  const Output report = shell(kSabus + " report " + path("run.journal.jsonl") + " --json " + path("run.json") + " --html " +
+                              path("report.html") + " --junit " + path("junit.xml") + " 2>" + path("stderr.txt"));
+  EXPECT_EQ(report.status, 0) << report.out << slurp(path("stderr.txt"));
+  EXPECT_EQ(report.out, "INCOMPLETE: " + std::to_string(journaled) + " passed, 0 failed, 0 skipped (running)\n");
+  EXPECT_NE(slurp(path("stderr.txt")).find("has no end record: the run was killed"), std::string::npos) << slurp(path("stderr.txt"));
+  const auto doc = nlohmann::json::parse(slurp(path("run.json")));
+  EXPECT_EQ(doc["status"], "running") << "the run never ended";
+  EXPECT_FALSE(doc.contains("journal"));
+  ASSERT_EQ(doc["vectors"].size(), journaled);
+  EXPECT_FALSE(doc["vectors"][0]["transcript"][0]["fields"].empty()) << "every field, as the run recorded it";
+  EXPECT_NE(slurp(path("report.html")).find("id=\"verdict\">INCOMPLETE<"), std::string::npos);
+  // The recovered JSON reads back, and reports from it are the journal's.
+  const Output again = shell(kSabus + " report " + path("run.json") + " --html " + path("again.html"));
+  EXPECT_EQ(again.status, 0);
+  EXPECT_EQ(slurp(path("again.html")), slurp(path("report.html")));
 }
 
 }  // namespace

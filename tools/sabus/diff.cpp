@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "sabus/reports/diff.hpp"
+#include "sabus/reports/journal.hpp"
 
 namespace sabus::cli {
 namespace {
@@ -23,12 +24,13 @@ int run_diff(const DiffOptions& o) {
     return kExitUsage;
   }
   std::string error;
-  const auto a = reports::read_run_file(o.old_run, error);
+  reports::JournalNotes notes;  // a killed run's journal compares as a run that did not end
+  const auto a = reports::read_run_or_journal(o.old_run, notes, error);
   if (!a) {
     std::cerr << "sabus diff: " << error << "\n";
     return kExitUsage;
   }
-  const auto b = reports::read_run_file(o.new_run, error);
+  const auto b = reports::read_run_or_journal(o.new_run, notes, error);
   if (!b) {
     std::cerr << "sabus diff: " << error << "\n";
     return kExitUsage;

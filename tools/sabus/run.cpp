@@ -14,12 +14,14 @@
 
 #include "commands.hpp"
 #include "device.hpp"
+#include "version.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/reports/document.hpp"
+#include "sabus/reports/journal.hpp"
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::cli {
@@ -109,6 +111,7 @@ int run_run(RunCliOptions o) {
     ro.known_issues = *known;
   }
   ro.stop = [] { return g_stop.load(); };
+  ro.keep_transcripts = false;  // the run document and its journal have them
 
   std::string json_path = o.json, junit_path = o.junit, html_path = o.html, md_path = o.md;
   if (!o.report_dir.empty()) {
@@ -135,7 +138,7 @@ int run_run(RunCliOptions o) {
                                              : "sabus-backup.json";
 
   reports::RunDocument doc;
-  doc.generator = "sabus " SABUS_VERSION;
+  doc.generator = "sabus " + full_version();
   doc.started_at = reports::utc_now();
   doc.device = transport->describe();
   doc.profile = profile.name;
@@ -153,18 +156,32 @@ int run_run(RunCliOptions o) {
   if (!doc.identity.ok) std::cerr << "sabus run: device identity: " << doc.identity.error << "\n";
   if (ro.pace.count() > 0) transport->pause(ro.pace);  // §4 pacing before the runner's first command
 
-  reports::JsonWriter json(json_path);
-  bool json_ok = json.start(doc);
-  if (!json_ok) std::cerr << "sabus run: " << json.error() << "\n";
+  // The journal takes each vector as it finishes (reports/journal.hpp); the
+  // JSON is written now, saying the run goes on and where its vectors are,
+  // and once more at the end (also after SIGINT or a lost device).
+  reports::JournalWriter journal;
+  std::string error;
+  if (!json_path.empty()) {
+    const std::string journal_path = reports::journal_path_for(json_path);
+    doc.journal = fs::path(journal_path).filename().string();
+    if (!journal.open(journal_path, doc)) std::cerr << "sabus run: " << journal.error() << "\n";
+    else if (!reports::write_run_json(json_path, doc, error)) std::cerr << "sabus run: " << error << "\n";
+  }
 
   const bool tty = isatty(1);
   reports::Progress progress;
   progress.total = doc.planned;
   const auto t0 = std::chrono::steady_clock::now();
+  auto last_result = std::chrono::steady_clock::now();
   ro.on_result = [&](const VectorResult& r) {
-    doc.vectors.push_back(reports::vector_record(r));
+    reports::VectorRecord record = reports::vector_record(r);
+    // Wall clock since the previous result (the start of the run for the
+    // first): the vector and whatever the runner did before it.
+    record.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - last_result).count();
+    if (journal.is_open() && !journal.append(record)) std::cerr << "sabus run: " << journal.error() << "\n";
+    reports::compact_for_reports(record);  // the journal has the fields; the reports need them for failures only
+    doc.vectors.push_back(std::move(record));
     const reports::VectorRecord& v = doc.vectors.back();
-    if (json_ok && !(json_ok = json.add(doc))) std::cerr << "sabus run: " << json.error() << "\n";
     ++progress.done;
     progress.passed += v.outcome == "pass";
     progress.failed += v.is_failure();
@@ -173,14 +190,28 @@ int run_run(RunCliOptions o) {
     progress.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
     if (v.is_failure()) std::cout << (tty ? "\r\033[K" : "") << reports::failure_line(v) << "\n";
     if (tty) std::cout << "\r\033[K" << reports::progress_line(progress) << std::flush;
+    last_result = std::chrono::steady_clock::now();  // writing this one is not the next one's time
   };
   std::signal(SIGINT, on_sigint);
 
   Runner runner(*transport, profile, ro);
+  last_result = std::chrono::steady_clock::now();
   RunResult run = runner.run(vectors);
   reports::finish(doc, run, reports::utc_now());
-  if (json_ok && !json.finish(doc)) std::cerr << "sabus run: " << json.error() << "\n";
-  std::string error;
+  doc.journal.clear();
+  if (journal.is_open()) {
+    // The end record and fsync, then the JSON from the journal, written once.
+    const std::string journal_path = journal.path();
+    if (!journal.close(doc)) std::cerr << "sabus run: " << journal.error() << "\n";
+    std::error_code ec;
+    if (reports::write_run_json(json_path, doc, journal_path, error))
+      fs::remove(journal_path, ec);  // the JSON holds every vector now
+    else
+      std::cerr << "sabus run: " << error << "; the journal keeps every vector: sabus report " << journal_path << " --json "
+                << json_path << "\n";
+  } else if (!json_path.empty()) {
+    std::cerr << "sabus run: " << json_path << " not written: the journal could not be written\n";
+  }
   // Each report is made only when asked for.
   auto write = [&](const std::string& path, std::string (*make)(const reports::RunDocument&)) {
     if (!path.empty() && !reports::write_file(path, make(doc), error)) std::cerr << "sabus run: " << error << "\n";
@@ -218,7 +249,7 @@ Command add_run_command(CLI::App& app) {
   sub->add_option("--seed", o->seed, "Seed for every random choice");
   sub->add_option("--pace", o->pace_ms, "Milliseconds between commands (default 1000 on a line, 0 in-process)");
   sub->add_option("--junit", o->junit, "Write JUnit XML");
-  sub->add_option("--json", o->json, "Write the JSON result (written after every vector)");
+  sub->add_option("--json", o->json, "Write the JSON result (each vector journaled as it finishes, the JSON at the end)");
   sub->add_option("--html", o->html, "Write the HTML report");
   sub->add_option("--md", o->md, "Write the Markdown summary");
   sub->add_option("--report-dir", o->report_dir, "Write run.json, junit.xml, report.html and summary.md into DIR");

@@ -18,6 +18,7 @@
 #include "commands.hpp"
 #include "sabus/harness/coverage.hpp"
 #include "sabus/harness/nak_rules.hpp"
+#include "sabus/harness/expressions.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
 namespace sabus::cli {
@@ -270,13 +271,21 @@ int run_errata(const VectorsOptions& o) {
   return kExitOk;
 }
 
+// The expression functions' one table (expressions.cpp): name(arguments) and what it gives.
+int run_functions() {
+  for (const auto& f : harness::expression_functions())
+    std::cout << f.name << "(" << f.arguments << ")\n    " << f.description << "\n";
+  return kExitOk;
+}
+
 }  // namespace
 
 Command add_vectors_command(CLI::App& app) {
   auto opts = std::make_shared<VectorsOptions>();
   CLI::App* sub = app.add_subcommand("vectors", "Check and list the conformance vectors (vectors/*.yaml)");
   sub->require_subcommand(1);
-  const std::string where = "vector files or directories (default: " + harness::default_vectors_dir() + ")";
+  // Not looked up here: the data directory may be given after this (--data-dir).
+  const std::string where = "vector files or directories (default: vectors/ in the data directory, see sabus --version)";
   CLI::App* lint = sub->add_subcommand("lint", "Load and lint the vectors; print every error, then a summary");
   lint->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   CLI::App* list = sub->add_subcommand("list", "List the vectors: id, paragraph, level, tags");
@@ -294,7 +303,10 @@ Command add_vectors_command(CLI::App& app) {
   cov->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   cov->add_flag("--json", opts->json, "Print JSON");
   cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
-  return {sub, [opts, lint, cov, errata] {
+  CLI::App* functions =
+      sub->add_subcommand("functions", "List the functions of profile expressions (\"{home(az)}\", vectors/README.md)");
+  return {sub, [opts, lint, cov, errata, functions] {
+            if (functions->parsed()) return run_functions();
             if (lint->parsed()) return run_lint(*opts);
             if (cov->parsed()) return run_coverage(*opts);
             if (errata->parsed()) return run_errata(*opts);

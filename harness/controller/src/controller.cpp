@@ -127,6 +127,7 @@ void Controller::start_move(AxisId a, double target, bool remote) {
   const AxisProfile& p = axis_profile(a);
   s.target = std::clamp(target, p.min_deg, p.max_deg);
   s.direction = s.target >= s.position ? 1 : -1;
+  if (faults_.has(Fault::kMoveStopsShort) && std::abs(s.target - s.position) > 1.0) s.target -= s.direction * 1.0;
   s.motion = std::abs(s.target - s.position) < kEpsilon ? AxisState::Motion::kIdle
              : remote                                  ? AxisState::Motion::kRemoteAutoMove
                                                        : AxisState::Motion::kAutoMove;

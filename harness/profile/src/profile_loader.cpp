@@ -17,6 +17,7 @@
 #include <span>
 
 #include "profile_tables.hpp"
+#include "sabus/harness/data_dir.hpp"
 #include "sabus/harness/yaml_reader.hpp"
 #include "sabus/protocol/frame.hpp"
 
@@ -453,6 +454,6 @@ ProfileResult load_profile_file(const std::string& path) {
   return load_profile_text(*text, path);
 }
 
-std::string default_profile_path() { return SABUS_SOURCE_DIR "/vectors/profiles/rc3000-1.59.yaml"; }
+std::string default_profile_path() { return data_path("vectors/profiles/rc3000-1.59.yaml"); }
 
 }  // namespace sabus::harness

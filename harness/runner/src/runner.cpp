@@ -111,6 +111,7 @@ std::optional<std::string> missing_capability(const Vector& v, const ExprContext
       check_matchers(s.expect.fields);
       check_matchers(s.until);
       check(s.timeout_text);
+      check(s.modifiers.address_text);
     }
   return missing;
 }
@@ -136,6 +137,7 @@ std::vector<std::string> attempt(Session& s, const Vector& v, std::vector<Transc
   std::vector<std::string> failures;
   s.transcript = &transcript;
   s.captures.clear();
+  s.vector_moves = v.has_tag("motion");
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
       failures.push_back("setup: " + *e);
@@ -204,6 +206,7 @@ void journal(RunResult& result, VectorResult r, const RunOptions& o) {
   }
   result.vectors.push_back(std::move(r));
   if (o.on_result) o.on_result(result.vectors.back());
+  if (!o.keep_transcripts) result.vectors.back().transcript = {};
 }
 
 bool expects_silence(const Vector& v) {

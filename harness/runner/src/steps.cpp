@@ -41,6 +41,14 @@ std::optional<std::string> check_kind(const Expectation& e, const std::vector<Fr
   using K = Expectation::Kind;
   auto describe = [&](const Frame& f) { return describe_frame(encode_frame(f)).summary; };
   if (e.kind == K::kAny) return std::nullopt;
+  if (e.kind == K::kAnswered) {
+    if (replies.size() != 1) return "expected one ACK or NAK reply, got " + (replies.empty() ? std::string("silence") : std::to_string(replies.size()) + " replies");
+    const Frame& f = replies[0];
+    if (is_offline_reply(f)) return "expected an ACK or NAK reply, got the offline reply";
+    if (f.address != address) return "reply from address " + describe_byte(f.address) + ", expected " + describe_byte(address);
+    if (f.command != command) return "reply for command " + describe_byte(f.command) + ", expected " + describe_byte(command);
+    return std::nullopt;
+  }
   if (e.kind == K::kSilence) {
     if (replies.empty()) return std::nullopt;
     return "expected silence, got " + describe(replies[0]);
@@ -134,6 +142,7 @@ Expected<Bytes> record_bytes(const StructuredCommand& c, const ExprContext& cx, 
 // source is the profile's or 111.
 std::optional<std::string> check_navigation_record(const FrameDescription& got, const FrameDescription& want) {
   for (const auto& w : want.fields) {
+    if (w.name == "check byte") continue;  // follows from the other bytes; the receiver checked it
     const auto g = std::find_if(got.fields.begin(), got.fields.end(), [&](const FieldDescription& f) { return f.name == w.name; });
     if (g == got.fields.end()) return "field \"" + w.name + "\" is not in the reply";
     const bool source = w.name == "lat/lon source" || w.name == "heading source";
@@ -158,7 +167,7 @@ std::optional<std::string> check_record(const Expectation& e, const Frame& reply
   if (reply.command == 0x45) return check_navigation_record(describe_frame(got), describe_frame(want.value()));
   const FrameDescription wd = describe_frame(want.value()), gd = describe_frame(got);
   for (const auto& w : wd.fields) {
-    if (w.name == "no data") continue;  // an empty slot's rest is not described
+    if (w.name == "no data" || w.name == "check byte") continue;  // an empty slot's rest is not described
     const auto g = std::find_if(gd.fields.begin(), gd.fields.end(), [&](const FieldDescription& f) { return f.name == w.name; });
     if (g == gd.fields.end()) return "field \"" + w.name + "\" is not in the reply (" + gd.summary + ")";
     if (g->raw != w.raw)
@@ -175,6 +184,7 @@ std::string expect_name(Expectation::Kind k) {
     case Expectation::Kind::kOffline: return "offline";
     case Expectation::Kind::kSilence: return "silence";
     case Expectation::Kind::kAny: return "any";
+    case Expectation::Kind::kAnswered: return "answered";
   }
   return "any";
 }
@@ -194,6 +204,11 @@ std::optional<std::string> Session::check_matchers(const FrameDescription& d, co
 std::optional<std::string> Session::run_send(const Step& step) {
   Step s = step;
   if (auto e = expand_fields(s, expr_context())) return "cannot build the command: " + *e;
+  if (!s.modifiers.address_text.empty()) {
+    const Number a = expand_number(s.modifiers.address_text, expr_context());
+    if (a.kind != Expansion::Kind::kValue) return "modify.address: " + a.text;
+    s.modifiers.address = static_cast<std::uint8_t>(a.value);
+  }
   auto bytes = s.command && !s.command->from_profile.empty() ? record_bytes(*s.command, expr_context(), profile.address)
                                                              : step_bytes(s, profile.address, captures);
   if (!bytes) return "cannot build the command: " + bytes.error().message();

@@ -30,7 +30,8 @@ std::optional<CoveragePath> path_of(Expectation::Kind kind) {
     case Expectation::Kind::kNak: return CoveragePath::kNak;
     case Expectation::Kind::kOffline: return CoveragePath::kOffline;
     case Expectation::Kind::kSilence: return CoveragePath::kIgnore;
-    case Expectation::Kind::kAny: return std::nullopt;
+    case Expectation::Kind::kAny:
+    case Expectation::Kind::kAnswered: return std::nullopt;
   }
   return std::nullopt;
 }

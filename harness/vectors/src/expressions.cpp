@@ -17,6 +17,8 @@
 #include <functional>
 
 #include "sabus/harness/motion.hpp"
+#include "sabus/protocol/frame.hpp"
+#include "sabus/protocol/lrc.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -130,6 +132,37 @@ Result filled_slot(const Call& c) {
                      " filled in the profile (a write there could not be undone: a slot cannot be emptied)");
 }
 
+// Addresses a vector may send to that no controller on the line answers: not
+// the profile's own, not a bus peer's (§1 multi-drop).
+bool on_the_line(const Profile& p, int address) {
+  if (address == p.address) return true;
+  return std::any_of(p.bus_peers.begin(), p.bus_peers.end(), [&](std::uint8_t a) { return a == address; });
+}
+
+// frame_with_check(x): a complete frame to the profile's address whose check
+// byte is x (§1 Check Character, E-5), which the device must answer: a read
+// without data (31h, 30h, 45h), a read of an index (3Ah 01-20, 3Ch 01-10,
+// 35h 01-50: ACK, or the NAK of a list without that entry), else an unknown
+// command code without data (the NAK of §3). The first that fits.
+std::optional<Bytes> frame_with_check(std::uint8_t address, std::uint8_t check) {
+  auto fits = [&](std::uint8_t code, std::string_view data) -> std::optional<Bytes> {
+    const Bytes f = encode_frame(Frame{FrameKind::kCommand, address, code, Bytes(data.begin(), data.end())});
+    if (f.back() == check) return f;
+    return std::nullopt;
+  };
+  for (std::uint8_t code : {0x31, 0x30, 0x45})
+    if (auto f = fits(code, "")) return f;
+  for (auto [code, last] : {std::pair{0x3A, 20}, std::pair{0x3C, 10}, std::pair{0x35, 50}})
+    for (int i = 1; i <= last; ++i) {
+      const char digits[3] = {static_cast<char>('0' + i / 10), static_cast<char>('0' + i % 10), 0};
+      if (auto f = fits(static_cast<std::uint8_t>(code), digits)) return f;
+    }
+  for (int code = 0x20; code < 0x80; ++code)
+    if ((code < 0x30 || code > 0x48))
+      if (auto f = fits(static_cast<std::uint8_t>(code), "")) return f;
+  return std::nullopt;
+}
+
 Result maybe(const motion::Maybe<double>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
 Result maybe(const motion::Maybe<int>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
 
@@ -229,16 +262,21 @@ const Function kFunctions[] = {
      }},
     {{"store_count", "", "the number of entries of the profile's STORE list (§3.6)"}, 0,
      [](const Call& c) { return number(static_cast<double>(c.cx.profile.store.size())); }},
-    {{"store_room", "'name'",
-      "1 when a STORE of that name fits: the profile's STORE list has fewer than 50 entries or holds the name "
-      "(§3.19: a STORE of a stored name overwrites it); unavailable when the list is full"},
+    {{"store_room", "n",
+      "1 when the profile's STORE list (§3.6, at most 50) has room for n more names; unavailable when it has not"},
      1,
      [](const Call& c) {
-       if (c.args[0].is_number) return error("store_room: argument 1 must be a name in quotes");
-       const auto& store = c.cx.profile.store;
-       const bool held = std::any_of(store.begin(), store.end(), [&](const StoredSatellite& e) { return e.name == c.args[0].text; });
-       if (held || store.size() < 50) return number(1);
-       return unavailable("a free STORE entry: the profile's STORE list is full (50)");
+       if (auto e = c.numbers({0})) return error(*e);
+       const double free = 50.0 - static_cast<double>(c.cx.profile.store.size());
+       if (free >= c.args[0].number) return number(1);
+       return unavailable("room for " + format_number(c.args[0].number) + " more names in the STORE list: the profile's holds " +
+                          std::to_string(c.cx.profile.store.size()) + " of 50");
+     }},
+    {{"has_navigation", "", "1 when the profile holds navigation data (latitude, longitude and heading, §3.22)"}, 0,
+     [](const Call& c) {
+       const Navigation& n = c.cx.profile.navigation;
+       if (n.latitude_min && n.longitude_min && n.heading_tenths) return number(1);
+       return unavailable("navigation data (latitude, longitude and heading) in the profile, to write back after 46h");
      }},
     {{"negative", "axis", "a negative position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
      [](const Call& c) {
@@ -267,6 +305,76 @@ const Function kFunctions[] = {
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
        return number(std::round(c.args[0].number * 10) / 10);
+     }},
+    {{"preset_flag", "index",
+      "bytes 3-4 of 41h/42h with the preset flag set (§3.18/§3.19, E-29): 40h | 1 << 4 | tens, then the ones digit"},
+     1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const int i = static_cast<int>(c.args[0].number);
+       if (i < 0 || i > 29) return error("preset_flag: index " + std::to_string(i) + " does not fit a tens digit 0-2");
+       return text(std::string{static_cast<char>(0x40 | 0x10 | i / 10), static_cast<char>('0' + i % 10)});
+     }},
+    {{"address", "", "the device's address byte (49-111, §1)"}, 0,
+     [](const Call& c) { return number(c.cx.profile.address); }},
+    {{"other_address", "step",
+      "the address `step` away from the device's (+1 the one above, -1 below) when it is a valid address (31h-6Fh) "
+      "no controller on the line has"},
+     1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const int a = c.cx.profile.address + static_cast<int>(c.args[0].number);
+       if (a < 0x31 || a > 0x6F) return unavailable("a valid address " + format_number(c.args[0].number) + " away from the device's");
+       if (on_the_line(c.cx.profile, a)) return unavailable("address " + std::to_string(a) + " free on the line: a controller there answers");
+       return number(a);
+     }},
+    {{"peer", "n", "the address of the profile's n-th bus peer (§1 multi-drop), from 1"}, 1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const auto n = static_cast<std::size_t>(c.args[0].number);
+       const auto& peers = c.cx.profile.bus_peers;
+       if (n < 1 || n > peers.size()) return unavailable(std::to_string(n) + " peer(s) on the line (bus_peers)");
+       return number(peers[n - 1]);
+     }},
+    {{"unused_address", "", "the lowest valid address (31h-6Fh) no controller on the line has"}, 0,
+     [](const Call& c) {
+       for (int a = 0x31; a <= 0x6F; ++a)
+         if (!on_the_line(c.cx.profile, a)) return number(a);
+       return unavailable("an address no controller on the line has");
+     }},
+    {{"foreign", "address", "the address when no controller on the line has it (a vector sends to it to be ignored)"}, 1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const int a = static_cast<int>(c.args[0].number);
+       if (on_the_line(c.cx.profile, a)) return unavailable("address " + std::to_string(a) + " free on the line: a controller there answers");
+       return number(a);
+     }},
+    {{"bitxor", "a, b", "a XOR b, of whole numbers"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({0, 1})) return error(*e);
+       return number(static_cast<double>(static_cast<long long>(c.args[0].number) ^ static_cast<long long>(c.args[1].number)));
+     }},
+    {{"bitand", "a, b", "a AND b, of whole numbers"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({0, 1})) return error(*e);
+       return number(static_cast<double>(static_cast<long long>(c.args[0].number) & static_cast<long long>(c.args[1].number)));
+     }},
+    {{"char", "n", "the character with this code, as text (for raw templates)"}, 1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const double n = c.args[0].number;
+       if (n < 0 || n > 0x7F || n != std::floor(n)) return error("char: " + format_number(n) + " is not a 7-bit character");
+       return text(std::string(1, static_cast<char>(n)));
+     }},
+    {{"frame_with_check", "byte",
+      "a whole frame to the device's address whose check byte is `byte` and which the device must answer (a read, or "
+      "an unknown code's NAK), as text for a raw template"},
+     1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       const auto f = frame_with_check(c.cx.profile.address, static_cast<std::uint8_t>(c.args[0].number));
+       if (!f) return unavailable("a frame to address " + std::to_string(c.cx.profile.address) + " with that check byte");
+       return text(std::string(f->begin(), f->end()));
      }},
     {{"pad2", "n", "a whole number 0-99 as two digits: 05"}, 1,
      [](const Call& c) {
@@ -421,6 +529,13 @@ class Parser {
       const std::string t(s_.substr(pos_ + 1, close - pos_ - 1));
       pos_ = close + 1;
       return text(t);
+    }
+    if (c == '0' && pos_ + 1 < s_.size() && (s_[pos_ + 1] == 'x' || s_[pos_ + 1] == 'X')) {  // 0x31
+      unsigned v = 0;
+      const auto [end, ec] = std::from_chars(s_.data() + pos_ + 2, s_.data() + s_.size(), v, 16);
+      if (ec != std::errc() || end == s_.data() + pos_ + 2) return error("bad hex number at character " + std::to_string(pos_ + 1));
+      pos_ = static_cast<std::size_t>(end - s_.data());
+      return number(v);
     }
     if ((c >= '0' && c <= '9') || c == '.') {
       double v = 0;

@@ -12,6 +12,7 @@
 #include <map>
 #include <tuple>
 
+#include "sabus/harness/data_dir.hpp"
 #include "sabus/harness/expressions.hpp"
 #include "vector_loader_internal.hpp"
 
@@ -348,6 +349,6 @@ LoadResult load_vectors(const std::vector<std::string>& paths) {
   return result;
 }
 
-std::string default_vectors_dir() { return SABUS_SOURCE_DIR "/vectors"; }
+std::string default_vectors_dir() { return data_path("vectors"); }
 
 }  // namespace sabus::harness

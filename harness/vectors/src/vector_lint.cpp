@@ -11,6 +11,7 @@
 #include "sabus/harness/expressions.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
+#include "sabus/harness/data_dir.hpp"
 #include "vector_loader_internal.hpp"
 
 namespace sabus::harness::vector_loader_internal {
@@ -22,21 +23,24 @@ constexpr std::string_view kKnownTags[] = {"motion",          "destructive", "op
                                            "pol:single_port", "pol:dual_port", "parity",   "timing",
                                            "offline",         "multidrop",   "track"};
 
-constexpr std::string_view kErrataPath = SABUS_SOURCE_DIR "/protocol/ERRATA.md";
+// In the data directory (data_dir.hpp).
+constexpr std::string_view kErrataFile = "protocol/ERRATA.md";
 // The spec text the quotes come from (protocol/ERRATA.md: "the project reads
-// it from ../shared/spec/"). Outside the repository: skipped when absent.
-constexpr std::string_view kSpecTextPath = SABUS_SOURCE_DIR "/../shared/spec/000_ebbe2d50858e9e24.txt";
+// it from ../shared/spec/"), by its file name (spec_text_path says where).
+constexpr std::string_view kSpecTextName = "000_ebbe2d50858e9e24.txt";
 
 // ERRATA.md entries by number ("### E-7: ..."), and whether each is withdrawn.
 struct ErrataIndex {
+  std::string path;
   std::optional<std::string> error;
   std::map<std::size_t, bool> withdrawn;
 };
 
 ErrataIndex read_errata() {
   ErrataIndex index;
+  index.path = data_path(kErrataFile);
   std::string error;
-  auto text = read_capped(std::string(kErrataPath), 4 << 20, error);
+  auto text = read_capped(index.path, 4 << 20, error);
   if (!text) {
     index.error = error;
     return index;
@@ -99,7 +103,7 @@ void lint_notes(const VectorFile& f, const ErrataIndex& errata, std::vector<Load
     if (note.errata.rfind("E-", 0) != 0 || !parse_whole(std::string_view(note.errata).substr(2), n))
       errors.push_back({note.where, "", key, quoted_clip(note.errata) + " is not an errata entry id like E-7"});
     else if (errata.error)
-      errors.push_back({note.where, "", key, "cannot check " + note.errata + ": " + std::string(kErrataPath) + ": " + *errata.error});
+      errors.push_back({note.where, "", key, "cannot check " + note.errata + ": " + errata.path + ": " + *errata.error});
     else if (!errata.withdrawn.count(n))
       errors.push_back({note.where, "", key, note.errata + " is not an entry of protocol/ERRATA.md"});
     else if (errata.withdrawn.at(n))
@@ -222,7 +226,15 @@ namespace sabus::harness {
 
 using namespace vector_loader_internal;
 
-std::string spec_text_path() { return std::filesystem::path(kSpecTextPath).lexically_normal().string(); }
+std::string spec_text_path() {
+  const DataDir data = require_data_dir();
+  // The vendor's manual is not ours to ship: a source tree finds it where
+  // the project keeps it, beside the repository; an installation (or any
+  // data directory given) where its owner puts a copy, spec/ inside it.
+  const std::filesystem::path dir = std::filesystem::path(*data.path) /
+                                    (data.source == DataDirSource::kSourceTree ? "../shared/spec" : "spec");
+  return (dir / kSpecTextName).lexically_normal().string();
+}
 
 std::optional<std::string> read_spec_text() {
   std::string error;

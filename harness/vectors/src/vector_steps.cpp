@@ -22,7 +22,8 @@ constexpr std::pair<std::string_view, Expectation::Kind> kReplyKinds[] = {{"ack"
                                                                           {"nak", Expectation::Kind::kNak},
                                                                           {"offline", Expectation::Kind::kOffline},
                                                                           {"silence", Expectation::Kind::kSilence},
-                                                                          {"any", Expectation::Kind::kAny}};
+                                                                          {"any", Expectation::Kind::kAny},
+                                                                          {"answered", Expectation::Kind::kAnswered}};
 
 // --- field matchers ---
 
@@ -247,10 +248,10 @@ void keep_captures(const std::vector<FieldMatcher>& matchers, StepContext& cx) {
 // --- expectations ---
 
 Expectation::Kind to_reply_kind(const YAML::Node& v, const At& at) {
-  const std::string& s = scalar(v, at, "ack, nak, offline, silence or any");
+  const std::string& s = scalar(v, at, "ack, nak, offline, silence, any or answered");
   for (const auto& [name, kind] : kReplyKinds)
     if (s == name) return kind;
-  fail(at, quoted_clip(s) + " is not a reply: expected ack, nak, offline, silence or any");
+  fail(at, quoted_clip(s) + " is not a reply: expected ack, nak, offline, silence, any or answered");
 }
 
 std::string_view reply_kind_name(Expectation::Kind k) {
@@ -328,9 +329,9 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     }
     e.nak_rule = s;
   });
-  if (e.kind == Expectation::Kind::kSilence)
+  if (e.kind == Expectation::Kind::kSilence || e.kind == Expectation::Kind::kAnswered)
     for (auto k : {"bytes", "fields"})
-      if (r.has(k)) fail(r.at(k), std::string("silence has no ") + k);
+      if (r.has(k)) fail(r.at(k), std::string(reply_kind_name(e.kind)) + " has no " + k);
   r.with("bytes", [&](const YAML::Node& n, const At& a) {
     std::vector<Element> elements;
     e.bytes = read_raw(n, a, cx, elements);
@@ -497,7 +498,14 @@ Modifiers read_modifiers(const YAML::Node& v, const At& at, std::optional<std::s
   Modifiers m;
   auto byte = [](const YAML::Node& n, const At& a, long long lo) { return static_cast<std::uint8_t>(to_integer_or_hex_in(n, a, lo, 0x7F)); };
   r.read("lrc_xor", m.lrc_xor, [&](const YAML::Node& n, const At& a) { return byte(n, a, 1); });
-  r.read("address", m.address, to_modified_address);
+  r.with("address", [&](const YAML::Node& n, const At& a) {
+    if (n.IsScalar() && has_placeholder(n.Scalar())) {
+      if (auto e = check_template(n.Scalar(), {})) fail(a, *e);
+      m.address_text = n.Scalar();
+    } else {
+      m.address = to_modified_address(n, a);
+    }
+  });
   r.read("extra_data_bytes", m.extra_data_bytes, [](const YAML::Node& n, const At& a) { return static_cast<std::size_t>(to_integer_in(n, a, 1, 200)); });
   if (length) *length += m.extra_data_bytes;
   r.with("replace", [&](const YAML::Node& n, const At& a) {

@@ -681,6 +681,8 @@ TEST(Faults, EveryFaultChangesTheWire) {
       {Fault::kDeviceTypeNoDot, none, wire(DeviceTypeQuery{}, '2')},
       {Fault::kRemoteDisabledAnswers, disabled, poll},
       {Fault::kDriveResetKeepsAlarm, [](Profile& p) { p.alarms.az = 11; }, wire(Misc{'R', 'A'}, '2')},
+      // 1.5 deg of azimuth at 2 deg/s: there after 1 s, or stopped at 0.5.
+      {Fault::kMoveStopsShort, [](Profile& p) { p.az.initial_deg = 0; }, wire(AutoMove{AutoMoveAzEl{15, 450}}, '2')},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {

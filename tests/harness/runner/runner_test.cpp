@@ -2,6 +2,7 @@
 // runs against the in-process reference controller (also with faults).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "sabus/harness/controller.hpp"
@@ -303,6 +304,144 @@ TEST(Runner, PollUntilTheMoveEnds) {
   RunResult r = run_in_process({vector_with("move-and-poll", {move, poll}, {"motion"})}, {}, o);
   ASSERT_EQ(r.vectors.size(), 1u);
   EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass) << (r.vectors[0].failures.empty() ? "" : r.vectors[0].failures[0]);
+}
+
+// ---- profile expressions, motion and capabilities --------------------------------
+
+std::vector<Vector> shipped_vectors(const std::string& file) {
+  std::vector<Vector> out;
+  for (auto& f : load_vectors({default_vectors_dir() + "/" + file}).files)
+    for (auto& v : f.vectors) out.push_back(std::move(v));
+  return out;
+}
+
+TEST(Matchers, NearTakesTheAxisToleranceFromTheProfile) {
+  Profile p;
+  p.az.tolerance_deg = 0.3;
+  FieldMatcher m = matcher("azimuth", FieldMatcher::Kind::kNear, {"{home(az) - 152.5}"});
+  const ResolvedMatcher r = resolve_matcher(m, ExprContext{p});
+  ASSERT_EQ(r.kind, Expansion::Kind::kValue) << r.problem;
+  EXPECT_DOUBLE_EQ(r.matcher.low, -152.8);
+  EXPECT_DOUBLE_EQ(r.matcher.high, -152.2);
+  Captures c;
+  EXPECT_FALSE(check_field(status_reply(), r.matcher, c)) << "-152.5 is within 0.3 of -152.5";
+  p.az.tolerance_deg = 0.1;
+  const auto off = check_field(status_reply(), resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kNear, {"-152.8"}), ExprContext{p}).matcher, c);
+  ASSERT_TRUE(off);
+  EXPECT_NE(off->find("-152.8 within 0.1"), std::string::npos) << *off;
+}
+
+TEST(Matchers, JoggedIsWhereTheJogCanEndAndAHeadingIsModulo360) {
+  Profile p;
+  p.az.fast_dps = 2;
+  FieldMatcher m = matcher("azimuth", FieldMatcher::Kind::kJogged, {"10", "1000"});
+  m.jog = 'W';
+  m.speed = 'F';
+  const ResolvedMatcher r = resolve_matcher(m, ExprContext{p});
+  ASSERT_EQ(r.kind, Expansion::Kind::kValue) << r.problem;
+  EXPECT_NEAR(r.matcher.low, 10 + 1.9 - 0.1, 1e-9);
+  EXPECT_NEAR(r.matcher.high, 10 + 2.1 + 0.1, 1e-9);
+  EXPECT_NE(r.matcher.expected.find("'W' jog at fast speed"), std::string::npos) << r.matcher.expected;
+  // A fluxgate heading of 359.9 is -0.1 next to a window around 0.
+  p.az_sensor = AzSensor::kFluxgate;
+  StatusReply reply;
+  reply.status.azimuth = {fields::AzimuthReading::Kind::kHeading, 3599, 'T'};
+  const auto d = describe_frame(encode_reply(reply, '2', 0x31).value());
+  Captures c;
+  EXPECT_FALSE(check_field(d, resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kNear, {"0"}), ExprContext{p}).matcher, c));
+}
+
+TEST(Runner, AMissingCapabilityIsASkipThatNamesIt) {
+  Vector v = vector_with("needs-empty-slot", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck)});
+  v.needs = {"{first_empty(presets)}"};
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  for (int i = 1; i <= 20; ++i)
+    if (std::none_of(p.presets.begin(), p.presets.end(), [&](const PresetSatellite& s) { return s.index == i; }))
+      p.presets.push_back({static_cast<std::uint8_t>(i), {}, false});
+  auto t = make_in_process_transport({p});
+  const RunResult r = Runner(*t, p, {}).run({v});
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kSkip);
+  EXPECT_EQ(r.vectors[0].skip_reason, "needs an empty preset satellite slot: the profile has every one filled");
+}
+
+// A mount that stops 1 deg short of its targets (the fault) fails the vector
+// whose setup waits for the target as soon as its axes have stopped, not at a
+// timeout: on a 20 deg/s mount, within 30 s of virtual time, move included.
+TEST(Runner, AMountThatStopsShortFailsEachSetupWithinSecondsNotAtATimeout) {
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  for (AxisProfile* a : {&p.az, &p.el, &p.pol}) {
+    a->fast_dps = 20;
+    a->slow_dps = 5;
+  }
+  auto t = make_in_process_transport({p}, {Fault::kMoveStopsShort});
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult r = Runner(*t, p, o).run(shipped_vectors("3.4-jog.yaml"));
+  std::size_t failed = 0;
+  for (const auto& v : r.vectors) {
+    if (v.verdict != Verdict::kFail) continue;
+    ++failed;
+    EXPECT_LT(v.duration_ms, 30000) << v.id << ": " << v.failures[0];
+    EXPECT_NE(v.failures[0].find("the mount stopped (every axis idle for 3 polls) before the poll's condition held"),
+              std::string::npos)
+        << v.id << ": " << v.failures[0];
+  }
+  // Each failure leaves the mount 1 deg short; a later move of 1 deg or less
+  // is not cut short, so not every vector fails.
+  EXPECT_GE(failed, 3u);
+}
+
+TEST(Runner, APollWithoutATimeoutDerivesOneFromDistanceAndSpeed) {
+  // Nothing moves the azimuth to 100: outside a moving vector the poll runs
+  // to its derived timeout, (100 deg / 0.5 deg/s) x 1.5 + 10 s = 310 s.
+  Step poll = send_command("status", "", {}, Expectation::Kind::kAck);
+  poll.kind = Step::Kind::kPoll;
+  poll.until = {matcher("azimuth", FieldMatcher::Kind::kNear, {"100"})};
+  RunResult r = run_in_process({vector_with("never-there", {poll})});
+  ASSERT_EQ(r.vectors.size(), 1u);
+  ASSERT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  EXPECT_NE(r.vectors[0].failures[0].find("poll timed out after 310000 ms"), std::string::npos) << r.vectors[0].failures[0];
+  // In a vector that moves the antenna, the stopped mount ends it in 3 polls.
+  RunOptions o;
+  o.allow_motion = true;
+  r = run_in_process({vector_with("never-there-moving", {poll}, {"motion"})}, {}, o);
+  ASSERT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  EXPECT_LT(r.vectors[0].duration_ms, 5000);
+}
+
+TEST(Runner, FromProfileWritesTheProfilesRecordBackAndChecksAReadAgainstIt) {
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto t = make_in_process_transport({p});
+  Controller& c = t->bus().controller(0);
+  auto overwrite = send_command("write_satellite", "", {{"index", "{first_filled(presets)}"}, {"sat name", "OTHER"}},
+                                Expectation::Kind::kAck);
+  Step restore = send_command("write_satellite", "", {}, Expectation::Kind::kAck);
+  restore.command->from_profile = "{first_filled(presets)}";
+  Step read = send_command("read_satellite", "", {{"index", "{first_filled(presets)}"}}, Expectation::Kind::kAck);
+  read.expect.from_profile = "{first_filled(presets)}";
+  RunOptions o;
+  o.allow_destructive = true;
+  Runner runner(*t, p, o);
+  // Read against the profile after an overwrite: fails, naming the field.
+  RunResult r = runner.run({vector_with("3.10-overwritten", {overwrite, read}, {"destructive"})});
+  ASSERT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  EXPECT_NE(r.vectors[0].failures[0].find("sat name: the profile holds"), std::string::npos) << r.vectors[0].failures[0];
+  // Written back from the profile, the read holds.
+  r = runner.run({vector_with("3.10-restored", {overwrite, restore, read}, {"destructive"})});
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass) << r.vectors[0].failures[0];
+  EXPECT_EQ(c.state().presets[0]->data, p.presets[0].data);
+}
+
+TEST(Runner, AnsweredIsAnAckOrANakToTheFrameSentNeverSilence) {
+  const auto nak = send_raw("02 {addr} 5a 03 {lrc}", Expectation::Kind::kAnswered);      // unknown code: NAK
+  const auto ack = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAnswered);      // status: ACK
+  const auto none = send_raw("02 {addr} 31 03 00", Expectation::Kind::kAnswered);        // bad LRC: silence
+  const RunResult r = run_in_process({vector_with("nak", {nak}), vector_with("ack", {ack}), vector_with("none", {none})});
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass);
+  EXPECT_EQ(r.vectors[1].verdict, Verdict::kPass);
+  ASSERT_EQ(r.vectors[2].verdict, Verdict::kFail);
+  EXPECT_NE(r.vectors[2].failures[0].find("got silence"), std::string::npos) << r.vectors[2].failures[0];
 }
 
 }  // namespace

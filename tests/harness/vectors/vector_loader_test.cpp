@@ -183,7 +183,7 @@ struct Bench {
   Bus bus;
 
   Bytes frame(const Step& s) {
-    if (s.raw) return expand_raw_bytes(s.raw->hex, profile.address).value();
+    if (s.raw) return expand_raw_bytes(expand_raw_expressions(s.raw->hex, ExprContext{profile}).text, profile.address).value();
     const CommandInfo* info = find_command(s.command->command);
     return encode_request(build_request(*info, s.command->form, s.command->fields).value(), profile.address);
   }
@@ -747,9 +747,9 @@ TEST(vectors, RequirementsNameCapabilitiesNeverAProfile) {
   expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    requires: {name: rc3000-1.59}\n"),
                {"name", 1, "3.2-x", "requires.name", "a vector requires capabilities, never a profile's name"});
   VectorFile f = load_ok(one_vector("      - send: {command: status}\n        expect: ack\n",
-                                    "    needs: [\"{first_empty(presets)}\", \"{store_room('SABUS TEST')}\"]\n"));
+                                    "    needs: [\"{first_empty(presets)}\", \"{store_room(7)}\"]\n"));
   ASSERT_EQ(f.vectors.size(), 1u);
-  EXPECT_EQ(f.vectors[0].needs, (std::vector<std::string>{"{first_empty(presets)}", "{store_room('SABUS TEST')}"}));
+  EXPECT_EQ(f.vectors[0].needs, (std::vector<std::string>{"{first_empty(presets)}", "{store_room(7)}"}));
   expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    needs: [first_empty]\n"),
                {"first_empty", 1, "3.2-x", "needs[0]", "is not a profile expression"});
   expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    needs: [\"{nope()}\"]\n"),

@@ -27,7 +27,11 @@ struct DiffEntry {
 };
 
 struct RunDiff {
-  std::vector<std::string> run_changes;    // identity, status: one line each
+  // The runs differ in options, profile or the vectors that ran: the
+  // controller went through other states, so a changed reply or timing may
+  // come from that and not from the device. One line each.
+  std::vector<std::string> warnings;
+  std::vector<std::string> run_changes;    // identity, faults, status: one line each
   bool new_run_incomplete = false;         // NEW is aborted or still running: a regression
   std::vector<DiffEntry> new_failures;     // not failing before, failing now (regression)
   std::vector<DiffEntry> now_missing;      // passed before, absent now (regression)
@@ -43,6 +47,8 @@ struct RunDiff {
 };
 
 RunDiff diff_runs(const RunDocument& old_run, const RunDocument& new_run, const TimingThreshold& threshold);
+// The warnings of diff_runs alone.
+std::vector<std::string> comparability_warnings(const RunDocument& old_run, const RunDocument& new_run);
 
 std::string diff_text(const RunDiff& diff);
 std::string diff_markdown(const RunDiff& diff);

@@ -1,8 +1,9 @@
 // The run document: one in-memory model of a conformance run that every
-// report is written from. `sabus run` builds it as vectors finish and writes
-// it as JSON after each one; `sabus report` and `sabus diff` read the JSON
-// back into it. The JSON is the source of truth; its schema is
-// reports/SCHEMA.md ("sabus-run", version 2).
+// report is written from. `sabus run` builds it as vectors finish (each one
+// appended to the run's journal, journal.hpp) and writes the run JSON once at
+// the end; `sabus report` and `sabus diff` read the JSON (or a journal) back
+// into it. The JSON is the source of truth; its schema is reports/SCHEMA.md
+// ("sabus-run", version 3).
 #pragma once
 
 #include <cstddef>
@@ -15,7 +16,7 @@
 
 namespace sabus::reports {
 
-inline constexpr int kSchemaVersion = 2;
+inline constexpr int kSchemaVersion = 3;
 inline constexpr const char* kSchemaName = "sabus-run";
 
 // One named field of a frame with its byte range (protocol describe_frame).
@@ -42,12 +43,15 @@ struct VectorRecord {
   std::string id, paragraph, file, level, outcome;  // outcome: harness to_string(Verdict)
   std::vector<std::string> failures;
   std::string skip_reason, known_issue, quote, comment;
-  double duration_ms = 0;
+  double duration_ms = 0;                // transport clock: virtual in-process, real on a line
+  std::optional<double> wall_ms;         // wall clock (v3); absent in documents of versions 1 and 2
   int repeats = 0, repeat_failures = 0;
   std::vector<FrameRecord> transcript;
 
   bool is_failure() const { return outcome == "fail" || outcome == "unexpected pass"; }
   bool is_skip() const { return outcome == "skip" || outcome == "known failure"; }
+  // A step failed (fail, known failure): the reports show its frames field by field.
+  bool has_failed_steps() const { return outcome == "fail" || outcome == "known failure"; }
   // The decoded difference in one line: the first failure, or why an
   // unexpected pass fails the run.
   std::string difference() const;
@@ -78,6 +82,7 @@ struct RunDocument {
   std::string started_at, finished_at;   // UTC, ISO 8601
   std::string status = "running";        // running, complete, aborted
   std::string abort_reason;
+  std::string journal;                   // while running: the journal file beside the JSON (v3)
   std::string device;                    // the transport ("in-process reference controller", a port)
   Identity identity;
   std::string profile;
@@ -106,17 +111,25 @@ VectorRecord vector_record(const harness::VectorResult& result);
 void assign_paths(std::vector<FrameRecord>& transcript);
 // Fills status, summary, liveness, restore notes and traffic at the end.
 void finish(RunDocument& doc, const harness::RunResult& run, std::string finished_at);
+// Drops the per-field decoding of the frames of a vector that did not fail
+// (pass, skip, unexpected pass): the reports show it only for failures, and
+// the journal and the JSON keep it. A long run keeps its document small so.
+void compact_for_reports(VectorRecord& v);
 
 // ---- JSON ------------------------------------------------------------------------
 
-nlohmann::json to_json(const FrameRecord& f);
-nlohmann::json to_json(const VectorRecord& v);
-nlohmann::json header_json(const RunDocument& doc);  // everything except "vectors"
-nlohmann::json to_json(const RunDocument& doc);
+// Members in the order of reports/SCHEMA.md.
+nlohmann::ordered_json to_json(const FrameRecord& f);
+nlohmann::ordered_json to_json(const VectorRecord& v);
+nlohmann::ordered_json header_json(const RunDocument& doc);  // everything except "vectors"
 
 // Reads a run document; on a bad document sets `error` (what and where) and
-// returns nullopt. Accepts schema versions 1 and 2 (v1 lacks the fields v2 added).
+// returns nullopt. Accepts schema versions 1 to 3 (each lacks the fields the
+// next one added).
 std::optional<RunDocument> from_json(const nlohmann::json& j, std::string& error);
+// Reads one member of "vectors" (or of a journal's vector record); throws
+// nlohmann::json::exception on a missing id or outcome or a field of the wrong type.
+VectorRecord vector_from_json(const nlohmann::json& v);
 std::optional<RunDocument> read_run_file(const std::string& path, std::string& error);
 
 // The time now, UTC, as "2024-05-01T12:00:00Z".

@@ -14,29 +14,6 @@
 
 namespace sabus::reports {
 
-// ---- JSON, written incrementally -------------------------------------------------
-
-// Rewrites the whole document after every vector (to PATH.tmp, renamed over
-// PATH), so a crash, a SIGINT or a lost port keeps every finished vector and
-// the file is always complete JSON. Each vector is serialized once.
-class JsonWriter {
- public:
-  explicit JsonWriter(std::string path) : path_(std::move(path)) {}
-  // Writes the header and every vector; returns false and sets error() when
-  // the file cannot be written.
-  bool start(const RunDocument& doc);
-  bool add(const RunDocument& doc);   // after doc.vectors.push_back(...)
-  bool finish(const RunDocument& doc);
-  const std::string& error() const { return error_; }
-
- private:
-  bool write(const RunDocument& doc);
-  std::string path_, error_;
-  std::vector<std::string> vectors_;  // serialized vectors, in order
-};
-
-std::string json_text(const RunDocument& doc);  // the whole document, as JsonWriter writes it
-
 // ---- device identity -------------------------------------------------------------
 
 // Asks the device type (30h, §3.1) once through the transport; on failure
@@ -63,10 +40,12 @@ std::string clock_text(std::chrono::milliseconds d);
 // ---- files -----------------------------------------------------------------------
 
 // JUnit XML as Jenkins and GitLab read it (reports/junit.xsd): one testsuite
-// per spec paragraph, one testcase per vector.
+// per spec paragraph, one testcase per vector; times from the wall clock,
+// the run's firmware, profile, seed and suite version as properties.
 std::string junit_xml(const RunDocument& doc);
-// One self-contained HTML page: no scripts or assets from the network; every
-// string from the device or the vectors is escaped.
+// One self-contained HTML page: nothing from the network, one inline script
+// (the filter; the page's Content-Security-Policy allows it by its hash and
+// nothing else); every string from the device or the vectors is escaped.
 std::string html_report(const RunDocument& doc);
 // A short Markdown summary for a merge request or a release note.
 std::string markdown_summary(const RunDocument& doc);
@@ -103,5 +82,23 @@ struct CoverageRow {
 };
 inline constexpr const char* kPaths[] = {"ack", "nak", "offline", "ignore"};
 std::vector<CoverageRow> coverage(const RunDocument& doc);
+
+// Failing vectors grouped by their difference (VectorRecord::difference), the
+// largest group first, then in run order.
+struct FailureGroup {
+  std::string reason;
+  std::vector<const VectorRecord*> vectors;
+};
+std::vector<FailureGroup> failure_groups(const RunDocument& doc);
+
+// Reply turnaround per command: from a command frame sent to the first reply
+// frame after it, on the transport clock (virtual in-process, real on a
+// line). One row per catalog command that got a reply, in catalog order.
+struct Turnaround {
+  std::string command, name, paragraph;
+  std::size_t count = 0;
+  double min_ms = 0, median_ms = 0, max_ms = 0;
+};
+std::vector<Turnaround> turnaround_by_command(const RunDocument& doc);
 
 }  // namespace sabus::reports

@@ -45,7 +45,8 @@ namespace sabus::harness {
   X(kDropsReplyByte, "drops-reply-byte", "every reply loses its last data byte")                                  \
   X(kDeviceTypeNoDot, "device-type-no-dot", "the device type reply writes the version as \"159 \"")                \
   X(kRemoteDisabledAnswers, "remote-disabled-answers", "with remote control disabled, commands are executed")        \
-  X(kDriveResetKeepsAlarm, "drive-reset-keeps-alarm", "a drive reset ('R') ACKs but leaves the axis alarm active")
+  X(kDriveResetKeepsAlarm, "drive-reset-keeps-alarm", "a drive reset ('R') ACKs but leaves the axis alarm active")  \
+  X(kMoveStopsShort, "move-stops-short", "auto moves stop 1 degree short of their target")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,

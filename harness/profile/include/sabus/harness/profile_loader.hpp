@@ -30,7 +30,8 @@ struct ProfileResult {
 ProfileResult load_profile_file(const std::string& path);
 ProfileResult load_profile_text(std::string_view yaml, const std::string& name = "<profile>");
 
-// The default profile shipped with the sources (vectors/profiles/rc3000-1.59.yaml).
+// The default profile, vectors/profiles/rc3000-1.59.yaml in the data
+// directory (data_dir.hpp); throws DataDirNotFound when there is none.
 std::string default_profile_path();
 // Writes a profile back as YAML that load_profile_text reads to an equal profile.
 std::string to_yaml(const Profile& profile);

@@ -99,6 +99,9 @@ struct RunOptions {
   std::chrono::milliseconds turnaround_allowance{50};
   std::function<bool()> stop;                 // SIGINT: stop after the current step
   std::function<void(const VectorResult&)> on_result;  // progress and incremental reports
+  // false: RunResult::vectors keep no transcripts (on_result has had them), so
+  // a run of thousands of vectors does not hold every frame it exchanged.
+  bool keep_transcripts = true;
   std::string backup_path;                    // where the stored-data backup is written ("" : not written)
 };
 

@@ -58,6 +58,7 @@ struct RawBytes {
 struct Modifiers {
   std::optional<std::uint8_t> lrc_xor;          // XOR the check byte with this mask (a bad LRC)
   std::optional<std::uint8_t> address;          // put another address in byte 1 (LRC recomputed)
+  std::string address_text;                     // the address as a profile expression ("{other_address(1)}"), resolved by the runner
   std::vector<std::size_t> parity_flip;         // byte indexes sent with the wrong parity bit
   std::size_t extra_data_bytes = 0;             // extra data bytes before ETX (LRC recomputed)
   std::size_t truncate = 0;                     // drop this many bytes from the end
@@ -100,7 +101,9 @@ struct FieldMatcher {
 };
 
 struct Expectation {
-  enum class Kind : std::uint8_t { kAck, kNak, kOffline, kSilence, kAny };
+  // kAnswered: an ACK or NAK reply to the frame sent, either (a frame whose
+  // check byte or address a vector computes, where only its receipt matters).
+  enum class Kind : std::uint8_t { kAck, kNak, kOffline, kSilence, kAny, kAnswered };
   Kind kind = Kind::kAck;
   std::optional<RawBytes> bytes;    // the whole reply, exactly
   std::vector<FieldMatcher> fields;

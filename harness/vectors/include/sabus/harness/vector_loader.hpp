@@ -44,15 +44,20 @@ LoadResult load_vectors(const std::vector<std::string>& paths);
 // Suite-wide checks beyond one file: unique ids, every flag defined in its
 // file's notes, every referenced command, form and field known to the codecs.
 // Every vector's spec.quote is checked against the spec text read from
-// spec_text_path(), where the project keeps it beside the repository; where
-// it is absent, quotes are not checked (`sabus vectors lint` says so).
+// spec_text_path(); where it is absent, quotes are not checked (`sabus
+// vectors lint` says so). The errata are read from the data directory
+// (data_dir.hpp); lint throws DataDirNotFound when there is none.
 std::vector<LoadError> lint(const std::vector<VectorFile>& files);
 // The same with the spec text given (nullopt: quotes are not checked).
 std::vector<LoadError> lint(const std::vector<VectorFile>& files, const std::optional<std::string>& spec_text);
+// The spec text is the vendor's, not shipped: beside the repository
+// (../shared/spec/) when the data directory is the source tree, spec/ in the
+// data directory otherwise.
 std::string spec_text_path();
 std::optional<std::string> read_spec_text();
 
-// vectors/ in the source tree.
+// vectors/ in the data directory (data_dir.hpp); throws DataDirNotFound
+// when there is none.
 std::string default_vectors_dir();
 
 // The bytes of a raw template (RawBytes::hex) for a device at `address`, with

@@ -1,0 +1,175 @@
+// The run journal: JSON Lines, a header record, one line per finished vector,
+// an end record (reports/SCHEMA.md, "The journal").
+#include "sabus/reports/journal.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace sabus::reports {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+std::string journal_path_for(const std::string& json_path) {
+  std::filesystem::path p(json_path);
+  if (p.extension() == ".json") p.replace_extension();
+  p += ".journal.jsonl";
+  return p.string();
+}
+
+// ---- writing ---------------------------------------------------------------------
+
+JournalWriter::~JournalWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool JournalWriter::open(const std::string& path, const RunDocument& header) {
+  path_ = path;
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    error_ = path + ": cannot write: " + std::strerror(errno);
+    return false;
+  }
+  return write_line({{"record", "header"}, {"run", header_json(header)}});
+}
+
+bool JournalWriter::append(const VectorRecord& v) { return write_line(to_json(v)); }
+
+bool JournalWriter::close(const RunDocument& finished) {
+  if (fd_ < 0) return false;
+  bool ok = write_line({{"record", "end"}, {"run", header_json(finished)}});
+  if (ok && ::fsync(fd_) != 0) {
+    error_ = path_ + ": fsync: " + std::strerror(errno);
+    ok = false;
+  }
+  ::close(fd_);
+  fd_ = -1;
+  return ok;
+}
+
+bool JournalWriter::write_line(const ordered_json& record) {
+  if (fd_ < 0) return false;
+  // One write(2) a record: a process killed after it leaves the whole line
+  // in the file, one killed during it at worst a last line cut short.
+  const std::string line = record.dump(-1, ' ', false, ordered_json::error_handler_t::replace) + "\n";
+  for (std::size_t done = 0; done < line.size();) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;  // SIGINT stops the run, not the record
+    if (n <= 0) {
+      error_ = path_ + ": write failed: " + std::strerror(errno);
+      ::close(fd_);
+      fd_ = -1;
+      return false;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// ---- reading ---------------------------------------------------------------------
+
+namespace {
+
+std::string record_type(const ordered_json& r) {
+  const auto it = r.find("record");
+  return it != r.end() && it->is_string() ? it->get<std::string>() : "";
+}
+
+}  // namespace
+
+bool is_journal(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  if (!in || !std::getline(in, first)) return false;
+  const auto r = ordered_json::parse(first, nullptr, false);
+  return r.is_object() && record_type(r) == "header";
+}
+
+std::optional<RunDocument> scan_journal(const std::string& path, const std::function<void(const ordered_json&)>& on_vector,
+                                        JournalNotes& notes, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = path + ": cannot read";
+    return std::nullopt;
+  }
+  std::optional<RunDocument> header;
+  std::size_t line_no = 0;
+  auto fail = [&](const std::string& why) {
+    error = path + ":" + std::to_string(line_no) + ": " + why;
+    return std::nullopt;
+  };
+  auto run_of = [&](const ordered_json& r) {
+    std::optional<RunDocument> doc;
+    std::string why = "a record without its run";
+    if (const auto run = r.find("run"); run != r.end()) doc = from_json(json(*run), why);
+    if (!doc) error = path + ":" + std::to_string(line_no) + ": " + why;
+    return doc;
+  };
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    const bool cut_short = in.eof();  // no newline after it: the writer was killed during the write
+    if (line.empty()) continue;
+    ordered_json r;
+    try {
+      r = ordered_json::parse(line);
+    } catch (const json::parse_error& e) {
+      if (cut_short && header) {
+        notes.notes.push_back("line " + std::to_string(line_no) + " is cut short (" + std::to_string(line.size()) +
+                              " bytes): left out");
+        break;
+      }
+      return fail(line_no == 1 ? "not a run journal (the first line is not JSON)" : std::string("not JSON: ") + e.what());
+    }
+    const std::string type = r.is_object() ? record_type(r) : "";
+    if (!header) {
+      if (type != "header") return fail("not a run journal (the first line is not a header record)");
+      if (!(header = run_of(r))) return std::nullopt;
+      header->vectors.clear();
+      continue;
+    }
+    if (type.empty()) {
+      if (!r.is_object()) return fail("not a vector or a record");
+      try {
+        on_vector(r);
+      } catch (const json::exception& e) {
+        return fail(std::string("vector: ") + e.what());
+      }
+      ++notes.vectors;
+    } else if (type == "end") {
+      auto finished = run_of(r);
+      if (!finished) return std::nullopt;
+      finished->vectors.clear();
+      header = std::move(finished);
+      notes.ended = true;
+    } else {
+      return fail("unknown record \"" + type + "\"");
+    }
+  }
+  if (!header) {
+    error = path + ": empty: not a run journal";
+    return std::nullopt;
+  }
+  return header;
+}
+
+std::optional<RunDocument> read_journal(const std::string& path, JournalNotes& notes, std::string& error) {
+  std::vector<VectorRecord> vectors;
+  auto doc = scan_journal(path, [&](const ordered_json& v) { vectors.push_back(vector_from_json(json(v))); }, notes, error);
+  if (doc) {
+    doc->vectors = std::move(vectors);
+    doc->journal.clear();  // the document holds the vectors itself
+  }
+  return doc;
+}
+
+std::optional<RunDocument> read_run_or_journal(const std::string& path, JournalNotes& notes, std::string& error) {
+  notes.journal = is_journal(path);
+  return notes.journal ? read_journal(path, notes, error) : read_run_file(path, error);
+}
+
+}  // namespace sabus::reports

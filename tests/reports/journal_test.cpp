@@ -1,0 +1,230 @@
+// The run JSON written token by token, and the run journal: what a finished
+// run, a killed run and a damaged file leave, and the JSON made from each.
+#include "sabus/reports/journal.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "temp_dir.hpp"
+
+namespace sabus::reports {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+VectorRecord vector(std::string id, std::string outcome) {
+  VectorRecord v;
+  v.id = std::move(id);
+  v.outcome = std::move(outcome);
+  v.paragraph = "3.2";
+  v.level = "must";
+  v.duration_ms = 3;
+  v.wall_ms = 0.5;
+  FrameRecord tx;
+  tx.dir = "tx";
+  tx.hex = "02 32 31 03 02";
+  tx.command = "status";
+  tx.expect = tx.path = "ack";
+  tx.fields = {{0, 0, "start", "0x02", "STX", true}};
+  FrameRecord rx;
+  rx.dir = "rx";
+  rx.t_ms = 3;
+  rx.hex = "06 32 31 03 04";
+  rx.fields = {{0, 0, "start", "0x06", "ACK \"quoted\" \\ and \x01", true}};
+  v.transcript = {tx, rx};
+  if (v.outcome == "fail") v.failures = {"byte 3: expected 0x57, got 0x44"};
+  return v;
+}
+
+RunDocument header() {
+  RunDocument d;
+  d.generator = "sabus 1.2.3";
+  d.started_at = "2024-01-01T00:00:00Z";
+  d.device = "in-process";
+  d.profile = "rc3000-1.59";
+  d.identity = {true, "3K", "1.59", "06 32 30 33 4b 31 2e 35 39 03 6c", ""};
+  d.options = {{"seed", 7}};
+  d.planned = 3;
+  d.journal = "run.journal.jsonl";
+  return d;
+}
+
+using test::slurp;
+
+class Journal : public test::TempDirTest {
+ protected:
+  Journal() : TempDirTest("sabus-journal-test") {}
+  // A journal of three vectors; `end` writes the end record of a finished run.
+  RunDocument write_journal(const std::string& file, bool end) {
+    RunDocument d = header();
+    JournalWriter w;
+    EXPECT_TRUE(w.open(file, d)) << w.error();
+    for (const auto& v : {vector("a", "pass"), vector("b", "fail"), vector("c", "pass")}) {
+      EXPECT_TRUE(w.append(v)) << w.error();
+      d.vectors.push_back(v);
+    }
+    if (end) {
+      d.status = "complete";
+      d.finished_at = "2024-01-01T00:00:01Z";
+      d.summary = Summary{2, 1, 0, 0, 0, 1};
+      d.journal.clear();
+      EXPECT_TRUE(w.close(d)) << w.error();
+    }
+    return d;
+  }
+};
+
+TEST(JsonStreamWriter, OneMemberOrElementALineEachSerializedByTheLibrary) {
+  std::ostringstream out;
+  JsonStreamWriter w(out);
+  w.begin_object();
+  w.key("name \"q\"");
+  w.value("a\nb");
+  w.key("list");
+  w.begin_array();
+  w.value(ordered_json{{"z", 1}, {"a", 2}});
+  w.value(3.5);
+  w.end();
+  w.key("empty");
+  w.begin_array();
+  w.end();
+  w.end();
+  EXPECT_TRUE(w.done());
+  EXPECT_EQ(out.str(), "{\n  \"name \\\"q\\\"\": \"a\\nb\",\n  \"list\": [\n    {\"z\":1,\"a\":2},\n    3.5\n  ],\n  \"empty\": []\n}\n");
+  EXPECT_EQ(json::parse(out.str())["list"][0]["z"], 1);
+}
+
+TEST(JsonStreamWriter, RefusesWhatWouldNotBeJson) {
+  std::ostringstream out;
+  JsonStreamWriter w(out);
+  w.begin_object();
+  EXPECT_THROW(w.value(1), std::logic_error) << "a value without its key";
+  w.key("k");
+  EXPECT_THROW(w.key("k2"), std::logic_error) << "two keys in a row";
+  w.value(1);
+  w.end();
+  EXPECT_THROW(w.end(), std::logic_error);
+  EXPECT_THROW(w.value(2), std::logic_error) << "a second document";
+}
+
+TEST(JsonText, HeaderInSchemaOrderAndVectorsLastOneALine) {
+  RunDocument d = header();
+  d.vectors = {vector("a", "pass"), vector("b", "fail")};
+  const std::string text = json_text(d);
+  EXPECT_EQ(text.rfind("{\n  \"schema\": \"sabus-run\",\n  \"schema_version\": 3,\n  \"generator\": \"sabus 1.2.3\",\n", 0), 0u) << text;
+  const auto vectors = text.find("  \"vectors\": [\n    {\"id\":\"a\",");
+  ASSERT_NE(vectors, std::string::npos) << text;
+  EXPECT_EQ(text.find("\"planned\""), text.rfind("\"planned\"")) << "each header member once";
+  EXPECT_LT(text.find("\"planned\""), vectors);
+  EXPECT_EQ(std::count(text.begin() + static_cast<long>(vectors), text.end(), '\n'), 5) << "a line per vector";
+  std::string error;
+  const auto back = from_json(json::parse(text), error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(json_text(*back), text);
+  EXPECT_EQ(back->vectors[1].wall_ms, 0.5);
+}
+
+TEST_F(Journal, AFinishedRunsJournalGivesTheSameJsonAsTheDocument) {
+  const RunDocument d = write_journal(path("run.journal.jsonl"), true);
+  JournalNotes notes;
+  std::string error;
+  const auto back = read_journal(path("run.journal.jsonl"), notes, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_TRUE(notes.ended);
+  EXPECT_EQ(notes.vectors, 3u);
+  EXPECT_TRUE(notes.notes.empty());
+  EXPECT_EQ(json_text(*back), json_text(d)) << "header from the end record, every vector with its fields";
+  ASSERT_TRUE(write_run_json(path("run.json"), *back, path("run.journal.jsonl"), error)) << error;
+  EXPECT_EQ(slurp(dir_ / "run.json"), json_text(d));
+  EXPECT_FALSE(fs::exists(path("run.json.tmp")));
+  // Every line is one record, and the file ends with a newline.
+  const std::string raw = slurp(dir_ / "run.journal.jsonl");
+  EXPECT_EQ(std::count(raw.begin(), raw.end(), '\n'), 5);
+  EXPECT_EQ(raw.back(), '\n');
+  EXPECT_EQ(raw.rfind("{\"record\":\"header\",\"run\":{\"schema\":\"sabus-run\"", 0), 0u) << raw.substr(0, 80);
+  EXPECT_NE(raw.find("\n{\"id\":\"b\",\"paragraph\":\"3.2\","), std::string::npos) << "a vector a line, as run.json holds it";
+  // An unknown record is an error, not a vector.
+  std::ofstream(path("run.journal.jsonl"), std::ios::app) << "{\"record\":\"later\"}\n";
+  EXPECT_FALSE(read_journal(path("run.journal.jsonl"), notes, error));
+  EXPECT_NE(error.find("run.journal.jsonl:6: unknown record \"later\""), std::string::npos) << error;
+}
+
+TEST_F(Journal, AKilledRunsJournalHasEveryFinishedVectorAndSaysItNeverEnded) {
+  write_journal(path("killed.journal.jsonl"), false);
+  JournalNotes notes;
+  std::string error;
+  const auto back = read_run_or_journal(path("killed.journal.jsonl"), notes, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_TRUE(notes.journal);
+  EXPECT_FALSE(notes.ended);
+  EXPECT_EQ(back->status, "running");
+  EXPECT_EQ(back->verdict(), "INCOMPLETE");
+  ASSERT_EQ(back->vectors.size(), 3u);
+  EXPECT_EQ(back->vectors[1].failures.at(0), "byte 3: expected 0x57, got 0x44");
+  ASSERT_TRUE(write_run_json(path("run.json"), *back, path("killed.journal.jsonl"), error)) << error;
+  const auto doc = json::parse(slurp(dir_ / "run.json"));
+  EXPECT_EQ(doc["status"], "running");
+  EXPECT_FALSE(doc.contains("journal")) << "the JSON holds the vectors itself now";
+  EXPECT_EQ(doc["vectors"].size(), 3u);
+  EXPECT_EQ(doc["vectors"][2]["transcript"][1]["fields"][0]["meaning"], "ACK \"quoted\" \\ and \x01");
+}
+
+TEST_F(Journal, ALastLineCutShortIsLeftOutWithANote) {
+  write_journal(path("cut.journal.jsonl"), false);
+  std::string raw = slurp(dir_ / "cut.journal.jsonl");
+  raw.resize(raw.size() - 40);  // the last vector record, half written
+  std::ofstream(path("cut.journal.jsonl"), std::ios::binary | std::ios::trunc) << raw;
+  JournalNotes notes;
+  std::string error;
+  const auto back = read_journal(path("cut.journal.jsonl"), notes, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->vectors.size(), 2u);
+  ASSERT_EQ(notes.notes.size(), 1u);
+  EXPECT_NE(notes.notes[0].find("line 4 is cut short"), std::string::npos) << notes.notes[0];
+}
+
+TEST_F(Journal, ADamagedLineOrAnotherFileIsAnErrorWithFileAndLine) {
+  write_journal(path("bad.journal.jsonl"), true);
+  std::string raw = slurp(dir_ / "bad.journal.jsonl");
+  const auto third = raw.find('\n', raw.find('\n') + 1) + 1;
+  raw.insert(third, "{\"id\":\"x\"}\n");  // a vector without its outcome
+  std::ofstream(path("bad.journal.jsonl"), std::ios::binary | std::ios::trunc) << raw;
+  JournalNotes notes;
+  std::string error;
+  EXPECT_FALSE(read_journal(path("bad.journal.jsonl"), notes, error));
+  EXPECT_NE(error.find("bad.journal.jsonl:3: vector: "), std::string::npos) << error;
+  EXPECT_NE(error.find("outcome"), std::string::npos) << error;
+
+  std::ofstream(path("run.json")) << json_text(header());
+  EXPECT_FALSE(is_journal(path("run.json")));
+  EXPECT_FALSE(scan_journal(path("run.json"), [](const ordered_json&) {}, notes, error));
+  EXPECT_NE(error.find("not a run journal"), std::string::npos) << error;
+  const auto doc = read_run_or_journal(path("run.json"), notes, error);
+  ASSERT_TRUE(doc) << error << " (a run JSON reads as one)";
+  EXPECT_FALSE(notes.journal);
+  EXPECT_FALSE(read_run_or_journal(path("none.jsonl"), notes, error));
+}
+
+TEST(JournalPath, BesideItsJson) {
+  EXPECT_EQ(journal_path_for("out/run.json"), "out/run.journal.jsonl");
+  EXPECT_EQ(journal_path_for("out/run"), "out/run.journal.jsonl");
+  EXPECT_EQ(journal_path_for("run.v2.json"), "run.v2.journal.jsonl");
+}
+
+TEST(JournalWriter, AFileThatCannotBeWrittenSaysWhy) {
+  JournalWriter w;
+  EXPECT_FALSE(w.open("/nonexistent-dir/run.journal.jsonl", header()));
+  EXPECT_NE(w.error().find("/nonexistent-dir/run.journal.jsonl: cannot write"), std::string::npos) << w.error();
+  EXPECT_FALSE(w.append(vector("a", "pass")));
+  std::string error;
+  EXPECT_FALSE(write_run_json("/nonexistent-dir/run.json", header(), error));
+  EXPECT_NE(error.find("cannot write"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace sabus::reports
