@@ -45,6 +45,31 @@ TEST(Run, OverAPtyWithAnEmulatedLine) {
   fs::remove(json);
 }
 
+// A controller whose replies take 300 ms (the profile's turnaround_ms, which
+// `sabus sim --emulate-line` applies): the runner waits for them from the
+// first command on, and a silence window lasts longer than the turnaround,
+// so no reply spills into the next step.
+TEST(Run, ASlowControllerWithinItsStatedTurnaround) {
+  const std::string profile = temp_path("slow.yaml");
+  {
+    std::ofstream out(profile);
+    out << "name: slow\nturnaround_ms: 300\n";
+  }
+  const std::string link = temp_path("slow-pty");
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", link, "--emulate-line", "--profile", profile});
+  ASSERT_EQ(sim.line(5s), "READY " + link);
+  const std::string json = temp_path("slow.json");
+  Process run({SABUS_BIN, "run", "--port", link, "--profile", profile, "--vectors", kVectors, "--filter",
+               "framing-*-silence", "--filter", "framing-check-byte-*", "--pace", "0", "--json", json});
+  EXPECT_EQ(run.wait_exit_for(60s), 0);
+  const auto doc = read_json(json);
+  EXPECT_GT(doc["summary"]["passed"].get<int>(), 3);
+  EXPECT_EQ(doc["summary"]["failed"].get<int>(), 0);
+  EXPECT_EQ(sim.interrupt(), 0);
+  fs::remove(json);
+  fs::remove(profile);
+}
+
 TEST(Run, OverTcp) {
   Process sim({SABUS_BIN, "sim", "--tcp", "127.0.0.1:0"});
   const std::string ready = sim.line(5s);

@@ -3,6 +3,7 @@
 // (timing.hpp), and the requests the runner makes on its own: liveness
 // checks, the 'X' stop after motion, the reads of the stored-data backup.
 #include <algorithm>
+#include <cmath>
 
 #include "session.hpp"
 
@@ -20,17 +21,25 @@ void Session::record(bool sent, const Bytes& bytes, std::string note) {
   if (transcript) transcript->push_back({t_ms(), sent, bytes, std::move(note), sent ? expect : std::string()});
 }
 
+// The turnaround the device's profile states (turnaround_ms): a slow
+// controller's replies are waited for from the first command on, before the
+// runner has measured any.
+std::chrono::microseconds Session::stated_turnaround() const {
+  return std::chrono::microseconds(static_cast<std::int64_t>(std::ceil(profile.turnaround_ms * 1000)));
+}
+
 milliseconds Session::reply_timeout(std::size_t request_bytes) const {
   if (transport.in_process()) return 1000ms;  // virtual time: waiting costs nothing
-  const auto allowance =
-      std::max(options.turnaround_allowance, std::chrono::duration_cast<milliseconds>(3 * turnaround.max()));
+  const auto expected = std::max(turnaround.max(), stated_turnaround());
+  const auto allowance = std::max(options.turnaround_allowance, std::chrono::ceil<milliseconds>(3 * expected));
   return harness::reply_timeout(transport.baud(), request_bytes, max_reply_length(), allowance);
 }
 
-// READING-NOTES 9 ignore paths: from the device's measured turnaround.
+// READING-NOTES 9 ignore paths: from the device's turnaround, measured or
+// stated, whichever is longer.
 milliseconds Session::silence_window() const {
   if (transport.in_process()) return 500ms;
-  return harness::silence_window(turnaround.max(), transport.baud(), max_reply_length());
+  return harness::silence_window(std::max(turnaround.max(), stated_turnaround()), transport.baud(), max_reply_length());
 }
 
 void Session::pace() {

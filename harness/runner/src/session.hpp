@@ -45,6 +45,7 @@ class Session : public ReceiverSink {
   // how long silence must last to count as no reply (timing.hpp).
   std::chrono::milliseconds reply_timeout(std::size_t request_bytes) const;
   std::chrono::milliseconds silence_window() const;
+  std::chrono::microseconds stated_turnaround() const;
   // One request outside any vector (liveness, backup): the data of its single
   // ACK reply, or nullopt (NAK, offline reply, silence).
   std::optional<Bytes> ask(const Request& request);
