@@ -9,8 +9,10 @@
 //  - one seed per reply type (the codecs' defaults) and per vector reply
 //    given as bytes, for the reply decoders;
 //  - each vector file and each device profile, for the loaders;
+//  - one tree text (vector_tree.hpp) per vector, its file's keys around it,
+//    for the schema target;
 //  - dictionaries from the catalog (fuzz_support.cpp dictionary_tokens) and,
-//    for the YAML loaders, every key the seed files use.
+//    for the YAML loaders and the schema target, every key the seed files use.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +23,7 @@
 #include <string>
 
 #include "fuzz_support.hpp"
+#include "vector_tree.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -169,6 +172,47 @@ void write_dict(const fs::path& file, const std::vector<sabus::fuzz::Token>& tok
   }
 }
 
+// A vector file's own keys (paragraph, title, requires, and notes when
+// `notes`) with `key` (vectors or groups) set to `list`.
+YAML::Node file_with(const YAML::Node& root, const char* key, const YAML::Node& list, bool notes) {
+  YAML::Node f(YAML::NodeType::Map);
+  for (const auto& e : root) {
+    const std::string& k = e.first.Scalar();
+    if (k != "groups" && k != "vectors" && (notes || k != "notes")) f.force_insert(e.first, e.second);
+  }
+  f.force_insert(key, list);
+  return f;
+}
+
+YAML::Node list_of(const YAML::Node& one) {
+  YAML::Node l(YAML::NodeType::Sequence);
+  l.push_back(one);
+  return l;
+}
+
+// One tree per vector of a vector file: the file with only that vector (in
+// its group, with the group's keys, when it has one). The file's notes,
+// which no vector's reading depends on, are in the first tree only: the
+// smaller a seed, the faster the fuzzer runs its mutations.
+std::vector<YAML::Node> vector_seed_trees(const YAML::Node& root) {
+  std::vector<YAML::Node> out;
+  auto list_at = [](const YAML::Node& map, const char* key) {  // const lookups: never insert
+    const YAML::Node l = map.IsMap() ? map[key] : YAML::Node();
+    return l.IsDefined() && l.IsSequence() ? l : YAML::Node(YAML::NodeType::Sequence);
+  };
+  for (const auto& v : list_at(root, "vectors")) out.push_back(file_with(root, "vectors", list_of(v), out.empty()));
+  for (const auto& g : list_at(root, "groups")) {
+    for (const auto& v : list_at(g, "vectors")) {
+      YAML::Node group(YAML::NodeType::Map);
+      for (const auto& e : g)
+        if (e.first.Scalar() != "vectors") group.force_insert(e.first, e.second);
+      group.force_insert("vectors", list_of(v));
+      out.push_back(file_with(root, "groups", list_of(group), out.empty()));
+    }
+  }
+  return out;
+}
+
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -204,8 +248,14 @@ int main(int argc, char** argv) {
   std::set<std::string> keys;
   for (const auto& file : loaded.files) {
     const std::string text = read_text(file.path);
-    write(out / "fuzz_vector_loader", file_name(fs::path(file.path).filename().string()), Bytes(text.begin(), text.end()));
+    const std::string leaf = file_name(fs::path(file.path).filename().string());
+    write(out / "fuzz_vector_loader", leaf, Bytes(text.begin(), text.end()));
     yaml_keys(text, keys);
+    const auto trees = vector_seed_trees(YAML::Load(text));  // the file loaded: it parses
+    for (std::size_t i = 0; i < trees.size(); ++i) {
+      const std::string tree = sabus::fuzz::tree_text(trees[i]);
+      write(out / "fuzz_vector_schema", leaf + "-" + std::to_string(i), Bytes(tree.begin(), tree.end()));
+    }
     for (const auto& v : file.vectors) {
       // The first profile (by name) the vector can run on, as the runner would pick.
       std::size_t p = 0;
@@ -249,6 +299,11 @@ int main(int argc, char** argv) {
     yaml.push_back({"YAML syntax", Bytes(s, s + std::char_traits<char>::length(s))});
   write_dict(out / "fuzz_vector_loader.dict", yaml);
   write_dict(out / "fuzz_profile_loader.dict", yaml);
+  std::vector<sabus::fuzz::Token> tree;
+  for (const auto& k : keys) tree.push_back({"key", Bytes(k.begin(), k.end())});
+  for (const char* s : {"{", "}", "[", "]", ": ", ", ", "\"", "'", "~", "*0", "*1", "any", "true", "{addr}", "{lrc}"})
+    tree.push_back({"tree text", Bytes(s, s + std::char_traits<char>::length(s))});
+  write_dict(out / "fuzz_vector_schema.dict", tree);
   std::printf("seed corpora written to %s: %zu vectors, %zu vector replies, %zu files skipped\n", out.c_str(), vectors,
               replies, loaded.errors.size());
   return 0;
