@@ -89,10 +89,178 @@ const Bytes& field_bytes() {
   return all;
 }
 
+namespace {
+
+// What one mutation works on: the header knobs, the byte stream and its
+// frames as found before the mutation, and the random source every choice
+// comes from (one draw per choice, in a fixed order, so a seed gives one
+// mutation).
+struct Mutation {
+  std::minstd_rand& rng;
+  Bytes& head;
+  Bytes& b;
+  const std::vector<Segment>& segs;
+  const Bytes& tokens;
+  const std::vector<Bytes>& tmpl;
+  std::size_t max_size;
+
+  std::size_t pick(std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); }
+  const Segment& some_segment() { return segs[pick(segs.size())]; }
+  // The address of the first frame that has one, else '2'.
+  std::uint8_t address() const {
+    for (const auto& s : segs)
+      if (s.begin + 1 < b.size()) return b[s.begin + 1] & 0x7F;
+    return '2';
+  }
+  Bytes some_template() {
+    Bytes t = tmpl[pick(tmpl.size())];
+    if (pick(8) != 0) t[1] = address();
+    else t[1] = tokens[pick(tokens.size())];
+    return t;
+  }
+};
+
+// Each mutation below returns false when it does not apply to the stream;
+// a whole request is inserted instead (insert_request).
+
+// libFuzzer's byte-level mutation of the stream; repaired one time in two.
+void byte_level(Mutation& m, bool& repair) {
+  Bytes buf = m.b;
+  buf.resize(std::max<std::size_t>(m.max_size - m.head.size(), 1));
+  buf.resize(LLVMFuzzerMutate(buf.data(), m.b.size(), buf.size()));
+  m.b = std::move(buf);
+  repair = m.pick(2) == 0;
+}
+
+// A field byte (address, command, or a data byte) to a meaningful value.
+bool set_field_byte(Mutation& m) {
+  if (m.segs.empty()) return false;
+  const Segment& s = m.some_segment();
+  const std::size_t last = s.etx != npos ? s.etx : s.end;
+  if (last <= s.begin + 1) return false;
+  m.b[s.begin + 1 + m.pick(last - s.begin - 1)] = m.tokens[m.pick(m.tokens.size())];
+  return true;
+}
+
+// A digit one up or down.
+bool step_digit(Mutation& m) {
+  std::vector<std::size_t> digits;
+  for (std::size_t i = 0; i < m.b.size(); ++i)
+    if ((m.b[i] & 0x7F) >= '0' && (m.b[i] & 0x7F) <= '9') digits.push_back(i);
+  if (digits.empty()) return false;
+  std::uint8_t& d = m.b[digits[m.pick(digits.size())]];
+  const std::uint8_t c = d & 0x7F;
+  d = static_cast<std::uint8_t>(m.pick(2) ? (c == '9' ? '0' : c + 1) : (c == '0' ? '9' : c - 1));
+  return true;
+}
+
+// A whole request of any command and form, before a frame or at the end.
+void insert_request(Mutation& m) {
+  const Bytes t = m.some_template();
+  std::size_t at = m.b.size();
+  if (!m.segs.empty() && m.pick(2)) at = m.some_segment().begin;
+  m.b.insert(m.b.begin() + static_cast<std::ptrdiff_t>(at), t.begin(), t.end());
+}
+
+bool delete_frame(Mutation& m) {
+  if (m.segs.size() < 2) return false;
+  const Segment& s = m.some_segment();
+  m.b.erase(m.b.begin() + static_cast<std::ptrdiff_t>(s.begin), m.b.begin() + static_cast<std::ptrdiff_t>(s.end));
+  return true;
+}
+
+// The stream with frames s and o (o after s) in each other's place.
+Bytes swapped(const Bytes& b, const Segment& first, const Segment& second) {
+  auto at = [&](std::size_t i) { return b.begin() + static_cast<std::ptrdiff_t>(i); };
+  Bytes out(b.begin(), at(first.begin));
+  out.insert(out.end(), at(second.begin), at(second.end));
+  out.insert(out.end(), at(first.end), at(second.begin));
+  out.insert(out.end(), at(first.begin), at(first.end));
+  out.insert(out.end(), at(second.end), b.end());
+  return out;
+}
+
+// A frame duplicated after itself, or two frames swapped.
+bool duplicate_or_swap(Mutation& m) {
+  if (m.segs.empty()) return false;
+  const Segment& s = m.some_segment();
+  if (m.segs.size() >= 2 && m.pick(2)) {
+    const Segment& o = m.some_segment();
+    if (o.begin != s.begin) {
+      m.b = s.begin < o.begin ? swapped(m.b, s, o) : swapped(m.b, o, s);
+      return true;
+    }
+  }
+  const Bytes copy(m.b.begin() + static_cast<std::ptrdiff_t>(s.begin), m.b.begin() + static_cast<std::ptrdiff_t>(s.end));
+  m.b.insert(m.b.begin() + static_cast<std::ptrdiff_t>(s.end), copy.begin(), copy.end());
+  return true;
+}
+
+// One data byte more or less: a length the command does not have.
+bool change_length(Mutation& m) {
+  if (m.segs.empty()) return false;
+  const Segment& s = m.some_segment();
+  const std::size_t last = s.etx != npos ? s.etx : s.end;
+  if (last <= s.begin + 3 || m.pick(2)) {
+    m.b.insert(m.b.begin() + static_cast<std::ptrdiff_t>(std::min(last, m.b.size())), m.tokens[m.pick(m.tokens.size())]);
+  } else {
+    m.b.erase(m.b.begin() + static_cast<std::ptrdiff_t>(s.begin + 3 + m.pick(last - s.begin - 3)));
+  }
+  return true;
+}
+
+// Splice: a run of data bytes from a request template over a frame's data.
+bool splice_template(Mutation& m) {
+  if (m.segs.empty()) return false;
+  const Segment& s = m.some_segment();
+  const Bytes t = m.tmpl[m.pick(m.tmpl.size())];
+  const std::size_t last = s.etx != npos ? s.etx : s.end;
+  if (last <= s.begin + 3 || t.size() <= 5) return false;
+  const std::size_t from = 3 + m.pick(t.size() - 5);
+  const std::size_t to = s.begin + 3 + m.pick(last - s.begin - 3);
+  const std::size_t n = std::min({1 + m.pick(12), t.size() - 2 - from, last - to});
+  std::copy_n(t.begin() + static_cast<std::ptrdiff_t>(from), n, m.b.begin() + static_cast<std::ptrdiff_t>(to));
+  return true;
+}
+
+// A knob of the header.
+bool set_knob(Mutation& m) {
+  if (m.head.empty()) return false;
+  m.head[m.pick(m.head.size())] = static_cast<std::uint8_t>(m.rng());
+  return true;
+}
+
+// Gives every frame an ETX (one missing ETX is added, one time in two), its
+// check byte under the target's LRC rule, and even parity when the stream
+// carries it.
+void repair_frames(Mutation& m, const StreamFormat& format, std::vector<Segment>& again) {
+  Bytes& b = m.b;
+  const bool wire = format.wire && format.wire(m.head.data());
+  const LrcRule rule = format.lrc_rule ? format.lrc_rule(m.head.data()) : LrcRule::kFromByte0;
+  segments(b, again);
+  for (const Segment& s : again) {
+    std::size_t etx = s.etx;
+    if (etx == npos) {
+      if (m.pick(2)) continue;
+      b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), {ETX, 0});
+      // Segments after this one moved: repair only this one and stop.
+      etx = s.end;
+    } else if (etx + 1 >= b.size()) {
+      b.push_back(0);
+    }
+    for (std::size_t i = s.begin; i <= etx; ++i) b[i] &= 0x7F;
+    b[etx + 1] = lrc(ByteView(b).subspan(s.begin, etx + 1 - s.begin), rule);
+    if (wire)
+      for (std::size_t i = s.begin; i <= etx + 1; ++i) b[i] = with_even_parity(b[i]);
+    if (s.etx == npos) break;
+  }
+}
+
+}  // namespace
+
 std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_size, unsigned seed,
                           const StreamFormat& format) {
   std::minstd_rand rng(seed);
-  auto pick = [&](std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); };
   const std::size_t h = format.header;
   if (max_size <= h) return LLVMFuzzerMutate(data, size, max_size);
   // Reused buffers: no allocation per call once they have grown.
@@ -101,141 +269,25 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   head.assign(data, data + std::min(size, h));
   head.resize(h, 0);
   b.assign(data + std::min(size, h), data + size);
-  const Bytes& tokens = field_bytes();
-  const auto& tmpl = templates();
-
   segments(b, segs);
-  auto address = [&]() -> std::uint8_t {
-    for (const auto& s : segs)
-      if (s.begin + 1 < b.size()) return b[s.begin + 1] & 0x7F;
-    return '2';
-  };
-  auto some_template = [&] {
-    Bytes t = tmpl[pick(tmpl.size())];
-    if (pick(8) != 0) t[1] = address();
-    else t[1] = tokens[pick(tokens.size())];
-    return t;
-  };
+  Mutation m{rng, head, b, segs, field_bytes(), templates(), max_size};
 
-  bool repair = pick(8) != 0;
-  switch (pick(10)) {
-    case 0: {  // libFuzzer's byte-level mutation of the stream
-      Bytes buf = b;
-      buf.resize(std::max<std::size_t>(max_size - h, 1));
-      buf.resize(LLVMFuzzerMutate(buf.data(), b.size(), buf.size()));
-      b = std::move(buf);
-      repair = pick(2) == 0;
-      break;
-    }
+  bool repair = m.pick(8) != 0;
+  bool applied = true;
+  switch (m.pick(10)) {
+    case 0: byte_level(m, repair); break;
     case 1:
-    case 2: {  // a field byte: address, command, or a data byte, to a meaningful value
-      if (segs.empty()) goto insert;
-      const Segment& s = segs[pick(segs.size())];
-      const std::size_t last = s.etx != npos ? s.etx : s.end;
-      if (last <= s.begin + 1) goto insert;
-      b[s.begin + 1 + pick(last - s.begin - 1)] = tokens[pick(tokens.size())];
-      break;
-    }
-    case 3: {  // a digit one up or down
-      std::vector<std::size_t> digits;
-      for (std::size_t i = 0; i < b.size(); ++i)
-        if ((b[i] & 0x7F) >= '0' && (b[i] & 0x7F) <= '9') digits.push_back(i);
-      if (digits.empty()) goto insert;
-      std::uint8_t& d = b[digits[pick(digits.size())]];
-      const std::uint8_t c = d & 0x7F;
-      d = static_cast<std::uint8_t>(pick(2) ? (c == '9' ? '0' : c + 1) : (c == '0' ? '9' : c - 1));
-      break;
-    }
-    case 4:
-    insert: {  // a whole request of any command and form
-      const Bytes t = some_template();
-      std::size_t at = b.size();
-      if (!segs.empty() && pick(2)) at = segs[pick(segs.size())].begin;
-      b.insert(b.begin() + static_cast<std::ptrdiff_t>(at), t.begin(), t.end());
-      break;
-    }
-    case 5: {  // delete a frame
-      if (segs.size() < 2) goto insert;
-      const Segment& s = segs[pick(segs.size())];
-      b.erase(b.begin() + static_cast<std::ptrdiff_t>(s.begin), b.begin() + static_cast<std::ptrdiff_t>(s.end));
-      break;
-    }
-    case 6: {  // duplicate or swap frames
-      if (segs.empty()) goto insert;
-      const Segment& s = segs[pick(segs.size())];
-      Bytes copy(b.begin() + static_cast<std::ptrdiff_t>(s.begin), b.begin() + static_cast<std::ptrdiff_t>(s.end));
-      if (segs.size() >= 2 && pick(2)) {
-        const Segment& o = segs[pick(segs.size())];
-        if (o.begin != s.begin) {
-          Bytes other(b.begin() + static_cast<std::ptrdiff_t>(o.begin), b.begin() + static_cast<std::ptrdiff_t>(o.end));
-          const Segment& first = s.begin < o.begin ? s : o;
-          const Segment& second = s.begin < o.begin ? o : s;
-          Bytes out(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(first.begin));
-          const Bytes& a2 = s.begin < o.begin ? other : copy;
-          const Bytes& b2 = s.begin < o.begin ? copy : other;
-          out.insert(out.end(), a2.begin(), a2.end());
-          out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(first.end),
-                     b.begin() + static_cast<std::ptrdiff_t>(second.begin));
-          out.insert(out.end(), b2.begin(), b2.end());
-          out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(second.end), b.end());
-          b = std::move(out);
-          break;
-        }
-      }
-      b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), copy.begin(), copy.end());
-      break;
-    }
-    case 7: {  // one data byte more or less: a length the command does not have
-      if (segs.empty()) goto insert;
-      const Segment& s = segs[pick(segs.size())];
-      const std::size_t last = s.etx != npos ? s.etx : s.end;
-      if (last <= s.begin + 3 || pick(2)) {
-        b.insert(b.begin() + static_cast<std::ptrdiff_t>(std::min(last, b.size())), tokens[pick(tokens.size())]);
-      } else {
-        b.erase(b.begin() + static_cast<std::ptrdiff_t>(s.begin + 3 + pick(last - s.begin - 3)));
-      }
-      break;
-    }
-    case 8: {  // splice: a run of data bytes from a request template over a frame's data
-      if (segs.empty()) goto insert;
-      const Segment& s = segs[pick(segs.size())];
-      const Bytes t = tmpl[pick(tmpl.size())];
-      const std::size_t last = s.etx != npos ? s.etx : s.end;
-      if (last <= s.begin + 3 || t.size() <= 5) goto insert;
-      const std::size_t from = 3 + pick(t.size() - 5);
-      const std::size_t to = s.begin + 3 + pick(last - s.begin - 3);
-      const std::size_t n = std::min({1 + pick(12), t.size() - 2 - from, last - to});
-      std::copy_n(t.begin() + static_cast<std::ptrdiff_t>(from), n, b.begin() + static_cast<std::ptrdiff_t>(to));
-      break;
-    }
-    default: {  // a knob of the header
-      if (h == 0) goto insert;
-      head[pick(h)] = static_cast<std::uint8_t>(rng());
-      break;
-    }
+    case 2: applied = set_field_byte(m); break;
+    case 3: applied = step_digit(m); break;
+    case 4: applied = false; break;
+    case 5: applied = delete_frame(m); break;
+    case 6: applied = duplicate_or_swap(m); break;
+    case 7: applied = change_length(m); break;
+    case 8: applied = splice_template(m); break;
+    default: applied = set_knob(m); break;
   }
-
-  if (repair) {
-    const bool wire = format.wire && format.wire(head.data());
-    const LrcRule rule = format.lrc_rule ? format.lrc_rule(head.data()) : LrcRule::kFromByte0;
-    segments(b, again);
-    for (const Segment& s : again) {
-      std::size_t etx = s.etx;
-      if (etx == npos) {
-        if (pick(2)) continue;
-        b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), {ETX, 0});
-        // Segments after this one moved: repair only this one and stop.
-        etx = s.end;
-      } else if (etx + 1 >= b.size()) {
-        b.push_back(0);
-      }
-      for (std::size_t i = s.begin; i <= etx; ++i) b[i] &= 0x7F;
-      b[etx + 1] = lrc(ByteView(b).subspan(s.begin, etx + 1 - s.begin), rule);
-      if (wire)
-        for (std::size_t i = s.begin; i <= etx + 1; ++i) b[i] = with_even_parity(b[i]);
-      if (s.etx == npos) break;
-    }
-  }
+  if (!applied) insert_request(m);
+  if (repair) repair_frames(m, format, again);
 
   out.assign(head.begin(), head.end());
   out.insert(out.end(), b.begin(), b.end());

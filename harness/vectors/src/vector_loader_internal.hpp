@@ -39,13 +39,9 @@ using namespace yaml_reader;
 // Limits and tables
 // ---------------------------------------------------------------------------
 
-// Bounds on what a hostile file can make the loader allocate or walk.
+// Bounds on what a hostile file can make the loader allocate or walk (and the
+// list bounds of vector_loader.hpp, kMaxGroups ... kMaxValues).
 inline constexpr std::size_t kMaxFileBytes = 1 << 20;
-inline constexpr std::size_t kMaxGroups = 100;
-inline constexpr std::size_t kMaxVectors = 500;   // in one `vectors` list
-inline constexpr std::size_t kMaxSteps = 64;      // in one setup, steps or teardown list
-inline constexpr std::size_t kMaxEntries = 64;    // fields, matchers, notes, requirements, flags, tags
-inline constexpr std::size_t kMaxValues = 32;     // one_of, requirement values, modifier lists
 inline constexpr std::size_t kMaxText = 2000;     // comments, titles, descriptions
 inline constexpr std::size_t kMaxQuote = 400;     // "the short spec quote it checks"
 inline constexpr std::size_t kMaxHex = 2000;      // a raw template

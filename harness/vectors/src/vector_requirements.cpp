@@ -1,6 +1,7 @@
 // Requirements: the device profile a vector needs (`requires`), read with the
 // profile loader's own schema, and checked against a profile before a run.
 #include <algorithm>
+#include <deque>
 #include <span>
 
 #include "sabus/harness/profile_loader.hpp"
@@ -38,11 +39,33 @@ std::optional<std::vector<std::string>> values_at(const YAML::Node& node, std::s
   return values_at(child, path.subspan(1));
 }
 
+// The profile as to_yaml writes it, read back: the one place its keys and
+// value spellings live. Reading that text is most of what a requirement
+// costs, and the same few profiles come back again and again (a run checks
+// every vector against one profile; a file repeats its requirement values),
+// so the last few are kept. (A deque: assigning a YAML::Node writes into
+// the node it refers to, so kept entries are never assigned, only added and
+// dropped.)
+YAML::Node written_profile(const Profile& profile) {
+  constexpr std::size_t kKept = 16;
+  struct Written {
+    std::string text;
+    YAML::Node root;
+  };
+  thread_local std::deque<Written> kept;
+  std::string text = to_yaml(profile);
+  for (const auto& w : kept)
+    if (w.text == text) return w.root;
+  YAML::Node root = YAML::Load(text);
+  if (kept.size() == kKept) kept.pop_front();
+  kept.push_back({std::move(text), root});
+  return root;
+}
+
 // A key's value as to_yaml writes it: the text requirements compare. A list
 // key (bus_peers) is required to contain the value, so one value is given.
 std::optional<std::string> written_value(const Profile& profile, const std::vector<std::string>& path) {
-  const YAML::Node root = YAML::Load(to_yaml(profile));
-  const auto values = values_at(root, path);
+  const auto values = values_at(written_profile(profile), path);
   if (!values || values->size() != 1) return std::nullopt;
   return values->front();
 }
@@ -133,20 +156,9 @@ using namespace vector_loader_internal;
 
 std::optional<std::string> unmet_requirement(const Profile& profile, const Requirement& r) {
   try {
-    // The profile as YAML is the one place its keys and value spellings live.
-    // A run checks every vector's requirements against one profile: parse
-    // its text once, not once a requirement.
-    thread_local std::string last_text;
-    thread_local YAML::Node last_root;
-    std::string text = to_yaml(profile);
-    if (text != last_text || !last_root.IsDefined() || last_root.IsNull()) {
-      last_root = YAML::Load(text);
-      last_text = std::move(text);
-    }
-    const YAML::Node& root = last_root;
     // A scalar key holds one of the values; a list key (bus_peers) holds one
     // of them among its elements.
-    const auto values = values_at(root, split(r.key, '.'));
+    const auto values = values_at(written_profile(profile), split(r.key, '.'));
     if (!values) return "the profile has no key " + r.key;
     for (const auto& v : *values)
       if (contains(r.values, v)) return std::nullopt;

@@ -254,11 +254,6 @@ Expectation::Kind to_reply_kind(const YAML::Node& v, const At& at) {
   fail(at, quoted_clip(s) + " is not a reply: expected ack, nak, offline, silence, any or answered");
 }
 
-std::string_view reply_kind_name(Expectation::Kind k) {
-  for (const auto& [name, kind] : kReplyKinds)
-    if (kind == k) return name;
-  return "?";
-}
 
 // A whole expected reply must fit the catalog: ACK or NAK first, the step's
 // command byte, and the length of that kind of reply (§3 NAK and offline replies).
@@ -266,7 +261,7 @@ void check_reply_bytes(const FrameSketch& s, Expectation::Kind kind, const Comma
   if (kind == Expectation::Kind::kAny || s.bytes.empty()) return;
   const std::uint8_t start = kind == Expectation::Kind::kNak ? NAK : ACK;
   if (s.bytes[0] != start)
-    fail(at, "a " + std::string(reply_kind_name(kind)) + " reply starts with " + describe_byte(start) + ", not " + describe_byte(s.bytes[0]));
+    fail(at, "a " + std::string(to_string(kind)) + " reply starts with " + describe_byte(start) + ", not " + describe_byte(s.bytes[0]));
   if (command && s.bytes.size() > 2 && s.bytes[2] != command->code)
     fail(at, "the reply's command byte is " + hex_byte(s.bytes[2]) + "; the step sends " + hex_byte(command->code));
   if (!s.complete) return;
@@ -636,3 +631,13 @@ std::vector<Step> read_steps(const YAML::Node& v, const At& at, StepContext& cx)
 }
 
 }  // namespace sabus::harness::vector_loader_internal
+
+namespace sabus::harness {
+
+std::string_view to_string(Expectation::Kind k) {
+  for (const auto& [name, kind] : vector_loader_internal::kReplyKinds)
+    if (kind == k) return name;
+  return "?";
+}
+
+}  // namespace sabus::harness

@@ -416,7 +416,8 @@ struct NakCase {
   std::function<Outcome(Rig&)> send;
 };
 
-std::vector<NakCase> nak_cases() {
+// Frame rules (§3), motion (§3.3-§3.5), query name, misc (§3.6, §3.7) and keys (§3.25).
+std::vector<NakCase> nak_cases_of_frames_motion_and_misc() {
   auto none = [](Profile&) {};
   auto nothing = [](Rig&) {};
   auto circular = [](Profile& p) { p.pol_type = PolType::kCircular; };
@@ -463,6 +464,14 @@ std::vector<NakCase> nak_cases() {
        [](Rig& r) { return r.send(Misc{'D', ' '}); }},
       {"search parameter", NakRule::kMiscSearchParameter, none, nothing, [](Rig& r) { return r.send(Misc{'A', 'X'}); }},
       {"key code", NakRule::kKeyCode, none, nothing, [](Rig& r) { return r.send(RemoteKeypress{':'}); }},
+  };
+}
+
+// Stored data: preset satellites, TLEs, IESS, locate, store, signposts, navigation (§3.10-§3.23).
+std::vector<NakCase> nak_cases_of_stored_data() {
+  auto none = [](Profile&) {};
+  auto nothing = [](Rig&) {};
+  return {
       {"satellite index", NakRule::kSatelliteIndex, none, nothing, [](Rig& r) { return r.send(ReadSatellite{{21}}); }},
       {"satellite field", NakRule::kSatelliteField, none, nothing,
        [](Rig& r) {
@@ -554,6 +563,12 @@ std::vector<NakCase> nak_cases() {
       {"navigation field", NakRule::kNavigationField, none, nothing,
        [](Rig& r) { return r.send(WriteNavigation{9100, 0, 0, ""}); }},
   };
+}
+
+std::vector<NakCase> nak_cases() {
+  std::vector<NakCase> all = nak_cases_of_frames_motion_and_misc();
+  for (auto& c : nak_cases_of_stored_data()) all.push_back(std::move(c));
+  return all;
 }
 
 TEST(Controller, EveryNakRuleFiresForItsCase) {

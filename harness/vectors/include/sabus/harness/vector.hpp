@@ -117,6 +117,8 @@ struct Expectation {
   std::string from_profile;
   SourceLocation where;
 };
+// The reply kinds as vector files spell them: ack, nak, offline, silence, any.
+std::string_view to_string(Expectation::Kind kind);
 
 struct Step {
   enum class Kind : std::uint8_t { kSend, kPoll, kWait };

@@ -4,6 +4,7 @@
 // the codecs do not know, lengths that contradict the catalog.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -20,6 +21,14 @@ class Node;
 }
 
 namespace sabus::harness {
+
+// How many entries one list of a file may hold (vectors/README.md: a whole
+// file is read at a bounded cost); a longer list is an error at that list.
+inline constexpr std::size_t kMaxGroups = 100;
+inline constexpr std::size_t kMaxVectors = 500;  // in one `vectors` list
+inline constexpr std::size_t kMaxSteps = 64;     // in one setup, steps or teardown list
+inline constexpr std::size_t kMaxEntries = 64;   // fields, matchers, notes, requirements, flags, tags
+inline constexpr std::size_t kMaxValues = 32;    // one_of, requirement values, modifier lists
 
 // A file with any load error is left out of `files` (lint the rest): its
 // errors come first, and a half-read file would make lint report flags and
