@@ -305,6 +305,9 @@ Text list_of(const std::vector<T>& items, F&& write) {
   return l;
 }
 
+// A number as written, plain; a profile expression quoted.
+Text number_or_expression(const std::string& v) { return harness::has_placeholder(v) ? quoted(v) : plain(v); }
+
 Text matcher_text(const FieldMatcher& m) {
   if (m.kind == FieldMatcher::Kind::kAny && m.capture.empty()) return plain("any");
   Container t = new_map();
@@ -314,9 +317,33 @@ Text matcher_text(const FieldMatcher& m) {
     case FieldMatcher::Kind::kRegex: put(t, "regex", quoted(m.values.at(0))); break;
     case FieldMatcher::Kind::kRange: {
       Container range = new_list();
-      range.push_back(number(m.low));
-      range.push_back(number(m.high));
+      if (m.values.size() == 2) {
+        for (const auto& v : m.values) range.push_back(number_or_expression(v));
+      } else {
+        range.push_back(number(m.low));
+        range.push_back(number(m.high));
+      }
       put(t, "range", range);
+      break;
+    }
+    case FieldMatcher::Kind::kNear: {
+      if (m.near_axis.empty()) {
+        put(t, "near", number_or_expression(m.values.at(0)));
+        break;
+      }
+      Container near = new_map();
+      put(near, "value", number_or_expression(m.values.at(0)));
+      put(near, "axis", plain(m.near_axis));
+      put(t, "near", near);
+      break;
+    }
+    case FieldMatcher::Kind::kJogged: {
+      Container jogged = new_map();
+      put(jogged, "jog", plain(std::string(1, m.jog)));
+      put(jogged, "speed", plain(std::string(1, m.speed)));
+      put(jogged, "from", number_or_expression(m.values.at(0)));
+      put(jogged, "ms", number_or_expression(m.values.at(1)));
+      put(t, "jogged", jogged);
       break;
     }
     case FieldMatcher::Kind::kAny: break;
@@ -325,9 +352,21 @@ Text matcher_text(const FieldMatcher& m) {
   return t;
 }
 
+// Matchers of one field after another are one list (each must hold).
 Text matchers_text(const std::vector<FieldMatcher>& matchers) {
   Container t = new_map();
-  for (const auto& m : matchers) t.force_insert(quoted(m.field), matcher_text(m));
+  for (std::size_t i = 0; i < matchers.size();) {
+    std::size_t j = i + 1;
+    while (j < matchers.size() && matchers[j].field == matchers[i].field) ++j;
+    if (j - i == 1) {
+      t.force_insert(quoted(matchers[i].field), matcher_text(matchers[i]));
+    } else {
+      Container l = new_list();
+      for (std::size_t k = i; k < j; ++k) l.push_back(matcher_text(matchers[k]));
+      t.force_insert(quoted(matchers[i].field), l);
+    }
+    i = j;
+  }
   return t;
 }
 
@@ -337,6 +376,7 @@ Text expectation_text(const Expectation& e) {
   if (e.bytes) put(t, "bytes", quoted(e.bytes->hex));
   if (!e.fields.empty()) put(t, "fields", matchers_text(e.fields));
   if (!e.nak_rule.empty()) put(t, "rule", quoted(e.nak_rule));
+  if (!e.from_profile.empty()) put(t, "from_profile", number_or_expression(e.from_profile));
   return t;
 }
 
@@ -355,6 +395,7 @@ Text send_text(const Step& s) {
     put(t, "fields", fields);
   }
   if (c.address) put(t, "address", number(static_cast<long long>(*c.address)));
+  if (!c.from_profile.empty()) put(t, "from_profile", number_or_expression(c.from_profile));
   return t;
 }
 
@@ -363,6 +404,7 @@ Text modifiers_text(const Modifiers& m) {
   Container t = new_map();
   if (m.lrc_xor) put(t, "lrc_xor", number(static_cast<long long>(*m.lrc_xor)));
   if (m.address) put(t, "address", number(static_cast<long long>(*m.address)));
+  if (!m.address_text.empty()) put(t, "address", quoted(m.address_text));
   if (m.extra_data_bytes) put(t, "extra_data_bytes", size(m.extra_data_bytes));
   if (!m.replace.empty())
     put(t, "replace", list_of(m.replace, [&](const std::pair<std::size_t, std::uint8_t>& r) {
@@ -391,7 +433,7 @@ Text step_text(const Step& s) {
   Container t = new_map();
   switch (s.kind) {
     case Step::Kind::kWait:
-      put(t, "wait_ms", number(static_cast<long long>(s.timeout.count())));
+      put(t, "wait_ms", s.timeout_text.empty() ? number(static_cast<long long>(s.timeout.count())) : quoted(s.timeout_text));
       break;
     case Step::Kind::kSend:
       put(t, "send", send_text(s));
@@ -403,7 +445,8 @@ Text step_text(const Step& s) {
       Container poll = new_map();
       put(poll, "send", send_text(s));
       put(poll, "until", matchers_text(s.until));
-      put(poll, "timeout_ms", number(static_cast<long long>(s.timeout.count())));
+      if (!s.timeout_text.empty()) put(poll, "timeout_ms", quoted(s.timeout_text));
+      else if (s.timeout.count() > 0) put(poll, "timeout_ms", number(static_cast<long long>(s.timeout.count())));
       put(poll, "interval_ms", number(static_cast<long long>(s.interval.count())));
       put(poll, "expect", expectation_text(s.expect));
       put(t, "poll", poll);
@@ -481,6 +524,7 @@ void put_vector_keys(Container& vector, const Vector& v) {
   put(spec, "quote", quoted(v.quote));
   put(vector, "spec", spec);
   put(vector, "level", plain(std::string(harness::to_string(v.level))));
+  if (!v.needs.empty()) put(vector, "needs", list_of(v.needs, quoted));
 }
 
 // A vector's lists are its file's, its group's and its own together

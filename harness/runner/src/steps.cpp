@@ -177,18 +177,6 @@ std::optional<std::string> check_record(const Expectation& e, const Frame& reply
   return std::nullopt;
 }
 
-std::string expect_name(Expectation::Kind k) {
-  switch (k) {
-    case Expectation::Kind::kAck: return "ack";
-    case Expectation::Kind::kNak: return "nak";
-    case Expectation::Kind::kOffline: return "offline";
-    case Expectation::Kind::kSilence: return "silence";
-    case Expectation::Kind::kAny: return "any";
-    case Expectation::Kind::kAnswered: return "answered";
-  }
-  return "any";
-}
-
 }  // namespace
 
 std::optional<std::string> Session::check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers) {
@@ -217,7 +205,7 @@ std::optional<std::string> Session::run_send(const Step& step) {
   const auto window = silence ? silence_window() : reply_timeout(wire.size());
   const TimePoint listen_start = transport.now();
   (void)transport.take_nak_rules();  // only this exchange's rules count
-  expect = expect_name(s.expect.kind);
+  expect = std::string(to_string(s.expect.kind));
   const auto replies = exchange(wire, s.modifiers, window);
   expect.clear();
   const auto nak_rules = transport.take_nak_rules();

@@ -326,7 +326,7 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
   });
   if (e.kind == Expectation::Kind::kSilence || e.kind == Expectation::Kind::kAnswered)
     for (auto k : {"bytes", "fields"})
-      if (r.has(k)) fail(r.at(k), std::string(reply_kind_name(e.kind)) + " has no " + k);
+      if (r.has(k)) fail(r.at(k), std::string(to_string(e.kind)) + " has no " + k);
   r.with("bytes", [&](const YAML::Node& n, const At& a) {
     std::vector<Element> elements;
     e.bytes = read_raw(n, a, cx, elements);
