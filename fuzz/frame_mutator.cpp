@@ -2,6 +2,9 @@
 // (fuzz_support.hpp mutate_stream). Kept apart from fuzz_support.cpp because
 // it needs libFuzzer's LLVMFuzzerMutate (replay_main.cpp has a stand-in).
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <cstring>
 #include <cstdio>
 #include <random>
 #include <set>
@@ -17,10 +20,45 @@ namespace sabus::fuzz {
 
 namespace {
 
-bool is_start(std::uint8_t b) {
-  const std::uint8_t c = b & 0x7F;
-  return c == STX || c == ACK || c == NAK;
+// The mutator reads and repairs the whole stream on every call, so it works
+// eight bytes a step (a word of the stream; bit 7 of each byte ignored).
+constexpr std::uint64_t kLow = 0x0101010101010101ULL, kHigh = 0x80 * kLow, kChars = 0x7F * kLow;
+
+std::uint64_t word_at(const std::uint8_t* p) {
+  std::uint64_t w;
+  std::memcpy(&w, p, 8);
+  return w;
 }
+
+// Bit 7 of each byte of the result: whether the byte's 7 bits are `c`. Exact
+// (no carry between bytes): the bytes of t are below 80h.
+std::uint64_t bytes_equal(std::uint64_t chars, std::uint8_t c) {
+  const std::uint64_t t = chars ^ (c * kLow);
+  return ~(t + kChars) & kHigh;
+}
+std::uint64_t starts_in(std::uint64_t w) {
+  const std::uint64_t c = w & kChars;
+  return bytes_equal(c, STX) | bytes_equal(c, ACK) | bytes_equal(c, NAK);
+}
+std::uint64_t starts_or_etx_in(std::uint64_t w) { return starts_in(w) | bytes_equal(w & kChars, ETX); }
+
+// The first byte at or after `i` that `marks` (one of the above) marks, or b.size().
+template <std::uint64_t (*marks)(std::uint64_t)>
+std::size_t find(const Bytes& b, std::size_t i) {
+  const std::size_t n = b.size();
+  for (; i + 8 <= n; i += 8)
+    if (const std::uint64_t m = marks(word_at(b.data() + i))) return i + static_cast<std::size_t>(std::countr_zero(m)) / 8;
+  for (; i < n; ++i)
+    if (marks(b[i])) return i;
+  return n;
+}
+
+// Even parity in bit 7 of every 7-bit character (with_even_parity, a table).
+constexpr std::array<std::uint8_t, 128> kWithParity = [] {
+  std::array<std::uint8_t, 128> t{};
+  for (unsigned c = 0; c < 128; ++c) t[c] = with_even_parity(static_cast<std::uint8_t>(c));
+  return t;
+}();
 
 // A frame in the stream: its start byte, its ETX (npos if none) and the end
 // of the segment (the next start byte, or the end). The byte after ETX is the
@@ -30,24 +68,56 @@ struct Segment {
 };
 constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
+// The first start byte at or after `i` (or b.size()).
+std::size_t next_start(const Bytes& b, std::size_t i) { return find<starts_in>(b, i); }
+
+// The segment that begins with the start byte at `i`.
+Segment segment_at(const Bytes& b, std::size_t i) {
+  const std::size_t n = b.size();
+  Segment s{i, npos, n};
+  std::size_t j = find<starts_or_etx_in>(b, i + 1);
+  if (j < n && (b[j] & 0x7F) == ETX) {
+    s.etx = j;
+    j += 2;  // ETX and the check byte
+  }
+  s.end = j < n ? next_start(b, j) : n;
+  return s;
+}
+
 // Fills `out` (reused between calls: the mutator runs once per execution).
 void segments(const Bytes& b, std::vector<Segment>& out) {
   out.clear();
-  std::size_t i = 0;
-  while (i < b.size() && !is_start(b[i])) ++i;
-  while (i < b.size()) {
-    Segment s{i, npos, b.size()};
-    std::size_t j = i + 1;
-    while (j < b.size() && (b[j] & 0x7F) != ETX && !is_start(b[j])) ++j;
-    if (j < b.size() && (b[j] & 0x7F) == ETX) {
-      s.etx = j;
-      j += 2;  // ETX and the check byte
+  for (std::size_t i = next_start(b, 0); i < b.size(); i = out.back().end) out.push_back(segment_at(b, i));
+}
+
+// Makes b[begin .. etx + 1] a frame that passes the checks: 7-bit characters
+// (with even parity in bit 7 on the wire) and the check byte after ETX.
+void seal(Bytes& b, std::size_t begin, std::size_t etx, LrcRule rule, bool wire) {
+  std::uint8_t* p = b.data();
+  std::uint64_t x8 = 0;  // XOR of the words: each byte of it, of one byte lane
+  std::size_t i = begin;
+  for (; i + 8 <= etx + 1; i += 8) {
+    std::uint64_t c = word_at(p + i) & kChars;
+    x8 ^= c;
+    if (wire) {
+      std::uint64_t odd = c ^ (c >> 4);  // bit 0 of each byte: the parity of its 7 bits
+      odd ^= odd >> 2;
+      odd ^= odd >> 1;
+      c |= (odd & kLow) << 7;
     }
-    while (j < b.size() && !is_start(b[j])) ++j;
-    s.end = std::min(j, b.size());
-    out.push_back(s);
-    i = s.end;
+    std::memcpy(p + i, &c, 8);
   }
+  x8 ^= x8 >> 32;
+  x8 ^= x8 >> 16;
+  x8 ^= x8 >> 8;
+  auto x = static_cast<std::uint8_t>(x8);
+  for (; i <= etx; ++i) {
+    const std::uint8_t c = p[i] & 0x7F;
+    x ^= c;
+    p[i] = wire ? kWithParity[c] : c;
+  }
+  if (rule == LrcRule::kFromAddress) x ^= p[begin] & 0x7F;  // byte 0 is not covered
+  p[etx + 1] = wire ? kWithParity[x] : x;
 }
 
 // One encoded request (7-bit characters, address '2') of every catalog
@@ -95,40 +165,46 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   auto pick = [&](std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); };
   const std::size_t h = format.header;
   if (max_size <= h) return LLVMFuzzerMutate(data, size, max_size);
-  // Reused buffers: no allocation per call once they have grown.
-  thread_local Bytes head, b, out;
-  thread_local std::vector<Segment> segs, again;
+  // Reused buffers: no allocation per call once they have grown (the mutator
+  // runs once per execution, and its cost is part of every execution's).
+  struct Scratch {
+    Bytes head, b, piece;
+    std::vector<Segment> segs;
+  };
+  thread_local Scratch scratch;
+  Bytes& head = scratch.head;
+  Bytes& b = scratch.b;
   head.assign(data, data + std::min(size, h));
   head.resize(h, 0);
   b.assign(data + std::min(size, h), data + size);
   const Bytes& tokens = field_bytes();
   const auto& tmpl = templates();
 
-  segments(b, segs);
+  // The frames of the stream, found when a mutation first needs them.
+  bool have_segs = false;
+  auto frames = [&]() -> const std::vector<Segment>& {
+    if (!have_segs) segments(b, scratch.segs);
+    have_segs = true;
+    return scratch.segs;
+  };
   auto address = [&]() -> std::uint8_t {
-    for (const auto& s : segs)
+    for (const auto& s : frames())
       if (s.begin + 1 < b.size()) return b[s.begin + 1] & 0x7F;
     return '2';
-  };
-  auto some_template = [&] {
-    Bytes t = tmpl[pick(tmpl.size())];
-    if (pick(8) != 0) t[1] = address();
-    else t[1] = tokens[pick(tokens.size())];
-    return t;
   };
 
   bool repair = pick(8) != 0;
   switch (pick(10)) {
     case 0: {  // libFuzzer's byte-level mutation of the stream
-      Bytes buf = b;
-      buf.resize(std::max<std::size_t>(max_size - h, 1));
-      buf.resize(LLVMFuzzerMutate(buf.data(), b.size(), buf.size()));
-      b = std::move(buf);
+      const std::size_t n = b.size();
+      b.resize(std::max<std::size_t>(max_size - h, 1));
+      b.resize(LLVMFuzzerMutate(b.data(), n, b.size()));
       repair = pick(2) == 0;
       break;
     }
     case 1:
     case 2: {  // a field byte: address, command, or a data byte, to a meaningful value
+      const auto& segs = frames();
       if (segs.empty()) goto insert;
       const Segment& s = segs[pick(segs.size())];
       const std::size_t last = s.etx != npos ? s.etx : s.end;
@@ -137,55 +213,65 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
       break;
     }
     case 3: {  // a digit one up or down
-      std::vector<std::size_t> digits;
-      for (std::size_t i = 0; i < b.size(); ++i)
-        if ((b[i] & 0x7F) >= '0' && (b[i] & 0x7F) <= '9') digits.push_back(i);
-      if (digits.empty()) goto insert;
-      std::uint8_t& d = b[digits[pick(digits.size())]];
+      auto is_digit = [](std::uint8_t c) { return (c & 0x7F) >= '0' && (c & 0x7F) <= '9'; };
+      const auto digits = static_cast<std::size_t>(std::count_if(b.begin(), b.end(), is_digit));
+      if (digits == 0) goto insert;
+      auto it = b.begin();
+      for (std::size_t k = pick(digits);; ++it)
+        if (is_digit(*it) && k-- == 0) break;
+      std::uint8_t& d = *it;
       const std::uint8_t c = d & 0x7F;
       d = static_cast<std::uint8_t>(pick(2) ? (c == '9' ? '0' : c + 1) : (c == '0' ? '9' : c - 1));
       break;
     }
     case 4:
     insert: {  // a whole request of any command and form
-      const Bytes t = some_template();
+      const Bytes& t = tmpl[pick(tmpl.size())];
+      const std::uint8_t to = pick(8) != 0 ? address() : tokens[pick(tokens.size())];
+      const auto& segs = frames();
       std::size_t at = b.size();
       if (!segs.empty() && pick(2)) at = segs[pick(segs.size())].begin;
       b.insert(b.begin() + static_cast<std::ptrdiff_t>(at), t.begin(), t.end());
+      b[at + 1] = to;
       break;
     }
     case 5: {  // delete a frame
+      const auto& segs = frames();
       if (segs.size() < 2) goto insert;
       const Segment& s = segs[pick(segs.size())];
       b.erase(b.begin() + static_cast<std::ptrdiff_t>(s.begin), b.begin() + static_cast<std::ptrdiff_t>(s.end));
       break;
     }
     case 6: {  // duplicate or swap frames
+      const auto& segs = frames();
       if (segs.empty()) goto insert;
       const Segment& s = segs[pick(segs.size())];
-      Bytes copy(b.begin() + static_cast<std::ptrdiff_t>(s.begin), b.begin() + static_cast<std::ptrdiff_t>(s.end));
       if (segs.size() >= 2 && pick(2)) {
         const Segment& o = segs[pick(segs.size())];
         if (o.begin != s.begin) {
-          Bytes other(b.begin() + static_cast<std::ptrdiff_t>(o.begin), b.begin() + static_cast<std::ptrdiff_t>(o.end));
+          // The later frame first, the bytes between them, the earlier one.
           const Segment& first = s.begin < o.begin ? s : o;
           const Segment& second = s.begin < o.begin ? o : s;
-          Bytes out(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(first.begin));
-          const Bytes& a2 = s.begin < o.begin ? other : copy;
-          const Bytes& b2 = s.begin < o.begin ? copy : other;
-          out.insert(out.end(), a2.begin(), a2.end());
+          Bytes& out = scratch.piece;
+          out.assign(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(first.begin));
+          out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(second.begin),
+                     b.begin() + static_cast<std::ptrdiff_t>(second.end));
           out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(first.end),
                      b.begin() + static_cast<std::ptrdiff_t>(second.begin));
-          out.insert(out.end(), b2.begin(), b2.end());
+          out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(first.begin),
+                     b.begin() + static_cast<std::ptrdiff_t>(first.end));
           out.insert(out.end(), b.begin() + static_cast<std::ptrdiff_t>(second.end), b.end());
-          b = std::move(out);
+          b.swap(out);
           break;
         }
       }
+      Bytes& copy = scratch.piece;
+      copy.assign(b.begin() + static_cast<std::ptrdiff_t>(s.begin), b.begin() + static_cast<std::ptrdiff_t>(s.end));
       b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), copy.begin(), copy.end());
       break;
     }
     case 7: {  // one data byte more or less: a length the command does not have
+      const auto& segs = frames();
       if (segs.empty()) goto insert;
       const Segment& s = segs[pick(segs.size())];
       const std::size_t last = s.etx != npos ? s.etx : s.end;
@@ -197,9 +283,10 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
       break;
     }
     case 8: {  // splice: a run of data bytes from a request template over a frame's data
+      const auto& segs = frames();
       if (segs.empty()) goto insert;
       const Segment& s = segs[pick(segs.size())];
-      const Bytes t = tmpl[pick(tmpl.size())];
+      const Bytes& t = tmpl[pick(tmpl.size())];
       const std::size_t last = s.etx != npos ? s.etx : s.end;
       if (last <= s.begin + 3 || t.size() <= 5) goto insert;
       const std::size_t from = 3 + pick(t.size() - 5);
@@ -216,32 +303,32 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   }
 
   if (repair) {
+    // Frame by frame as they are found: a repair writes only its own frame's
+    // bytes, never the ones the next frame is found in.
     const bool wire = format.wire && format.wire(head.data());
     const LrcRule rule = format.lrc_rule ? format.lrc_rule(head.data()) : LrcRule::kFromByte0;
-    segments(b, again);
-    for (const Segment& s : again) {
+    for (std::size_t i = next_start(b, 0); i < b.size();) {
+      const Segment s = segment_at(b, i);
+      i = s.end;
       std::size_t etx = s.etx;
       if (etx == npos) {
         if (pick(2)) continue;
+        // The frames after this one move: repair only this one and stop.
         b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), {ETX, 0});
-        // Segments after this one moved: repair only this one and stop.
-        etx = s.end;
-      } else if (etx + 1 >= b.size()) {
-        b.push_back(0);
+        seal(b, s.begin, s.end, rule, wire);
+        break;
       }
-      for (std::size_t i = s.begin; i <= etx; ++i) b[i] &= 0x7F;
-      b[etx + 1] = lrc(ByteView(b).subspan(s.begin, etx + 1 - s.begin), rule);
-      if (wire)
-        for (std::size_t i = s.begin; i <= etx + 1; ++i) b[i] = with_even_parity(b[i]);
-      if (s.etx == npos) break;
+      const bool last = etx + 1 >= b.size();
+      if (last) b.push_back(0);  // its check byte
+      seal(b, s.begin, etx, rule, wire);
+      if (last) break;
     }
   }
 
-  out.assign(head.begin(), head.end());
-  out.insert(out.end(), b.begin(), b.end());
-  if (out.size() > max_size) out.resize(max_size);
-  std::copy(out.begin(), out.end(), data);
-  return out.size();
+  const std::size_t n = std::min(h + b.size(), max_size);
+  std::copy(head.begin(), head.end(), data);
+  std::copy_n(b.begin(), n - h, data + h);
+  return n;
 }
 
 }  // namespace sabus::fuzz
