@@ -1,5 +1,6 @@
 // Which command handlers a corpus of the whole-controller target reaches:
 //   fuzz_handler_report CORPUS_DIR...
+//   fuzz_handler_report --missing CORPUS_DIR...
 // Replays every input as fuzz_controller does (same profile, chunks and
 // virtual time), but with the controller's own receiver and Controller::execute
 // instead of the Bus, so each executed frame's outcome is known; the bytes
@@ -7,6 +8,11 @@
 // same. A handler counts as reached when a frame got past the front door
 // (known code, length, online, implemented, decodable fields) into the
 // command's handler: an ACK, or a NAK by one of the handler's own rules.
+// With --missing it prints one line, what the corpus lacks of every command
+// ACKed and every NAK rule fired ("missing: none" when nothing), and exits 3
+// when something is missing: tools/fuzz-perf.sh polls a running fuzzer's
+// corpus with it. The corpus may change while it is read (libFuzzer adds and
+// replaces files): a file that vanished is skipped.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +20,8 @@
 #include <map>
 #include <set>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "fuzz_support.hpp"
 #include "sabus/harness/controller.hpp"
@@ -90,22 +98,70 @@ void replay(const std::vector<std::uint8_t>& data, Tally& t) {
   if (out != bus_out) ++t.mismatches;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: fuzz_handler_report CORPUS_DIR...\n");
-    return 2;
+// What the corpus lacks of the goal: every command ACKed, every NAK rule fired.
+std::vector<std::string> missing(const Tally& t, const std::set<std::string>& rules) {
+  std::vector<std::string> m;
+  for (const auto& info : catalog())
+    if (!t.acked.count(info.code)) {
+      char code[8];
+      std::snprintf(code, sizeof code, "%02Xh", info.code);
+      m.push_back(std::string(code) + " " + std::string(info.name) + " ACK");
+    }
+  for (std::size_t i = 0; i < kNakRuleCount; ++i) {
+    const std::string r = rule_name(static_cast<NakRule>(i));
+    if (!rules.count(r)) m.push_back("NAK " + r);
   }
-  Tally t;
-  for (int i = 1; i < argc; ++i) {
-    if (!fs::is_directory(argv[i])) continue;
-    for (const auto& e : fs::recursive_directory_iterator(argv[i])) {
-      if (!e.is_regular_file()) continue;
-      std::ifstream in(e.path(), std::ios::binary);
+  return m;
+}
+
+// Every file under the directories, read as it is now; a file that vanished
+// or cannot be read is skipped.
+void replay_corpus(const std::vector<std::string>& dirs, Tally& t) {
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (!it->is_regular_file(ec) || ec) continue;
+      std::ifstream in(it->path(), std::ios::binary);
+      if (!in) continue;
       std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
       replay(bytes, t);
     }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool only_missing = false;
+  std::vector<std::string> dirs;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--missing") only_missing = true;
+    else dirs.emplace_back(argv[i]);
+  }
+  if (dirs.empty()) {
+    std::fprintf(stderr, "usage: fuzz_handler_report [--missing] CORPUS_DIR...\n");
+    return 2;
+  }
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+      std::fprintf(stderr, "fuzz_handler_report: %s: not a directory\n", dir.c_str());
+      return 2;
+    }
+  }
+  Tally t;
+  replay_corpus(dirs, t);
+  std::set<std::string> rules;
+  for (const auto& [code, m] : t.handler_nak)
+    for (const auto& [r, count] : m) rules.insert(r);
+  for (const auto& [r, count] : t.front_door_nak) rules.insert(r);
+  if (only_missing) {
+    const auto m = missing(t, rules);
+    std::string line;
+    for (const auto& item : m) line += (line.empty() ? "" : ", ") + item;
+    std::printf("missing: %s\n", m.empty() ? "none" : line.c_str());
+    return t.mismatches != 0 ? 1 : m.empty() ? 0 : 3;
   }
   std::printf("inputs %zu, frames executed %zu, replies different from the Bus's: %zu\n", t.inputs, t.frames,
               t.mismatches);
@@ -130,10 +186,6 @@ int main(int argc, char** argv) {
         if (a == t.acked.end() || !a->second.count(std::string(f.id)))
           std::printf("        form %s not ACKed\n", std::string(f.id).c_str());
   }
-  std::set<std::string> rules;
-  for (const auto& [code, m] : t.handler_nak)
-    for (const auto& [r, count] : m) rules.insert(r);
-  for (const auto& [r, count] : t.front_door_nak) rules.insert(r);
   std::printf("NAK rules fired: %zu of %zu; not fired:\n", rules.size(), kNakRuleCount);
   for (std::size_t i = 0; i < kNakRuleCount; ++i) {
     const std::string r = rule_name(static_cast<NakRule>(i));
