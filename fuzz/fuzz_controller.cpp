@@ -14,7 +14,7 @@
 //    controller's address, a correct LRC, and the catalog's length for its
 //    command (or the NAK / offline reply length, §3);
 //  - the model's invariants hold (Controller::check_invariants: positions
-//    within limits, STORE <= 50, ...).
+//    within limits, STORE <= 50, ...), and held at power-on.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -200,7 +200,7 @@ struct Direct : sabus::ReceiverSink {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static sabus::fuzz::ControllerInput in;  // reused: no allocation per input
-  if (!sabus::fuzz::parse_controller_input(data, size, in)) return 0;
+  sabus::fuzz::parse_controller_input(data, size, in);
   // One controller and one Bus per profile, built once at power-on; every
   // input starts from a copy of one, with the clock back at zero. Building
   // one (its enum lookups by name, the receiver's byte tables) cost more
@@ -230,10 +230,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto profile = static_cast<std::size_t>(in.profile - sabus::fuzz::profiles().data());
   std::optional<sabus::harness::Bus> bus;
   std::optional<Direct> direct;
-  if (data[0] & 0x80) bus.emplace(powered_on_bus[profile]);
+  if (size > 0 && (data[0] & 0x80)) bus.emplace(powered_on_bus[profile]);
   else direct.emplace(powered_on[profile]);
+  auto& controller = bus ? bus->controller(0) : direct->controller;
+  auto invariants_hold = [&] {
+    const std::string broken = controller.check_invariants();
+    if (!broken.empty()) fail(broken.c_str());
+  };
+  invariants_hold();  // at power-on, before any byte
   static Wire stream;
-  stream.read(sabus::ByteView(data + sabus::fuzz::kControllerHeader, size - sabus::fuzz::kControllerHeader));
+  const std::size_t header = std::min(size, sabus::fuzz::kControllerHeader);
+  stream.read(sabus::ByteView(data + header, size - header));
   const std::uint8_t address = in.profile->address;
   std::size_t at = 0;
   static sabus::Bytes out;
@@ -254,11 +261,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     at = end;
     clock.advance(in.step);
-    auto& controller = bus ? bus->controller(0) : direct->controller;
     if (bus) bus->tick();
     else controller.update();
-    const std::string broken = controller.check_invariants();
-    if (!broken.empty()) fail(broken.c_str());
+    invariants_hold();
   }
   return 0;
 }

@@ -1,6 +1,5 @@
 // Which command handlers a corpus of the whole-controller target reaches:
-//   fuzz_handler_report CORPUS_DIR...
-//   fuzz_handler_report --missing CORPUS_DIR...
+//   fuzz_handler_report [--missing] [--max-len N] CORPUS_DIR...
 // Replays every input as fuzz_controller does (same profile, chunks and
 // virtual time), but with the controller's own receiver and Controller::execute
 // instead of the Bus, so each executed frame's outcome is known; the bytes
@@ -12,8 +11,12 @@
 // ACKed and every NAK rule fired ("missing: none" when nothing), and exits 3
 // when something is missing: tools/fuzz-perf.sh polls a running fuzzer's
 // corpus with it. The corpus may change while it is read (libFuzzer adds and
-// replaces files): a file that vanished is skipped.
+// replaces files): a file that vanished is skipped. With --max-len, every
+// input is cut to its first N bytes, as libFuzzer runs the files of a corpus
+// with -max_len=N (a seed longer than that is never run whole).
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -59,7 +62,7 @@ std::string rule_name(NakRule r) { return "§" + std::string(paragraph(r)) + " "
 
 void replay(const std::vector<std::uint8_t>& data, Tally& t) {
   fuzz::ControllerInput in;
-  if (!fuzz::parse_controller_input(data.data(), data.size(), in)) return;
+  fuzz::parse_controller_input(data.data(), data.size(), in);
   ++t.inputs;
   VirtualClock clock, bus_clock;
   Controller c(*in.profile, clock);
@@ -116,7 +119,7 @@ std::vector<std::string> missing(const Tally& t, const std::set<std::string>& ru
 
 // Every file under the directories, read as it is now; a file that vanished
 // or cannot be read is skipped.
-void replay_corpus(const std::vector<std::string>& dirs, Tally& t) {
+void replay_corpus(const std::vector<std::string>& dirs, std::size_t max_len, Tally& t) {
   for (const auto& dir : dirs) {
     std::error_code ec;
     for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
@@ -125,6 +128,7 @@ void replay_corpus(const std::vector<std::string>& dirs, Tally& t) {
       std::ifstream in(it->path(), std::ios::binary);
       if (!in) continue;
       std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (bytes.size() > max_len) bytes.resize(max_len);
       replay(bytes, t);
     }
   }
@@ -134,13 +138,26 @@ void replay_corpus(const std::vector<std::string>& dirs, Tally& t) {
 
 int main(int argc, char** argv) {
   bool only_missing = false;
+  std::size_t max_len = SIZE_MAX;
   std::vector<std::string> dirs;
   for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--missing") only_missing = true;
-    else dirs.emplace_back(argv[i]);
+    const std::string arg = argv[i];
+    if (arg == "--missing") {
+      only_missing = true;
+    } else if (arg == "--max-len" && i + 1 < argc) {
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(argv[++i], &end, 10);
+      if (*argv[i] == '\0' || *end != '\0' || n == 0) {
+        std::fprintf(stderr, "fuzz_handler_report: --max-len needs a positive number of bytes, got '%s'\n", argv[i]);
+        return 2;
+      }
+      max_len = static_cast<std::size_t>(n);
+    } else {
+      dirs.push_back(arg);
+    }
   }
   if (dirs.empty()) {
-    std::fprintf(stderr, "usage: fuzz_handler_report [--missing] CORPUS_DIR...\n");
+    std::fprintf(stderr, "usage: fuzz_handler_report [--missing] [--max-len N] CORPUS_DIR...\n");
     return 2;
   }
   for (const auto& dir : dirs) {
@@ -151,7 +168,7 @@ int main(int argc, char** argv) {
     }
   }
   Tally t;
-  replay_corpus(dirs, t);
+  replay_corpus(dirs, max_len, t);
   std::set<std::string> rules;
   for (const auto& [code, m] : t.handler_nak)
     for (const auto& [r, count] : m) rules.insert(r);

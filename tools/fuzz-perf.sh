@@ -11,8 +11,8 @@
 #    fuzz_controller 0.6);
 # 2. fuzz_controller runs SECONDS (default 300) from its seed corpus on one
 #    core: its final edge coverage, then fuzz_handler_report replays the
-#    resulting corpus and lists the command handlers (and forms, and NAK
-#    rules) the corpus reaches;
+#    resulting corpus (each input cut to max_len, as libFuzzer runs it) and
+#    lists the command handlers (and forms, and NAK rules) the corpus reaches;
 # 3. time to full coverage: while step 2 runs, and in a second run from an
 #    empty corpus (EMPTY_SECONDS, default SECONDS; 0 skips it), every POLL
 #    seconds (default 2) `fuzz_handler_report --missing` reads the corpus on
@@ -102,9 +102,16 @@ row() {
   printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" "${per_cpu[$label]}"
 }
 
-# The report tool on the other core, so that it does not slow the fuzzer.
+# The report tool on the other core, so that it does not slow the fuzzer;
+# every input cut to the target's max_len, as libFuzzer runs it.
 report() {
-  if (($(nproc) > 1)); then taskset -c 1 "$fuzz/fuzz_handler_report" "$@"; else "$fuzz/fuzz_handler_report" "$@"; fi
+  local max_len
+  max_len=$(flags_of fuzz_controller | sed -n 's/^-max_len=//p')
+  if (($(nproc) > 1)); then
+    taskset -c 1 "$fuzz/fuzz_handler_report" --max-len "$max_len" "$@"
+  else
+    "$fuzz/fuzz_handler_report" --max-len "$max_len" "$@"
+  fi
 }
 
 # until_complete LABEL LIMIT SEEDS STOP: runs fuzz_controller as
@@ -187,7 +194,8 @@ grep -E "^#[0-9]+[[:space:]]" "$work/long.log" | tail -1 | sed "s/^/  /" || true
 grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)" "$work/long.log" | sed 's/^/  /'
 echo "  CPU seconds: $(cpu_seconds long)  (cov: = edges covered, ft: = features)"
 echo
-"$fuzz/fuzz_handler_report" "$work/long"
+report_status=0
+report "$work/long" || report_status=$?  # 1: replies different from the Bus's
 from_empty="from empty not measured (EMPTY_SECONDS=0)"
 if ((empty_seconds > 0)); then
   until_complete empty "$empty_seconds" "" stop
@@ -196,3 +204,4 @@ fi
 echo
 echo "(every command ACKed and every NAK rule fired; CPU seconds of the fuzzer's core, its corpus read every $poll s)"
 echo "time to all handlers and NAK rules: $from_seeds, $from_empty"
+exit "$report_status"
