@@ -2,6 +2,9 @@
 // (fuzz_support.hpp mutate_stream). Kept apart from fuzz_support.cpp because
 // it needs libFuzzer's LLVMFuzzerMutate (replay_main.cpp has a stand-in).
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <cstring>
 #include <cstdio>
 #include <random>
 #include <set>
@@ -17,10 +20,45 @@ namespace sabus::fuzz {
 
 namespace {
 
-bool is_start(std::uint8_t b) {
-  const std::uint8_t c = b & 0x7F;
-  return c == STX || c == ACK || c == NAK;
+// The mutator reads and repairs the whole stream on every call, so it works
+// eight bytes a step (a word of the stream; bit 7 of each byte ignored).
+constexpr std::uint64_t kLow = 0x0101010101010101ULL, kHigh = 0x80 * kLow, kChars = 0x7F * kLow;
+
+std::uint64_t word_at(const std::uint8_t* p) {
+  std::uint64_t w;
+  std::memcpy(&w, p, 8);
+  return w;
 }
+
+// Bit 7 of each byte of the result: whether the byte's 7 bits are `c`. Exact
+// (no carry between bytes): the bytes of t are below 80h.
+std::uint64_t bytes_equal(std::uint64_t chars, std::uint8_t c) {
+  const std::uint64_t t = chars ^ (c * kLow);
+  return ~(t + kChars) & kHigh;
+}
+std::uint64_t starts_in(std::uint64_t w) {
+  const std::uint64_t c = w & kChars;
+  return bytes_equal(c, STX) | bytes_equal(c, ACK) | bytes_equal(c, NAK);
+}
+std::uint64_t starts_or_etx_in(std::uint64_t w) { return starts_in(w) | bytes_equal(w & kChars, ETX); }
+
+// The first byte at or after `i` that `marks` (one of the above) marks, or b.size().
+template <std::uint64_t (*marks)(std::uint64_t)>
+std::size_t find(const Bytes& b, std::size_t i) {
+  const std::size_t n = b.size();
+  for (; i + 8 <= n; i += 8)
+    if (const std::uint64_t m = marks(word_at(b.data() + i))) return i + static_cast<std::size_t>(std::countr_zero(m)) / 8;
+  for (; i < n; ++i)
+    if (marks(b[i])) return i;
+  return n;
+}
+
+// Even parity in bit 7 of every 7-bit character (with_even_parity, a table).
+constexpr std::array<std::uint8_t, 128> kWithParity = [] {
+  std::array<std::uint8_t, 128> t{};
+  for (unsigned c = 0; c < 128; ++c) t[c] = with_even_parity(static_cast<std::uint8_t>(c));
+  return t;
+}();
 
 // A frame in the stream: its start byte, its ETX (npos if none) and the end
 // of the segment (the next start byte, or the end). The byte after ETX is the
@@ -30,24 +68,56 @@ struct Segment {
 };
 constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
+// The first start byte at or after `i` (or b.size()).
+std::size_t next_start(const Bytes& b, std::size_t i) { return find<starts_in>(b, i); }
+
+// The segment that begins with the start byte at `i`.
+Segment segment_at(const Bytes& b, std::size_t i) {
+  const std::size_t n = b.size();
+  Segment s{i, npos, n};
+  std::size_t j = find<starts_or_etx_in>(b, i + 1);
+  if (j < n && (b[j] & 0x7F) == ETX) {
+    s.etx = j;
+    j += 2;  // ETX and the check byte
+  }
+  s.end = j < n ? next_start(b, j) : n;
+  return s;
+}
+
 // Fills `out` (reused between calls: the mutator runs once per execution).
 void segments(const Bytes& b, std::vector<Segment>& out) {
   out.clear();
-  std::size_t i = 0;
-  while (i < b.size() && !is_start(b[i])) ++i;
-  while (i < b.size()) {
-    Segment s{i, npos, b.size()};
-    std::size_t j = i + 1;
-    while (j < b.size() && (b[j] & 0x7F) != ETX && !is_start(b[j])) ++j;
-    if (j < b.size() && (b[j] & 0x7F) == ETX) {
-      s.etx = j;
-      j += 2;  // ETX and the check byte
+  for (std::size_t i = next_start(b, 0); i < b.size(); i = out.back().end) out.push_back(segment_at(b, i));
+}
+
+// Makes b[begin .. etx + 1] a frame that passes the checks: 7-bit characters
+// (with even parity in bit 7 on the wire) and the check byte after ETX.
+void seal(Bytes& b, std::size_t begin, std::size_t etx, LrcRule rule, bool wire) {
+  std::uint8_t* p = b.data();
+  std::uint64_t x8 = 0;  // XOR of the words: each byte of it, of one byte lane
+  std::size_t i = begin;
+  for (; i + 8 <= etx + 1; i += 8) {
+    std::uint64_t c = word_at(p + i) & kChars;
+    x8 ^= c;
+    if (wire) {
+      std::uint64_t odd = c ^ (c >> 4);  // bit 0 of each byte: the parity of its 7 bits
+      odd ^= odd >> 2;
+      odd ^= odd >> 1;
+      c |= (odd & kLow) << 7;
     }
-    while (j < b.size() && !is_start(b[j])) ++j;
-    s.end = std::min(j, b.size());
-    out.push_back(s);
-    i = s.end;
+    std::memcpy(p + i, &c, 8);
   }
+  x8 ^= x8 >> 32;
+  x8 ^= x8 >> 16;
+  x8 ^= x8 >> 8;
+  auto x = static_cast<std::uint8_t>(x8);
+  for (; i <= etx; ++i) {
+    const std::uint8_t c = p[i] & 0x7F;
+    x ^= c;
+    p[i] = wire ? kWithParity[c] : c;
+  }
+  if (rule == LrcRule::kFromAddress) x ^= p[begin] & 0x7F;  // byte 0 is not covered
+  p[etx + 1] = wire ? kWithParity[x] : x;
 }
 
 // One encoded request (7-bit characters, address '2') of every catalog
@@ -99,16 +169,24 @@ struct Mutation {
   std::minstd_rand& rng;
   Bytes& head;
   Bytes& b;
-  const std::vector<Segment>& segs;
+  std::vector<Segment>& found;  // reused storage for segs()
   const Bytes& tokens;
   const std::vector<Bytes>& tmpl;
   std::size_t max_size;
+  bool have_segs = false;
 
   std::size_t pick(std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); }
-  const Segment& some_segment() { return segs[pick(segs.size())]; }
+  // The frames of the stream, found when a mutation first needs them (most
+  // mutations of a short stream never do).
+  const std::vector<Segment>& segs() {
+    if (!have_segs) segments(b, found);
+    have_segs = true;
+    return found;
+  }
+  const Segment& some_segment() { return segs()[pick(segs().size())]; }
   // The address of the first frame that has one, else '2'.
-  std::uint8_t address() const {
-    for (const auto& s : segs)
+  std::uint8_t address() {
+    for (const auto& s : segs())
       if (s.begin + 1 < b.size()) return b[s.begin + 1] & 0x7F;
     return '2';
   }
@@ -125,16 +203,15 @@ struct Mutation {
 
 // libFuzzer's byte-level mutation of the stream; repaired one time in two.
 void byte_level(Mutation& m, bool& repair) {
-  Bytes buf = m.b;
-  buf.resize(std::max<std::size_t>(m.max_size - m.head.size(), 1));
-  buf.resize(LLVMFuzzerMutate(buf.data(), m.b.size(), buf.size()));
-  m.b = std::move(buf);
+  const std::size_t n = m.b.size();
+  m.b.resize(std::max<std::size_t>(m.max_size - m.head.size(), 1));
+  m.b.resize(LLVMFuzzerMutate(m.b.data(), n, m.b.size()));
   repair = m.pick(2) == 0;
 }
 
 // A field byte (address, command, or a data byte) to a meaningful value.
 bool set_field_byte(Mutation& m) {
-  if (m.segs.empty()) return false;
+  if (m.segs().empty()) return false;
   const Segment& s = m.some_segment();
   const std::size_t last = s.etx != npos ? s.etx : s.end;
   if (last <= s.begin + 1) return false;
@@ -158,12 +235,12 @@ bool step_digit(Mutation& m) {
 void insert_request(Mutation& m) {
   const Bytes t = m.some_template();
   std::size_t at = m.b.size();
-  if (!m.segs.empty() && m.pick(2)) at = m.some_segment().begin;
+  if (!m.segs().empty() && m.pick(2)) at = m.some_segment().begin;
   m.b.insert(m.b.begin() + static_cast<std::ptrdiff_t>(at), t.begin(), t.end());
 }
 
 bool delete_frame(Mutation& m) {
-  if (m.segs.size() < 2) return false;
+  if (m.segs().size() < 2) return false;
   const Segment& s = m.some_segment();
   m.b.erase(m.b.begin() + static_cast<std::ptrdiff_t>(s.begin), m.b.begin() + static_cast<std::ptrdiff_t>(s.end));
   return true;
@@ -182,9 +259,9 @@ Bytes swapped(const Bytes& b, const Segment& first, const Segment& second) {
 
 // A frame duplicated after itself, or two frames swapped.
 bool duplicate_or_swap(Mutation& m) {
-  if (m.segs.empty()) return false;
+  if (m.segs().empty()) return false;
   const Segment& s = m.some_segment();
-  if (m.segs.size() >= 2 && m.pick(2)) {
+  if (m.segs().size() >= 2 && m.pick(2)) {
     const Segment& o = m.some_segment();
     if (o.begin != s.begin) {
       m.b = s.begin < o.begin ? swapped(m.b, s, o) : swapped(m.b, o, s);
@@ -198,7 +275,7 @@ bool duplicate_or_swap(Mutation& m) {
 
 // One data byte more or less: a length the command does not have.
 bool change_length(Mutation& m) {
-  if (m.segs.empty()) return false;
+  if (m.segs().empty()) return false;
   const Segment& s = m.some_segment();
   const std::size_t last = s.etx != npos ? s.etx : s.end;
   if (last <= s.begin + 3 || m.pick(2)) {
@@ -211,7 +288,7 @@ bool change_length(Mutation& m) {
 
 // Splice: a run of data bytes from a request template over a frame's data.
 bool splice_template(Mutation& m) {
-  if (m.segs.empty()) return false;
+  if (m.segs().empty()) return false;
   const Segment& s = m.some_segment();
   const Bytes t = m.tmpl[m.pick(m.tmpl.size())];
   const std::size_t last = s.etx != npos ? s.etx : s.end;
@@ -232,27 +309,26 @@ bool set_knob(Mutation& m) {
 
 // Gives every frame an ETX (one missing ETX is added, one time in two), its
 // check byte under the target's LRC rule, and even parity when the stream
-// carries it.
-void repair_frames(Mutation& m, const StreamFormat& format, std::vector<Segment>& again) {
+// carries it. Frame by frame as they are found: a repair writes only its own
+// frame's bytes, never the ones the next frame is found in.
+void repair_frames(Mutation& m, const StreamFormat& format) {
   Bytes& b = m.b;
   const bool wire = format.wire && format.wire(m.head.data());
   const LrcRule rule = format.lrc_rule ? format.lrc_rule(m.head.data()) : LrcRule::kFromByte0;
-  segments(b, again);
-  for (const Segment& s : again) {
-    std::size_t etx = s.etx;
-    if (etx == npos) {
+  for (std::size_t i = next_start(b, 0); i < b.size();) {
+    const Segment s = segment_at(b, i);
+    i = s.end;
+    if (s.etx == npos) {
       if (m.pick(2)) continue;
+      // The frames after this one move: repair only this one and stop.
       b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), {ETX, 0});
-      // Segments after this one moved: repair only this one and stop.
-      etx = s.end;
-    } else if (etx + 1 >= b.size()) {
-      b.push_back(0);
+      seal(b, s.begin, s.end, rule, wire);
+      break;
     }
-    for (std::size_t i = s.begin; i <= etx; ++i) b[i] &= 0x7F;
-    b[etx + 1] = lrc(ByteView(b).subspan(s.begin, etx + 1 - s.begin), rule);
-    if (wire)
-      for (std::size_t i = s.begin; i <= etx + 1; ++i) b[i] = with_even_parity(b[i]);
-    if (s.etx == npos) break;
+    const bool last = s.etx + 1 >= b.size();
+    if (last) b.push_back(0);  // its check byte
+    seal(b, s.begin, s.etx, rule, wire);
+    if (last) break;
   }
 }
 
@@ -263,14 +339,19 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   std::minstd_rand rng(seed);
   const std::size_t h = format.header;
   if (max_size <= h) return LLVMFuzzerMutate(data, size, max_size);
-  // Reused buffers: no allocation per call once they have grown.
-  thread_local Bytes head, b, out;
-  thread_local std::vector<Segment> segs, again;
+  // Reused buffers: no allocation per call once they have grown (the mutator
+  // runs once per execution, and its cost is part of every execution's).
+  struct Scratch {
+    Bytes head, b;
+    std::vector<Segment> segs;
+  };
+  thread_local Scratch scratch;
+  Bytes& head = scratch.head;
+  Bytes& b = scratch.b;
   head.assign(data, data + std::min(size, h));
   head.resize(h, 0);
   b.assign(data + std::min(size, h), data + size);
-  segments(b, segs);
-  Mutation m{rng, head, b, segs, field_bytes(), templates(), max_size};
+  Mutation m{rng, head, b, scratch.segs, field_bytes(), templates(), max_size};
 
   bool repair = m.pick(8) != 0;
   bool applied = true;
@@ -287,13 +368,12 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
     default: applied = set_knob(m); break;
   }
   if (!applied) insert_request(m);
-  if (repair) repair_frames(m, format, again);
+  if (repair) repair_frames(m, format);
 
-  out.assign(head.begin(), head.end());
-  out.insert(out.end(), b.begin(), b.end());
-  if (out.size() > max_size) out.resize(max_size);
-  std::copy(out.begin(), out.end(), data);
-  return out.size();
+  const std::size_t n = std::min(h + b.size(), max_size);
+  std::copy(head.begin(), head.end(), data);
+  std::copy_n(b.begin(), n - h, data + h);
+  return n;
 }
 
 }  // namespace sabus::fuzz

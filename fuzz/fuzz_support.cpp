@@ -34,12 +34,13 @@ const std::vector<harness::Profile>& profiles() {
 
 bool controller_stream_is_wire(const std::uint8_t*) { return true; }
 
-bool parse_controller_input(const std::uint8_t* data, std::size_t size, ControllerInput& out) {
-  if (size < kControllerHeader) return false;
+void parse_controller_input(const std::uint8_t* data, std::size_t size, ControllerInput& out) {
   const auto& all = profiles();
-  out.profile = &all[data[0] % all.size()];
-  out.step = std::chrono::milliseconds(20 * data[1]);
+  const std::uint8_t profile = size > 0 ? data[0] : 0, step = size > 1 ? data[1] : 0;
+  out.profile = &all[profile % all.size()];
+  out.step = std::chrono::milliseconds(20 * step);
   out.chunks.clear();
+  if (size <= kControllerHeader) return;
   const ByteView stream(data + kControllerHeader, size - kControllerHeader);
   std::size_t begin = 0;
   for (std::size_t i = 1; i <= stream.size(); ++i) {
@@ -48,7 +49,6 @@ bool parse_controller_input(const std::uint8_t* data, std::size_t size, Controll
       begin = i;
     }
   }
-  return true;
 }
 
 }  // namespace sabus::fuzz

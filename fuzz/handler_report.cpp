@@ -1,5 +1,5 @@
 // Which command handlers a corpus of the whole-controller target reaches:
-//   fuzz_handler_report CORPUS_DIR...
+//   fuzz_handler_report [--missing] [--max-len N] CORPUS_DIR...
 // Replays every input as fuzz_controller does (same profile, chunks and
 // virtual time), but with the controller's own receiver and Controller::execute
 // instead of the Bus, so each executed frame's outcome is known; the bytes
@@ -7,13 +7,24 @@
 // same. A handler counts as reached when a frame got past the front door
 // (known code, length, online, implemented, decodable fields) into the
 // command's handler: an ACK, or a NAK by one of the handler's own rules.
+// With --missing it prints one line, what the corpus lacks of every command
+// ACKed and every NAK rule fired ("missing: none" when nothing), and exits 3
+// when something is missing: tools/fuzz-perf.sh polls a running fuzzer's
+// corpus with it. The corpus may change while it is read (libFuzzer adds and
+// replaces files): a file that vanished is skipped. With --max-len, every
+// input is cut to its first N bytes, as libFuzzer runs the files of a corpus
+// with -max_len=N (a seed longer than that is never run whole).
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <set>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "fuzz_support.hpp"
 #include "sabus/harness/controller.hpp"
@@ -51,7 +62,7 @@ std::string rule_name(NakRule r) { return "§" + std::string(paragraph(r)) + " "
 
 void replay(const std::vector<std::uint8_t>& data, Tally& t) {
   fuzz::ControllerInput in;
-  if (!fuzz::parse_controller_input(data.data(), data.size(), in)) return;
+  fuzz::parse_controller_input(data.data(), data.size(), in);
   ++t.inputs;
   VirtualClock clock, bus_clock;
   Controller c(*in.profile, clock);
@@ -90,22 +101,84 @@ void replay(const std::vector<std::uint8_t>& data, Tally& t) {
   if (out != bus_out) ++t.mismatches;
 }
 
+// What the corpus lacks of the goal: every command ACKed, every NAK rule fired.
+std::vector<std::string> missing(const Tally& t, const std::set<std::string>& rules) {
+  std::vector<std::string> m;
+  for (const auto& info : catalog())
+    if (!t.acked.count(info.code)) {
+      char code[8];
+      std::snprintf(code, sizeof code, "%02Xh", info.code);
+      m.push_back(std::string(code) + " " + std::string(info.name) + " ACK");
+    }
+  for (std::size_t i = 0; i < kNakRuleCount; ++i) {
+    const std::string r = rule_name(static_cast<NakRule>(i));
+    if (!rules.count(r)) m.push_back("NAK " + r);
+  }
+  return m;
+}
+
+// Every file under the directories, read as it is now; a file that vanished
+// or cannot be read is skipped.
+void replay_corpus(const std::vector<std::string>& dirs, std::size_t max_len, Tally& t) {
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (!it->is_regular_file(ec) || ec) continue;
+      std::ifstream in(it->path(), std::ios::binary);
+      if (!in) continue;
+      std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (bytes.size() > max_len) bytes.resize(max_len);
+      replay(bytes, t);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: fuzz_handler_report CORPUS_DIR...\n");
+  bool only_missing = false;
+  std::size_t max_len = SIZE_MAX;
+  std::vector<std::string> dirs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--missing") {
+      only_missing = true;
+    } else if (arg == "--max-len" && i + 1 < argc) {
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(argv[++i], &end, 10);
+      if (*argv[i] == '\0' || *end != '\0' || n == 0) {
+        std::fprintf(stderr, "fuzz_handler_report: --max-len needs a positive number of bytes, got '%s'\n", argv[i]);
+        return 2;
+      }
+      max_len = static_cast<std::size_t>(n);
+    } else {
+      dirs.push_back(arg);
+    }
+  }
+  if (dirs.empty()) {
+    std::fprintf(stderr, "usage: fuzz_handler_report [--missing] [--max-len N] CORPUS_DIR...\n");
     return 2;
   }
-  Tally t;
-  for (int i = 1; i < argc; ++i) {
-    if (!fs::is_directory(argv[i])) continue;
-    for (const auto& e : fs::recursive_directory_iterator(argv[i])) {
-      if (!e.is_regular_file()) continue;
-      std::ifstream in(e.path(), std::ios::binary);
-      std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      replay(bytes, t);
+  for (const auto& dir : dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+      std::fprintf(stderr, "fuzz_handler_report: %s: not a directory\n", dir.c_str());
+      return 2;
     }
+  }
+  Tally t;
+  replay_corpus(dirs, max_len, t);
+  std::set<std::string> rules;
+  for (const auto& [code, m] : t.handler_nak)
+    for (const auto& [r, count] : m) rules.insert(r);
+  for (const auto& [r, count] : t.front_door_nak) rules.insert(r);
+  if (only_missing) {
+    const auto m = missing(t, rules);
+    std::string line;
+    for (const auto& item : m) line += (line.empty() ? "" : ", ") + item;
+    std::printf("missing: %s\n", m.empty() ? "none" : line.c_str());
+    return t.mismatches != 0 ? 1 : m.empty() ? 0 : 3;
   }
   std::printf("inputs %zu, frames executed %zu, replies different from the Bus's: %zu\n", t.inputs, t.frames,
               t.mismatches);
@@ -130,10 +203,6 @@ int main(int argc, char** argv) {
         if (a == t.acked.end() || !a->second.count(std::string(f.id)))
           std::printf("        form %s not ACKed\n", std::string(f.id).c_str());
   }
-  std::set<std::string> rules;
-  for (const auto& [code, m] : t.handler_nak)
-    for (const auto& [r, count] : m) rules.insert(r);
-  for (const auto& [r, count] : t.front_door_nak) rules.insert(r);
   std::printf("NAK rules fired: %zu of %zu; not fired:\n", rules.size(), kNakRuleCount);
   for (std::size_t i = 0; i < kNakRuleCount; ++i) {
     const std::string r = rule_name(static_cast<NakRule>(i));

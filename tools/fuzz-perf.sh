@@ -5,11 +5,20 @@
 # 1. every target runs EXEC_SECONDS (default 20; 0 skips this) from its seed corpus, pinned
 #    to one core (taskset -c 0): libFuzzer's exec/s, and executions per
 #    CPU-second of the process (the same figure on a machine shared with
-#    other jobs, where wall-clock exec/s understates the target);
+#    other jobs, where wall-clock exec/s understates the target); then the
+#    floors, and each frame-level target's executions per CPU-second as a
+#    share of its floor's, measured in this run (goals: fuzz_receiver 0.7,
+#    fuzz_controller 0.6);
 # 2. fuzz_controller runs SECONDS (default 300) from its seed corpus on one
 #    core: its final edge coverage, then fuzz_handler_report replays the
-#    resulting corpus and lists the command handlers (and forms, and NAK
-#    rules) the corpus reaches.
+#    resulting corpus (each input cut to max_len, as libFuzzer runs it) and
+#    lists the command handlers (and forms, and NAK rules) the corpus reaches;
+# 3. time to full coverage: while step 2 runs, and in a second run from an
+#    empty corpus (EMPTY_SECONDS, default SECONDS; 0 skips it), every POLL
+#    seconds (default 2) `fuzz_handler_report --missing` reads the corpus on
+#    the other core; the first time it finds every command ACKed and every NAK
+#    rule fired, the fuzzer's CPU seconds so far are the time to all handlers
+#    and NAK rules (an upper bound: the corpus had them by then at the latest).
 # Step 1 also runs the floors (fuzz/perf_floor.cpp): libFuzzer with a target
 # that does nothing, the receiver fed once and the controller executing
 # frames, both without an oracle -- what the targets' speeds compare with.
@@ -17,10 +26,16 @@
 # when missing: libFuzzer without sanitizers (-fsanitize=fuzzer through
 # SABUS_FUZZ_ENGINE), the engine's own speed. BUILD=build-fuzz measures the
 # ASan+UBSan flavour the tests run (tools/build.sh fuzz).
+# The corpora and logs go to a directory on tmpfs (/dev/shm, or
+# FUZZ_PERF_TMP): libFuzzer writes a file for every new or reduced input, and
+# on a shared disk that cost varied from run to run by more than the oracles
+# (ext4 inode allocation under other jobs' writes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
 exec_seconds=${EXEC_SECONDS:-20}
+empty_seconds=${EMPTY_SECONDS:-$seconds}
+poll=${POLL:-2}
 build=${BUILD:-build-fuzz-perf}
 if [[ ! -f $build/build.ninja ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
@@ -29,7 +44,11 @@ if [[ ! -f $build/build.ninja ]]; then
 fi
 cmake --build "$build" --target all_fuzzers fuzz_handler_report fuzz_seeds fuzz_floors >/dev/null
 fuzz=$build/fuzz
-work=$(mktemp -d "${TMPDIR:-/tmp}/sabus-fuzz-perf.XXXXXX")
+tmp=${FUZZ_PERF_TMP:-}
+if [[ -z $tmp ]]; then
+  if [[ -d /dev/shm && -w /dev/shm ]]; then tmp=/dev/shm; else tmp=${TMPDIR:-/tmp}; fi
+fi
+work=$(mktemp -d "$tmp/sabus-fuzz-perf.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
 # libFuzzer flags of a target's .options file (the dictionary by path).
@@ -42,35 +61,108 @@ flags_of() {
   done <"$fuzz/$t.options"
 }
 
-# fuzz_on_core LABEL BINARY SECONDS SEEDS FLAGS...: runs BINARY for SECONDS on
-# core 0 from a copy of SEEDS (left in $work/LABEL) with FLAGS; its output
-# goes to $work/LABEL.log, its user and system CPU time to $work/LABEL.time.
+# fuzz_on_core LABEL BINARY SECONDS SEEDS FLAGS...: starts BINARY in the
+# background for SECONDS on core 0 from a copy of SEEDS (none: an empty
+# corpus; left in $work/LABEL) with FLAGS; its output goes to $work/LABEL.log,
+# its user and system CPU time to $work/LABEL.time. Sets `timer` to the pid
+# of /usr/bin/time, whose child is the fuzzer.
 fuzz_on_core() {
   local label=$1 binary=$2 limit=$3 seeds=$4
   shift 4
   mkdir -p "$work/$label"
-  cp "$seeds"/* "$work/$label/"
+  [[ -z $seeds ]] || cp "$seeds"/* "$work/$label/"
   /usr/bin/time -f "%U %S" -o "$work/$label.time" taskset -c 0 "$binary" "$@" -max_total_time="$limit" \
-    -print_final_stats=1 -artifact_prefix="$work/" "$work/$label" >"$work/$label.log" 2>&1 || {
-    echo "$label failed:"; tail -30 "$work/$label.log"; exit 1; }
+    -print_final_stats=1 -artifact_prefix="$work/" "$work/$label" >"$work/$label.log" 2>&1 &
+  timer=$!
+}
+
+# finished LABEL STATUS [STOPPED]: fails the script on a fuzzer that failed
+# (a finding, a crash), unless it was stopped here (libFuzzer exits 72 on SIGINT).
+finished() {
+  local label=$1 status=$2 stopped=${3:-}
+  [[ $status == 0 || ($stopped == yes && $status == 72) ]] && return
+  echo "$label failed:"; tail -30 "$work/$label.log"; exit 1
 }
 
 cpu_seconds() { awk '{printf "%.1f", $1 + $2}' "$work/$1.time"; }
 
 # row LABEL BINARY SEEDS FLAGS...: one row of the table, EXEC_SECONDS of
-# BINARY: libFuzzer's exec/s and executions per CPU-second.
+# BINARY: libFuzzer's exec/s and executions per CPU-second (kept in per_cpu).
+declare -A per_cpu
 row() {
-  local label=$1 binary=$2 seeds=$3 rate runs cpu
+  local label=$1 binary=$2 seeds=$3 rate runs cpu status=0
   shift 3
   fuzz_on_core "$label" "$binary" "$exec_seconds" "$seeds" "$@"
+  wait "$timer" || status=$?
+  finished "$label" "$status"
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$label.log")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$label.log")
   cpu=$(cpu_seconds "$label")
-  printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" \
-    "$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')"
+  per_cpu[$label]=$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')
+  printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" "${per_cpu[$label]}"
 }
 
-echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+# The report tool on the other core, so that it does not slow the fuzzer;
+# every input cut to the target's max_len, as libFuzzer runs it.
+report() {
+  local max_len
+  max_len=$(flags_of fuzz_controller | sed -n 's/^-max_len=//p')
+  if (($(nproc) > 1)); then
+    taskset -c 1 "$fuzz/fuzz_handler_report" --max-len "$max_len" "$@"
+  else
+    "$fuzz/fuzz_handler_report" --max-len "$max_len" "$@"
+  fi
+}
+
+# until_complete LABEL LIMIT SEEDS STOP: runs fuzz_controller as
+# fuzz_on_core does and reads its corpus every $poll seconds until nothing is
+# missing (stopping the fuzzer then when STOP is "stop"). Sets `reached` to
+# "CPU WALL" seconds when it was first complete (empty: never) and `missing`
+# to what the corpus lacked last.
+until_complete() {
+  local label=$1 limit=$2 seeds=$3 stop=$4 start fuzzer status=0 stopped=no tck
+  local -a flags
+  mapfile -t flags < <(flags_of fuzz_controller)
+  tck=$(getconf CLK_TCK)
+  start=$(date +%s.%N)
+  fuzz_on_core "$label" "$fuzz/fuzz_controller" "$limit" "$seeds" "${flags[@]}"
+  reached="" missing=""
+  while kill -0 "$timer" 2>/dev/null; do
+    sleep "$poll"
+    [[ -z $reached ]] || continue
+    fuzzer=$(pgrep -P "$timer" | head -1) || true
+    if missing=$(report --missing "$work/$label"); then
+      # After the report: the corpus it read was there by now.
+      [[ -r /proc/$fuzzer/stat ]] || break
+      reached="$(awk -v t="$tck" '{printf "%.1f", ($14 + $15) / t}' "/proc/$fuzzer/stat") $(awk -v s="$start" -v n="$(date +%s.%N)" 'BEGIN{printf "%.1f", n - s}')"
+      if [[ $stop == stop ]]; then
+        kill -INT "$fuzzer" 2>/dev/null || true
+        stopped=yes
+      fi
+    fi
+  done
+  wait "$timer" || status=$?
+  finished "$label" "$status" "$stopped"
+  # Complete only at the end (or between the last poll and the end): the
+  # fuzzer's whole CPU time is the bound.
+  if [[ -z $reached ]] && missing=$(report --missing "$work/$label"); then
+    reached="$(cpu_seconds "$label") $(awk -v s="$start" -v n="$(date +%s.%N)" 'BEGIN{printf "%.1f", n - s}')"
+  fi
+  return 0
+}
+
+# What until_complete found, for the summary line.
+time_to_all() {
+  local from=$1 limit=$2
+  if [[ -n $reached ]]; then
+    read -r cpu wall <<<"$reached"
+    echo "from $from $cpu s (wall $wall s)"
+  else
+    echo "from $from not reached in $limit s, ${missing}"
+  fi
+}
+
+echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg); corpora in $tmp"
 if ((exec_seconds > 0)); then
   echo
   printf "%-22s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
@@ -86,15 +178,30 @@ if ((exec_seconds > 0)); then
     mapfile -t flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
     row "$f" "$fuzz/$f" "$fuzz/seeds/$t" "${flags[@]}"
   done
+  for goal in receiver:0.7 controller:0.6; do
+    t=fuzz_${goal%%:*} f=fuzz_floor_${goal%%:*}
+    awk -v t="$t" -v a="${per_cpu[$t]}" -v b="${per_cpu[$f]}" -v g="${goal#*:}" \
+      'BEGIN{printf "%s: %.2f of its floor (goal %s)\n", t, (b > 0) ? a / b : 0, g}'
+  done
 fi
 
 ((seconds > 0)) || exit 0
 echo
 echo "fuzz_controller for $seconds s on one core, from its seed corpus:"
-mapfile -t flags < <(flags_of fuzz_controller)
-fuzz_on_core long "$fuzz/fuzz_controller" "$seconds" "$fuzz/seeds/fuzz_controller" "${flags[@]}"
+until_complete long "$seconds" "$fuzz/seeds/fuzz_controller" keep
+from_seeds=$(time_to_all seeds "$seconds")
 grep -E "^#[0-9]+[[:space:]]" "$work/long.log" | tail -1 | sed "s/^/  /" || true
 grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)" "$work/long.log" | sed 's/^/  /'
 echo "  CPU seconds: $(cpu_seconds long)  (cov: = edges covered, ft: = features)"
 echo
-"$fuzz/fuzz_handler_report" "$work/long"
+report_status=0
+report "$work/long" || report_status=$?  # 1: replies different from the Bus's
+from_empty="from empty not measured (EMPTY_SECONDS=0)"
+if ((empty_seconds > 0)); then
+  until_complete empty "$empty_seconds" "" stop
+  from_empty=$(time_to_all empty "$empty_seconds")
+fi
+echo
+echo "(every command ACKed and every NAK rule fired; CPU seconds of the fuzzer's core, its corpus read every $poll s)"
+echo "time to all handlers and NAK rules: $from_seeds, $from_empty"
+exit "$report_status"

@@ -47,6 +47,12 @@ Bus::Bus(std::vector<Profile> profiles, const Clock& clock, FaultSet faults, Par
   for (const auto& p : profiles) units_.push_back(std::make_unique<Unit>(p, clock, faults, parity));
 }
 
+Bus::Bus(const Bus& other)
+    : LineDevice(other), parity_(other.parity_), transcript_(other.transcript_), log_(other.log_), nak_rules_(other.nak_rules_),
+      on_change_(other.on_change_) {
+  for (const auto& u : other.units_) units_.push_back(std::make_unique<Unit>(*u));
+}
+
 Bus::~Bus() = default;
 
 Controller& Bus::controller(std::size_t i) { return units_[i]->controller; }
@@ -70,8 +76,10 @@ void Bus::receive(ByteView wire, Bytes& out) {
     }
     u->discards.clear();
     for (const Frame& f : u->frames) {
-      const Bytes in = encode_frame(f);
-      if (transcript_) log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
+      if (transcript_) {
+        const Bytes in = encode_frame(f);
+        log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
+      }
       Outcome o = u->controller.execute(f);
       if (o.nak && nak_rules_.size() < 64) nak_rules_.emplace_back(name(*o.nak));
       if (o.reply) {

@@ -626,6 +626,22 @@ TEST(Bus, BadLrcParityAndForeignAddressAreIgnored) {
   for (auto b : out) EXPECT_TRUE(has_even_parity(b));
 }
 
+TEST(Bus, ACopyCarriesOnFromTheSameStateAndIsIndependent) {
+  VirtualClock clock;
+  Bus bus({test_profile()}, clock);
+  const Bytes poll = wire(StatusPoll{}, '2');
+  Bytes out;
+  bus.receive(ByteView(poll).first(3), out);  // half a frame
+  Bus copy(bus);
+  copy.receive(ByteView(poll).subspan(3), out);
+  EXPECT_EQ(out.size(), 52u) << "the copy's receiver has the first half too";
+  copy.controller(0).mutable_state().store.clear();
+  out.clear();
+  bus.receive(ByteView(poll).subspan(3), out);
+  EXPECT_EQ(out.size(), 52u) << "the original still waits for its second half";
+  EXPECT_EQ(bus.controller(0).state().store.size(), 2u);
+}
+
 // ---- faults ------------------------------------------------------------------------------------
 
 TEST(Faults, EveryFaultHasAUniqueName) {

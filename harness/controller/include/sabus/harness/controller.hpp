@@ -147,6 +147,10 @@ class Controller {
 class Bus : public LineDevice {
  public:
   Bus(std::vector<Profile> profiles, const Clock& clock, FaultSet faults = {}, Parity parity = Parity::kEvenBit7);
+  // A copy of every controller and receiver as they are (on the same clock):
+  // cheaper than building a bus from its profiles again.
+  Bus(const Bus& other);
+  Bus& operator=(const Bus&) = delete;
   ~Bus() override;
   void receive(ByteView wire, Bytes& out) override;
   void tick() override;
