@@ -1,10 +1,35 @@
 // Console lines of `sabus run`: the progress line (on a terminal), one line
-// per failure, and the closing summary.
+// per vector as it finishes, and the closing summary with the skips by cause.
 #include <fmt/format.h>
+
+#include <array>
+#include <utility>
 
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::reports {
+
+namespace {
+
+// The skip causes (harness SkipCause, the run JSON's skip_cause) in the
+// order the summary names them, each with what it takes to run those vectors.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 5> kSkipCauses{{
+    {"level", "above --level"},
+    {"profile", "need another profile"},
+    {"motion", "need --allow-motion"},
+    {"destructive", "need --allow-destructive"},
+    {"parity", "need an 8N1 port"},
+}};
+
+// ANSI SGR colours of the verdict words.
+std::string_view colour_of(std::string_view word) {
+  if (word == "PASS") return "\033[32m";       // green
+  if (word == "FAIL") return "\033[1;31m";     // bold red
+  if (word == "KNOWN") return "\033[35m";      // magenta
+  return "\033[33m";                           // SKIP: yellow
+}
+
+}  // namespace
 
 std::string clock_text(std::chrono::milliseconds d) {
   const long long s = d.count() / 1000;
@@ -30,10 +55,50 @@ std::string failure_line(const VectorRecord& v) {
   return fmt::format("FAIL {} §{} {}: {}", v.id, v.paragraph, v.level, v.difference());
 }
 
+std::string_view verdict_word(const VectorRecord& v) {
+  if (v.is_failure()) return "FAIL";
+  if (v.outcome == "known failure") return "KNOWN";
+  if (v.outcome == "skip") return "SKIP";
+  return "PASS";
+}
+
+std::string verdict_line(const VectorRecord& v, bool colour) {
+  const std::string_view word = verdict_word(v);
+  std::string line = colour ? fmt::format("{}{}\033[0m", colour_of(word), word) : std::string(word);
+  line += fmt::format(" {} §{} {}", v.id, v.paragraph, v.level);
+  if (word == "FAIL") line += ": " + v.difference();
+  else if (word == "KNOWN") line += ": " + v.difference() + " (known issue: " + v.known_issue + ")";
+  else if (word == "SKIP") line += ": " + v.skip_reason;
+  return line;
+}
+
+std::string skip_causes_text(const Summary& s) {
+  std::string out;
+  std::size_t named = 0;
+  for (const auto& [cause, text] : kSkipCauses)
+    if (const auto it = s.skipped_by_cause.find(std::string(cause)); it != s.skipped_by_cause.end() && it->second > 0) {
+      out += fmt::format("{}{} {}", out.empty() ? "" : ", ", it->second, text);
+      named += it->second;
+    }
+  // A document written before causes were recorded names none.
+  if (named == 0) return "";
+  if (named < s.skipped) out += fmt::format(", {} for other reasons", s.skipped - named);
+  return out;
+}
+
 std::string summary_line(const Summary& s) {
   std::string line = fmt::format("{} passed, {} failed, {} skipped", s.passed, s.failed + s.unexpected, s.skipped);
+  if (const std::string causes = skip_causes_text(s); !causes.empty()) line += " (" + causes + ")";
   if (s.known) line += fmt::format(", {} known failures", s.known);
   return line;
+}
+
+std::string nothing_ran_reason(const Summary& s) {
+  if (s.skipped == 0) return "no vector was selected";
+  const std::string causes = skip_causes_text(s);
+  const std::string why = causes.empty() ? "" : " (" + causes + ")";
+  if (s.skipped == 1) return "the one vector selected was skipped" + why;
+  return fmt::format("all {} vectors selected were skipped{}", s.skipped, why);
 }
 
 }  // namespace sabus::reports

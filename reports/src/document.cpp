@@ -26,7 +26,10 @@ Summary RunDocument::counts() const {
   for (const auto& v : vectors) {
     if (v.outcome == "pass") ++s.passed;
     else if (v.outcome == "fail") ++s.failed;
-    else if (v.outcome == "skip") ++s.skipped;
+    else if (v.outcome == "skip") {
+      ++s.skipped;
+      ++s.skipped_by_cause[v.skip_cause];
+    }
     else if (v.outcome == "known failure") ++s.known;
     else if (v.outcome == "unexpected pass") ++s.unexpected;
   }
@@ -37,7 +40,8 @@ Summary RunDocument::counts() const {
 std::string RunDocument::verdict() const {
   if (status == "aborted") return "ABORTED";
   if (status != "complete") return "INCOMPLETE";
-  return summary && summary->exit_code == 0 ? "PASS" : "FAIL";
+  if (!summary) return "FAIL";
+  return summary->exit_code == 0 ? "PASS" : summary->exit_code == harness::kNothingRanExitCode ? "NOTHING RAN" : "FAIL";
 }
 
 namespace {
@@ -101,6 +105,7 @@ VectorRecord vector_record(const harness::VectorResult& r) {
   v.outcome = std::string(harness::to_string(r.verdict));
   v.failures = r.failures;
   v.skip_reason = r.skip_reason;
+  v.skip_cause = std::string(harness::to_string(r.skip_cause));
   v.known_issue = r.known_issue_reason;
   v.quote = r.quote;
   v.comment = r.comment;
@@ -124,7 +129,8 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
   doc.status = run.aborted ? "aborted" : "complete";
   doc.abort_reason = run.abort_reason;
   doc.finished_at = std::move(finished_at);
-  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code()};
+  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code(), {}};
+  for (const auto& [cause, n] : run.skipped_by_cause) doc.summary->skipped_by_cause[std::string(harness::to_string(cause))] = n;
   doc.liveness.clear();
   for (const auto& l : run.liveness) doc.liveness.push_back({l.when, l.alive, l.detail});
   doc.restore = run.restore_notes;
@@ -193,6 +199,7 @@ ordered_json to_json(const VectorRecord& v) {
                     {"outcome", v.outcome},
                     {"failures", v.failures},
                     {"skip_reason", v.skip_reason},
+                    {"skip_cause", v.skip_cause},
                     {"known_issue", v.known_issue},
                     {"quote", v.quote},
                     {"comment", v.comment},
@@ -227,7 +234,8 @@ ordered_json header_json(const RunDocument& d) {
   if (d.summary)
     j["summary"] = {{"passed", d.summary->passed},   {"failed", d.summary->failed},
                     {"skipped", d.summary->skipped}, {"known", d.summary->known},
-                    {"unexpected", d.summary->unexpected}, {"exit_code", d.summary->exit_code}};
+                    {"unexpected", d.summary->unexpected}, {"exit_code", d.summary->exit_code},
+                    {"skipped_by_cause", d.summary->skipped_by_cause}};
   ordered_json live = ordered_json::array();
   for (const auto& l : d.liveness) live.push_back({{"when", l.when}, {"alive", l.alive}, {"detail", l.detail}});
   j["liveness"] = live;
@@ -256,6 +264,7 @@ VectorRecord vector_from_json(const json& v) {
   r.outcome = v.at("outcome").get<std::string>();
   r.failures = get<std::vector<std::string>>(v, "failures", {});
   r.skip_reason = get<std::string>(v, "skip_reason", "");
+  r.skip_cause = get<std::string>(v, "skip_cause", "");
   r.known_issue = get<std::string>(v, "known_issue", "");
   r.quote = get<std::string>(v, "quote", "");
   r.comment = get<std::string>(v, "comment", "");
@@ -325,7 +334,8 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
       where = "summary";
       d.summary = Summary{get<std::size_t>(*it, "passed", 0), get<std::size_t>(*it, "failed", 0),
                           get<std::size_t>(*it, "skipped", 0), get<std::size_t>(*it, "known", 0),
-                          get<std::size_t>(*it, "unexpected", 0), get<int>(*it, "exit_code", 1)};
+                          get<std::size_t>(*it, "unexpected", 0), get<int>(*it, "exit_code", 1),
+                          get<std::map<std::string, std::size_t>>(*it, "skipped_by_cause", {})};
     }
     for (const auto& l : get<json>(j, "liveness", json::array())) {
       where = "liveness";

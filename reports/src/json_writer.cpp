@@ -1,12 +1,17 @@
 // The run JSON (reports/SCHEMA.md), written token by token: from a document
 // in memory, or from a run's journal line by line.
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <ext/stdio_filebuf.h>  // an ostream on the descriptor mkstemp opened (libstdc++, used with g++ and clang here)
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -111,40 +116,79 @@ bool write_run(std::ostream& out, const ordered_json& header, WriteVectors&& vec
   return ok;
 }
 
-// Writes PATH.tmp with `fill`, fsyncs it and renames it over PATH.
+// What a path names, for the refusals of output_path_problem: "a directory",
+// "a character device", ...
+std::string kind_of(const struct stat& st) {
+  if (S_ISDIR(st.st_mode)) return "a directory";
+  if (S_ISCHR(st.st_mode)) return "a character device";
+  if (S_ISBLK(st.st_mode)) return "a block device";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(st.st_mode)) return "a socket";
+  return "not a regular file";
+}
+
+bool same_file(const struct stat& st, int fd) {
+  struct stat other {};
+  return ::fstat(fd, &other) == 0 && other.st_dev == st.st_dev && other.st_ino == st.st_ino;
+}
+
+// Where a report at `path` is written: the path itself, or for a symbolic
+// link to a regular file the file it names (the link stays a link).
+std::string write_target(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return path;
+  std::error_code ec;
+  const auto resolved = std::filesystem::canonical(path, ec);
+  return ec ? path : resolved.string();
+}
+
+// Writes `fill` into a new file beside PATH (created exclusively, so no
+// link or device planted at a guessed name is written through), fsyncs it
+// and renames it over PATH, which must be a regular file or not exist: the
+// rename never replaces a link, a device, a pipe or a directory.
 template <class Fill>
 bool replace_file(const std::string& path, std::string& error, Fill&& fill) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc | std::ios::binary);
-    if (!out) {
-      error = tmp + ": cannot write: " + std::strerror(errno);
-      return false;
-    }
-    if (!fill(out, error)) {
-      out.close();
-      std::filesystem::remove(tmp);
-      return false;
-    }
-    out.close();
-    if (!out) {
-      error = tmp + ": write failed";
-      return false;
-    }
+  if (path == kStandardOutput) {
+    const bool ok = fill(std::cout, error);
+    std::cout.flush();
+    if (ok && !std::cout) error = "standard output: write failed";
+    return ok && std::cout;
   }
-  // The data reaches the disk before the name does: a power cut leaves the
-  // old file or the new one, never an empty one. (Linux syncs a file through
-  // any descriptor, a read-only one too.)
-  if (const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC); fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    error = path + ": cannot replace: " + ec.message();
+  if (std::string why = output_path_problem(path); !why.empty()) {
+    error = why;
     return false;
   }
+  const std::string target = write_target(path);
+  std::string tmp = target + ".tmp.XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) {
+    error = target + ": cannot write a temporary file beside it: " + std::strerror(errno);
+    return false;
+  }
+  // mkstemp makes the file 0600; a report gets the mode any new file would.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  (void)::fchmod(fd, 0666 & ~mask);
+  auto fail = [&](std::string why) {
+    std::filesystem::remove(tmp);
+    error = std::move(why);
+    return false;
+  };
+  {
+    __gnu_cxx::stdio_filebuf<char> buf(fd, std::ios::out | std::ios::binary);  // closes fd
+    std::ostream out(&buf);
+    if (!fill(out, error)) return fail(error);
+    out.flush();
+    if (!out) return fail(tmp + ": write failed");
+    // The data reaches the disk before the name does: a power cut leaves the
+    // old file or the new one, never an empty one.
+    if (::fsync(fd) != 0) return fail(tmp + ": fsync failed: " + std::strerror(errno));
+  }
+  // Checked again just before the rename: the run may have lasted an hour.
+  struct stat st {};
+  if (::lstat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    return fail(target + " is " + kind_of(st) + " now; not replaced (the report is lost)");
+  if (::rename(tmp.c_str(), target.c_str()) != 0) return fail(target + ": cannot replace: " + std::strerror(errno));
   return true;
 }
 
@@ -190,7 +234,62 @@ bool write_run_json(const std::string& path, const RunDocument& header, const st
   });
 }
 
+std::string output_path_problem(const std::string& path) {
+  if (path.empty()) return "no file name given";
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) {
+    if (errno != ENOENT) return path + ": " + std::strerror(errno);
+    // A new file: its folder must be there.
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    struct stat dir {};
+    if (!parent.empty() && (::stat(parent.c_str(), &dir) != 0 || !S_ISDIR(dir.st_mode)))
+      return path + ": cannot write: no such directory " + parent.string();
+    return "";
+  }
+  std::string via;
+  if (S_ISLNK(st.st_mode)) {
+    std::error_code ec;
+    const auto target = std::filesystem::read_symlink(path, ec);
+    via = " through the symbolic link to " + (ec ? std::string("?") : target.string());
+    if (::stat(path.c_str(), &st) != 0)
+      return path + " is a symbolic link to " + (ec ? std::string("?") : target.string()) +
+             ", which does not exist; not written through it";
+  }
+  if (!S_ISREG(st.st_mode))
+    return path + " is " + kind_of(st) + via + ": reports are written to regular files only (- for standard output)";
+  // `--json /dev/stdout > out.json`: the rename would replace the file the
+  // shell opened, and what else goes to standard output would be lost.
+  if (same_file(st, STDOUT_FILENO) || same_file(st, STDERR_FILENO))
+    return path + " is this process's own standard output or error" + via + ": give - for standard output";
+  return "";
+}
+
+std::string report_paths_problem(const std::vector<std::pair<std::string, std::string>>& reports) {
+  std::map<std::string, std::string> seen;  // a file (or "-") -> the option that named it first
+  for (const auto& [option, path] : reports) {
+    if (path.empty()) continue;
+    std::error_code ec;
+    const std::string key = path == kStandardOutput ? path : std::filesystem::weakly_canonical(path, ec).string();
+    if (const auto it = seen.find(key); it != seen.end())
+      return path == kStandardOutput ? it->second + " - and " + option + " -: only one report can go to standard output"
+                                     : it->second + " and " + option + " both name " + path;
+    seen[key] = option;
+    if (path == kStandardOutput) continue;
+    if (const std::string why = output_path_problem(path); !why.empty()) return option + " " + why;
+  }
+  return "";
+}
+
 bool write_file(const std::string& path, const std::string& text, std::string& error) {
+  if (path == kStandardOutput) {
+    std::cout << text << std::flush;
+    if (!std::cout) error = "standard output: write failed";
+    return static_cast<bool>(std::cout);
+  }
+  if (std::string why = output_path_problem(path); !why.empty()) {
+    error = why;
+    return false;
+  }
   std::ofstream out(path, std::ios::trunc | std::ios::binary);
   if (!out) {
     error = path + ": cannot write: " + std::strerror(errno);

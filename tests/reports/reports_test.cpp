@@ -71,17 +71,59 @@ TEST(Console, FailureAndSummaryLines) {
   EXPECT_EQ(summary_line({5, 0, 3, 2, 0, 0}), "5 passed, 0 failed, 3 skipped, 2 known failures");
 }
 
+TEST(Console, OneVerdictLineAVectorWithTheReasonOrTheFailure) {
+  EXPECT_EQ(verdict_line(vector("a-pass", "pass")), "PASS a-pass §3.2 must");
+  EXPECT_EQ(verdict_line(vector("b-fail", "fail")), failure_line(vector("b-fail", "fail")));
+  EXPECT_EQ(verdict_line(vector("c-skip", "skip", "3.10")), "SKIP c-skip §3.10 must: moves the antenna: needs --allow-motion");
+  VectorRecord known = vector("d-known", "known failure");
+  known.failures = {"length: expected 52 bytes, got 51"};
+  known.known_issue = "vendor ticket 1234";
+  EXPECT_EQ(verdict_line(known), "KNOWN d-known §3.2 must: length: expected 52 bytes, got 51 (known issue: vendor ticket 1234)");
+  VectorRecord unexpected = vector("e-xpass", "unexpected pass");
+  unexpected.known_issue = "vendor ticket 1234";
+  EXPECT_EQ(verdict_line(unexpected), "FAIL e-xpass §3.2 must: passed but is listed as a known issue (vendor ticket 1234)");
+  EXPECT_EQ(verdict_line(vector("b-fail", "fail"), true).rfind("\033[1;31mFAIL\033[0m b-fail §3.2 must: ", 0), 0u);
+  EXPECT_EQ(verdict_line(vector("a-pass", "pass"), true), "\033[32mPASS\033[0m a-pass §3.2 must");
+}
+
+TEST(Console, SkipsByCauseInTheSummaryAndWhyNothingRan) {
+  Summary s{173, 0, 279, 0, 0, 0};
+  s.skipped_by_cause = {{"motion", 113}, {"destructive", 68}, {"profile", 98}};
+  EXPECT_EQ(summary_line(s),
+            "173 passed, 0 failed, 279 skipped (98 need another profile, 113 need --allow-motion, 68 need --allow-destructive)");
+  Summary level{0, 0, 4, 1, 0, 0};
+  level.skipped_by_cause = {{"level", 3}, {"parity", 1}};
+  EXPECT_EQ(summary_line(level), "0 passed, 0 failed, 4 skipped (3 above --level, 1 need an 8N1 port), 1 known failures");
+  // A document from before causes were recorded: no causes, or some unnamed.
+  EXPECT_EQ(summary_line({5, 0, 3, 0, 0, 0}), "5 passed, 0 failed, 3 skipped");
+  Summary partly{5, 0, 3, 0, 0, 0};
+  partly.skipped_by_cause = {{"motion", 1}, {"", 2}};
+  EXPECT_EQ(summary_line(partly), "5 passed, 0 failed, 3 skipped (1 need --allow-motion, 2 for other reasons)");
+
+  Summary all_skipped{0, 0, 34, 0, 0, harness::kNothingRanExitCode};
+  all_skipped.skipped_by_cause = {{"motion", 30}, {"profile", 4}};
+  EXPECT_EQ(nothing_ran_reason(all_skipped), "all 34 vectors selected were skipped (4 need another profile, 30 need --allow-motion)");
+  Summary one{0, 0, 1, 0, 0, harness::kNothingRanExitCode};
+  one.skipped_by_cause = {{"destructive", 1}};
+  EXPECT_EQ(nothing_ran_reason(one), "the one vector selected was skipped (1 need --allow-destructive)");
+  EXPECT_EQ(nothing_ran_reason({0, 0, 0, 0, 0, harness::kNothingRanExitCode}), "no vector was selected");
+}
+
 TEST(Json, RoundTripsEveryField) {
   RunDocument d = sample();
   d.vectors[0].quote = "the reply is 52 bytes";
   d.vectors[0].transcript[0].fields = {{0, 0, "start", "0x02", "STX", true}};
   d.vectors[0].transcript[0].form = "2A";
+  d.vectors[2].skip_cause = "motion";
+  d.summary->skipped_by_cause = {{"motion", 1}};
   std::string error;
   const auto back = from_json(nlohmann::json::parse(json_text(d)), error);
   ASSERT_TRUE(back) << error;
   EXPECT_EQ(nlohmann::json::parse(json_text(*back)), nlohmann::json::parse(json_text(d)));
   EXPECT_EQ(back->vectors[0].transcript[0].fields[0].meaning, "STX");
   EXPECT_EQ(back->identity.firmware_version, "1.59");
+  EXPECT_EQ(back->vectors[2].skip_cause, "motion");
+  EXPECT_EQ(back->summary->skipped_by_cause, (std::map<std::string, std::size_t>{{"motion", 1}}));
 }
 
 TEST(Json, ReadsVersion1AndRejectsOtherDocuments) {
@@ -282,6 +324,18 @@ TEST(Markdown, ShortSummaryWithFailures) {
   EXPECT_NE(m.find("controller 3K, firmware 1.59"), std::string::npos);
   EXPECT_NE(m.find("sabus 9.8.7-test"), std::string::npos) << "the suite version";
   EXPECT_NE(m.find("- `b-fail` §3.2 must: a \\| b"), std::string::npos) << m;
+}
+
+TEST(Markdown, ARunThatCheckedNothingSaysSoAndWhy) {
+  RunDocument d = sample();
+  d.vectors = {vector("c-skip", "skip"), vector("d-skip", "skip")};
+  d.vectors[0].skip_cause = d.vectors[1].skip_cause = "motion";
+  d.summary = Summary{0, 0, 2, 0, 0, harness::kNothingRanExitCode};
+  const std::string m = markdown_summary(d);
+  EXPECT_NE(m.find("### SAbus conformance: **NOTHING RAN**"), std::string::npos) << m;
+  EXPECT_NE(m.find("0 passed, 0 failed, 2 skipped (2 need --allow-motion)"), std::string::npos) << m;
+  EXPECT_NE(m.find("**Nothing ran**: all 2 vectors selected were skipped (2 need --allow-motion)."), std::string::npos) << m;
+  EXPECT_EQ(d.verdict(), "NOTHING RAN");
 }
 
 TEST(Tables, ParagraphsInSpecOrder) {

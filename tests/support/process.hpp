@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -118,5 +119,22 @@ class Process {
   pid_t pid_ = -1;
   int out_ = -1;
 };
+
+// A shell command line (popen): its standard output and exit status (-1 when
+// it did not exit). Redirections in the line capture standard error too.
+struct ShellResult {
+  int status = -1;
+  std::string out;
+};
+inline ShellResult shell(const std::string& command) {
+  ShellResult r;
+  FILE* p = popen(command.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
 
 }  // namespace sabus::test

@@ -21,22 +21,8 @@ using test::Process;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-struct Output {
-  int status = -1;
-  std::string out;
-};
-
-// Runs a shell command line; its stdout and exit status.
-Output shell(const std::string& command) {
-  Output o;
-  FILE* p = popen(command.c_str(), "r");
-  if (!p) return o;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) o.out.append(buf, n);
-  const int status = pclose(p);
-  o.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
+using Output = test::ShellResult;
+using test::shell;
 
 using test::slurp;
 
@@ -98,12 +84,24 @@ TEST_F(ReportsCli, PlainConsoleLinesWhenNotATerminal) {
   EXPECT_EQ(run.out.find('\r'), std::string::npos);
   EXPECT_EQ(run.out.find('\033'), std::string::npos);
   EXPECT_NE(run.out.find("\nFAIL 3.2-status-track-byte §3.2 must: "), std::string::npos) << run.out;
-  // The closing line counts what the JSON of the same run counts.
-  const auto summary = nlohmann::json::parse(slurp(path("plain.json")))["summary"];
+  // One verdict line a vector, in the JSON's order.
+  const auto doc = nlohmann::json::parse(slurp(path("plain.json")));
+  std::size_t at = 0;
+  for (const auto& v : doc["vectors"]) {
+    const std::string word = v["outcome"] == "pass" ? "PASS " : v["outcome"] == "skip" ? "SKIP " : "FAIL ";
+    at = run.out.find("\n" + word + v["id"].get<std::string>() + " ", at);
+    ASSERT_NE(at, std::string::npos) << v["id"];
+  }
+  // The closing line counts what the JSON of the same run counts, the skips by cause.
+  const auto summary = doc["summary"];
   ASSERT_GT(summary["failed"].get<int>(), 0);
+  const auto causes = summary["skipped_by_cause"];
   const std::string last = run.out.substr(run.out.rfind('\n', run.out.size() - 2) + 1);
   EXPECT_EQ(last, std::to_string(summary["passed"].get<int>()) + " passed, " + std::to_string(summary["failed"].get<int>()) +
-                      " failed, " + std::to_string(summary["skipped"].get<int>()) + " skipped\n");
+                      " failed, " + std::to_string(summary["skipped"].get<int>()) + " skipped (" +
+                      std::to_string(causes["profile"].get<int>()) + " need another profile, " +
+                      std::to_string(causes["motion"].get<int>()) + " need --allow-motion, " +
+                      std::to_string(causes["destructive"].get<int>()) + " need --allow-destructive)\n");
 }
 
 TEST_F(ReportsCli, DiffNamesAnInjectedFaultAsARegression) {

@@ -102,5 +102,157 @@ TEST(Run, UnreachableDeviceExits3AndUsageExits2) {
   EXPECT_EQ(Process({SABUS_BIN, "run", "--tcp", "127.0.0.1:70000"}).wait_exit(), 2);
 }
 
+// ---- a run that checked nothing is not a success ---------------------------------
+
+using test::shell;
+const std::string kSabus = SABUS_BIN;
+
+// The mistyped filter of the issue: nothing selected, said before the device
+// is touched, exit 5.
+TEST(Run, AFilterThatMatchesNothingExits5AndSaysWhy) {
+  const auto r = shell(kSabus + " run --filter '3.2-stauts*' 2>&1");
+  EXPECT_EQ(r.status, 5) << r.out;
+  EXPECT_NE(r.out.find("--filter '3.2-stauts*' matches no vector id"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("NOTHING RAN: no vector matches --filter '3.2-stauts*' (452 vectors loaded;"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("0 passed"), std::string::npos) << "no run, no summary line: " << r.out;
+  EXPECT_EQ(shell(kSabus + " run --paragraph 9.9 2>&1").status, 5);
+  EXPECT_EQ(shell(kSabus + " run --filter '3.1-*' --exclude '3.1-*' 2>&1").status, 5);
+}
+
+// §3.4's vectors all move the antenna (or need another profile): without
+// --allow-motion every one is skipped, so nothing ran.
+TEST(Run, EverythingSkippedExits5WithTheSkipsByCause) {
+  const auto r = shell(kSabus + " run --filter '3.4-*' --json " + temp_path("skipped.json") + " 2>&1");
+  EXPECT_EQ(r.status, 5) << r.out;
+  EXPECT_NE(r.out.find("\n0 passed, 0 failed, 34 skipped (4 need another profile, 30 need --allow-motion)\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\nNOTHING RAN: all 34 vectors selected were skipped (4 need another profile, 30 need "
+                       "--allow-motion); a run that checked nothing is not a success (exit 5)\n"),
+            std::string::npos)
+      << r.out;
+  const auto doc = read_json(temp_path("skipped.json"));
+  EXPECT_EQ(doc["summary"]["exit_code"], 5);
+  EXPECT_EQ(doc["summary"]["skipped_by_cause"], nlohmann::json({{"motion", 30}, {"profile", 4}}));
+  EXPECT_EQ(doc["vectors"][0]["skip_cause"], "motion");
+  fs::remove(temp_path("skipped.json"));
+  // With motion allowed the same selection runs, and passes.
+  EXPECT_EQ(shell(kSabus + " run --filter '3.4-*' --allow-motion >/dev/null 2>&1").status, 0);
+  // A vector above --level is skipped for that cause.
+  const auto level = shell(kSabus + " run --filter '3.24-*' --level must -q");
+  EXPECT_EQ(level.status, 5);
+  EXPECT_NE(level.out.find(" skipped (1 above --level, "), std::string::npos) << level.out;
+}
+
+// A plain run skips 279 of 452: the summary line and summary.md say why.
+TEST(Run, TheSummaryLineAndSummaryMdCountTheSkipsByCause) {
+  const std::string md = temp_path("summary.md");
+  const auto r = shell(kSabus + " run -q --md " + md);
+  EXPECT_EQ(r.status, 0) << r.out;
+  const std::string line =
+      "173 passed, 0 failed, 279 skipped (98 need another profile, 113 need --allow-motion, 68 need --allow-destructive)";
+  EXPECT_EQ(r.out, line + "\n");
+  std::ifstream in(md);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("\n" + line + "\n"), std::string::npos) << ss.str();
+  fs::remove(md);
+}
+
+TEST(Run, AnUnknownIdInKnownIssuesIsAnError) {
+  const std::string known = temp_path("known.txt");
+  std::ofstream(known) << "# reasons\n3.2-status-track-byte: vendor ticket 1234\n3.2-status-trak-byte: a typo\n";
+  const auto r = shell(kSabus + " run --filter '3.1-*' --known-issues " + known + " 2>&1");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find(known + ":3: no vector has the id \"3.2-status-trak-byte\""), std::string::npos) << r.out;
+  std::ofstream(known) << "3.2-status-track-byte: vendor ticket 1234\n";
+  EXPECT_EQ(shell(kSabus + " run --filter '3.1-*' --known-issues " + known + " >/dev/null 2>&1").status, 0)
+      << "a known id outside the selection is fine";
+  EXPECT_EQ(shell(kSabus + " run --known-issues /no/such/file 2>&1").status, 2);
+  fs::remove(known);
+}
+
+// Out-of-range values are usage errors naming the option (CLI11 validators).
+TEST(Run, NegativeAndOutOfRangeValuesAreUsageErrors) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run --pace -5", "--pace: Value -5 not in range 0 to 60000"},
+      {"run --pace 60001", "--pace: Value 60001 not in range 0 to 60000"},
+      {"run --repeat -1", "--repeat: Value -1 not in range 0 to 100"},
+      {"run --seed -1", "--seed: Value -1 is not a number 0 or more"},
+      {"run --baud 0", "--baud: Value 0 not in range 300 to 115200"},
+      {"run --level sometimes", "--level: sometimes not in {must,should,informative}"},
+      {"fuzz --pace -1", "--pace: Value -1 not in range 0 to 60000"},
+      {"fuzz --max-frames -1", "--max-frames: Value -1 is not a number 0 or more"},
+      {"fuzz --max-time -0.5", "--max-time: Value -0.5 is not a number 0 or more"},
+      {"fuzz --max-findings 0", "--max-findings: Value 0 not in range 1 to 1000"},
+      {"fuzz --liveness-every -3", "--liveness-every: Value -3 is not a number 0 or more"},
+      {"sim --tcp 127.0.0.1:0 --turnaround -2", "--turnaround: Value -2 not in range"},
+      {"sim --tcp 127.0.0.1:0 --baud 100", "--baud: Value 100 not in range 300 to 115200"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = shell(kSabus + " " + args + " 2>&1");
+    EXPECT_EQ(r.status, 2) << args << ": " << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << ": " << r.out;
+  }
+  EXPECT_EQ(shell(kSabus + " run --filter '3.1-*' --pace 0 --repeat 0 --seed 0 >/dev/null 2>&1").status, 0) << "0 is fine";
+}
+
+// '3.2*' also matches §3.20-§3.25; --paragraph takes §3.2 exactly.
+TEST(Run, ParagraphSelectsOneParagraphAndAGlobOverSeveralIsNoted) {
+  const auto glob = shell(kSabus + " run --filter '3.2*' 2>&1");
+  EXPECT_NE(glob.out.find("--filter '3.2*' matches vectors of 7 paragraphs (§3.2, §3.20, §3.21, §3.22, §3.23, §3.24, "
+                          "§3.25); --paragraph 3.2 selects §3.2 alone"),
+            std::string::npos)
+      << glob.out;
+  const std::string json = temp_path("paragraph.json");
+  const auto exact = shell(kSabus + " run --paragraph 3.2 --json " + json + " 2>&1");
+  EXPECT_EQ(exact.status, 0) << exact.out;
+  EXPECT_EQ(exact.out.find("matches vectors of"), std::string::npos) << exact.out;
+  const auto doc = read_json(json);
+  EXPECT_EQ(doc["planned"], 19);
+  for (const auto& v : doc["vectors"]) EXPECT_EQ(v["paragraph"], "3.2") << v["id"];
+  EXPECT_EQ(doc["options"]["paragraphs"], nlohmann::json::array({"3.2"}));
+  fs::remove(json);
+  // With a glob: both hold (counted here from the plain list).
+  const auto list = shell(kSabus + " vectors list");
+  int agc_of_3_2 = 0;
+  std::istringstream lines(list.out);
+  for (std::string l; std::getline(lines, l);) agc_of_3_2 += l.find("-agc-") != std::string::npos && l.find(" §3.2 ") != std::string::npos;
+  ASSERT_GT(agc_of_3_2, 0);
+  const auto both = shell(kSabus + " run --paragraph §3.2 --filter '*-agc-*' -q --json " + json);
+  EXPECT_EQ(read_json(json)["planned"].get<int>(), agc_of_3_2) << both.out;
+  fs::remove(json);
+}
+
+// Against the in-process controller nothing outlives the run: no backup
+// file, no RESTORE notes.
+TEST(Run, NoBackupOrRestoreAgainstTheInProcessController) {
+  const std::string dir = temp_path("destructive");
+  const auto r = shell(kSabus + " run --paragraph 3.10 --allow-destructive --report-dir " + dir + " 2>&1");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.find("RESTORE"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("backed up"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "backup.json"));
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "run.json"));
+  EXPECT_TRUE(read_json((fs::path(dir) / "run.json").string())["restore"].empty());
+  fs::remove_all(dir);
+}
+
+// On a line the device outlives the run: its stored data is backed up
+// before the first destructive vector and restored after.
+TEST(Run, ARealDeviceIsStillBackedUpAndRestored) {
+  Process sim({SABUS_BIN, "sim", "--tcp", "127.0.0.1:0"});
+  const std::string ready = sim.line(5s);
+  ASSERT_EQ(ready.rfind("READY tcp 127.0.0.1:", 0), 0u) << ready;
+  const std::string dir = temp_path("backup");
+  const auto r = shell(kSabus + " run --tcp 127.0.0.1:" + ready.substr(ready.rfind(':') + 1) +
+                       " --paragraph 3.10 --allow-destructive --pace 0 --report-dir " + dir + " 2>&1");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("stored data backed up to " + dir + "/backup.json"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "backup.json"));
+  EXPECT_EQ(sim.interrupt(), 0);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace sabus::harness

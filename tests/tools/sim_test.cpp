@@ -154,6 +154,63 @@ TEST(Sim, UsageErrorsExit2) {
   fs::remove(bad);
 }
 
+// A second simulator on the link of a running one is refused: the first
+// keeps its link and its clients, and removes the link when it stops.
+TEST(Sim, ASecondSimDoesNotTakeOverALiveLink) {
+  const std::string link = temp_path("live");
+  Process first({SABUS_BIN, "sim", "--pty", "--link", link});
+  ASSERT_EQ(first.line(5s), "READY " + link);
+  const fs::path target = fs::read_symlink(link);
+  auto client = TermiosSerialLine::open(link, 9600);
+
+  const auto second = test::shell(std::string(SABUS_BIN) + " sim --pty --link " + link + " 2>&1");
+  EXPECT_EQ(second.status, 1);
+  EXPECT_NE(second.out.find("pty link " + link + " points to " + target.string() +
+                            ", a pseudo-terminal in use (another sabus sim or proxy serves it); refusing to take it over"),
+            std::string::npos)
+      << second.out;
+  EXPECT_EQ(second.out.find("READY"), std::string::npos) << second.out;
+  ASSERT_TRUE(fs::is_symlink(fs::symlink_status(link))) << "the second one left the link alone on exit";
+  EXPECT_EQ(fs::read_symlink(link), target);
+  EXPECT_EQ(talk(*client, encode_request(DeviceTypeQuery{}, '2')).size(), 1u) << "the first one still serves its client";
+
+  client.reset();
+  EXPECT_EQ(first.interrupt(), 0);
+  EXPECT_FALSE(fs::exists(fs::symlink_status(link))) << "the first one removes its own link";
+}
+
+// Only a link to nothing (left by a simulator that died) is replaced; a
+// link to anything else, and any other file, stays as it is.
+TEST(Sim, ALinkToAFileOrAFileIsLeftAloneAndAStaleLinkReplaced) {
+  const std::string file = temp_path("a-file");
+  std::ofstream(file) << "keep";
+  const std::string to_file = temp_path("to-file");
+  fs::create_symlink(file, to_file);
+  const auto refused = test::shell(std::string(SABUS_BIN) + " sim --pty --link " + to_file + " 2>&1");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.out.find("points to " + file + ", which is not a pseudo-terminal; refusing to replace it"),
+            std::string::npos)
+      << refused.out;
+  EXPECT_EQ(fs::read_symlink(to_file), file);
+  const auto regular = test::shell(std::string(SABUS_BIN) + " sim --pty --link " + file + " 2>&1");
+  EXPECT_EQ(regular.status, 1);
+  EXPECT_NE(regular.out.find("exists and is not a symbolic link; refusing to replace it"), std::string::npos) << regular.out;
+  std::ifstream in(file);
+  std::string text;
+  in >> text;
+  EXPECT_EQ(text, "keep");
+  fs::remove(to_file);
+  fs::remove(file);
+
+  const std::string stale = temp_path("stale");
+  fs::create_symlink("/dev/pts/no-such-pty", stale);
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", stale});
+  ASSERT_EQ(sim.line(5s), "READY " + stale);
+  EXPECT_TRUE(is_pseudo_terminal(stale));
+  EXPECT_EQ(sim.interrupt(), 0);
+  EXPECT_FALSE(fs::exists(fs::symlink_status(stale)));
+}
+
 TEST(Sim, ListFaults) {
   Process p({SABUS_BIN, "sim", "--list-faults"});
   EXPECT_EQ(p.line(5s).rfind("lrc-skips-byte0", 0), 0u);

@@ -2,9 +2,12 @@
 // CLI11 app and returns the process exit code when it runs.
 #pragma once
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <optional>
 #include <string>
@@ -12,10 +15,31 @@
 
 namespace sabus::cli {
 
-// Exit codes shared by every subcommand.
+// Exit codes shared by every subcommand (`sabus run --help` lists them).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitUsage = 2;
+inline constexpr int kExitUnreachable = 3;  // the device could not be reached
+// Nothing was checked: no vector selected, or every selected vector skipped.
+// pytest's "no tests ran" is 5 too, so a CI set up for either reads it the same.
+inline constexpr int kExitNothingRan = 5;
+
+// How much the commands say: -q only failures and the summary, -v also every
+// vector on a terminal and the notes of how a port was opened (options of
+// the whole program, taken before or after the subcommand).
+enum class Verbosity { kQuiet, kNormal, kVerbose };
+inline Verbosity g_verbosity = Verbosity::kNormal;
+inline bool quiet() { return g_verbosity == Verbosity::kQuiet; }
+inline bool verbose() { return g_verbosity == Verbosity::kVerbose; }
+
+// Colour on `fd`: a terminal, and neither NO_COLOR (https://no-color.org:
+// set and not empty) nor TERM=dumb says otherwise.
+inline bool use_colour(int fd) {
+  const char* no_colour = std::getenv("NO_COLOR");
+  const char* term = std::getenv("TERM");
+  return ::isatty(fd) == 1 && (no_colour == nullptr || *no_colour == '\0') &&
+         (term == nullptr || std::string_view(term) != "dumb");
+}
 
 // "HOST:PORT" as --tcp takes it (port 0-65535); nullopt when it is not.
 struct HostPort {
@@ -31,6 +55,22 @@ inline std::optional<HostPort> parse_host_port(std::string_view text) {
   if (digits.empty() || ec != std::errc{} || end != digits.data() + digits.size() || port > 65535) return std::nullopt;
   return HostPort{std::string(text.substr(0, colon)), static_cast<std::uint16_t>(port)};
 }
+
+// CLI11 checks of numeric options, so a bad value is a usage error (exit 2)
+// naming the option: "--pace: Value -5 not in range 0 to 60000".
+// Milliseconds between commands (--pace): at most a minute.
+inline const CLI::Range kPaceRange(0L, 60'000L);
+// A count or a time that cannot be negative (CLI11's NonNegativeNumber
+// would print its upper bound, 1.8e308, in full).
+inline const CLI::Validator kNonNegative(
+    [](std::string& input) -> std::string {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(input, value) || value < 0) return "Value " + input + " is not a number 0 or more";
+      return {};
+    },
+    "NUMBER >= 0", "NONNEGATIVE");
+// A baud rate a serial line here can be set to.
+inline const CLI::Range kBaudRange(300, 115'200);
 
 struct Command {
   CLI::App* app;            // the subcommand

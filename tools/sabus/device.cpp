@@ -16,7 +16,7 @@ void add_device_options(CLI::App* sub, DeviceOptions& o) {
   sub->add_option("--tcp", o.tcp, "A TCP serial server, HOST:PORT");
   sub->add_option("--profile", o.profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");
   sub->add_option("--address", o.address, "Device address (49-111, or the address character)");
-  sub->add_option("--baud", o.baud, "Baud rate (default: the profile's)");
+  sub->add_option("--baud", o.baud, "Baud rate, 300-115200 (default: the profile's)")->check(kBaudRange);
   sub->add_option("--line", o.line, "8N1 (default: parity computed by sabus) or 7E1 (a true 7E1 port)")
       ->check(CLI::IsMember({"8N1", "7E1"}));
   sub->add_option("--serial-backend", o.serial_backend, "auto, libserialport or termios")
@@ -58,13 +58,13 @@ OpenedDevice open_device(const std::string& tool, DeviceOptions o) {
       const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);
       d.transport = make_serial_transport(o.port, d.profile.baud, backend,
                                           o.line == "7E1" ? LineMode::kTrue7E1 : LineMode::kSoftwareParity8N1, &note);
-      if (!note.empty()) std::cerr << "sabus " << tool << ": " << note << "\n";
+      if (!note.empty() && verbose()) std::cerr << "sabus " << tool << ": " << note << "\n";
     } else {
       d.transport = make_tcp_transport(tcp->host, tcp->port, std::chrono::seconds(5));
     }
   } catch (const std::exception& e) {
     std::cerr << "sabus " << tool << ": cannot reach the device: " << e.what() << "\n";
-    d.exit_code = 3;
+    d.exit_code = kExitUnreachable;
   }
   return d;
 }

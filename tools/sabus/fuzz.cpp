@@ -3,18 +3,25 @@
 // sabus::harness::live_fuzz (harness/live_fuzz/include/sabus/harness/live_fuzz.hpp).
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <atomic>
+#include <condition_variable>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include "commands.hpp"
 #include "device.hpp"
+#include "sabus/harness/line.hpp"
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/transports.hpp"
+#include "sabus/reports/writers.hpp"
 
 namespace sabus::cli {
 namespace {
@@ -34,6 +41,60 @@ struct FuzzCliOptions {
   long pace_ms = -1;
   std::string findings = "fuzz-findings";
   bool allow_motion = false, allow_destructive = false;
+};
+
+// Progress while the fuzzer runs, whatever it is doing (a write, a silence
+// window, minimizing a finding): a thread prints the latest count at least
+// every 10 s, or on a terminal one line rewritten every second. Every other
+// line goes through line(), so none is cut by the progress line.
+class FuzzProgress {
+ public:
+  explicit FuzzProgress(bool enabled) : tty_(::isatty(STDOUT_FILENO) == 1), t0_(std::chrono::steady_clock::now()) {
+    if (enabled) thread_ = std::thread([this] { loop(); });
+  }
+  ~FuzzProgress() {
+    {
+      std::lock_guard lock(m_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    if (thread_.joinable()) thread_.join();
+    if (tty_ && drawn_) std::cout << "\r\033[K" << std::flush;
+  }
+  void update(std::size_t writes, std::size_t findings, std::string doing = {}) {
+    std::lock_guard lock(m_);
+    writes_ = writes;
+    findings_ = findings;
+    doing_ = std::move(doing);
+  }
+  void line(const std::string& text) {
+    std::lock_guard lock(m_);
+    if (tty_ && drawn_) std::cout << "\r\033[K";
+    drawn_ = false;
+    std::cout << text << std::endl;
+  }
+
+ private:
+  void loop() {
+    const auto every = tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10);
+    std::unique_lock lock(m_);
+    while (!cv_.wait_for(lock, every, [this] { return stop_; })) {
+      const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0_);
+      const std::string text = fmt::format("fuzz: {} writes, {} finding(s), {} elapsed{}", writes_, findings_,
+                                           reports::clock_text(elapsed), doing_.empty() ? "" : ", " + doing_);
+      if (tty_) std::cout << "\r\033[K" << text << std::flush;
+      else std::cout << text << std::endl;
+      drawn_ = tty_;
+    }
+  }
+  const bool tty_;
+  const std::chrono::steady_clock::time_point t0_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  bool stop_ = false, drawn_ = false;
+  std::size_t writes_ = 0, findings_ = 0;
+  std::string doing_;
+  std::thread thread_;
 };
 
 // How the run can be repeated: the options that change what is sent.
@@ -77,7 +138,10 @@ int run_fuzz(const FuzzCliOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   std::cout << fmt::format("sabus fuzz: {}, seed {}\n", transport.describe(), seed) << std::flush;
-  std::optional<Verdict> first;
+  // A pseudo-terminal moves bytes at once whatever baud rate it is set to:
+  // their wire time says nothing of how busy it was.
+  const bool pty = !o.device.port.empty() && is_pseudo_terminal(o.device.port);
+  std::optional<live_fuzz::Verdict> first;
   try {
     first = session.probe();
     if (first && first->kind == FindingKind::kDead) {
@@ -99,20 +163,23 @@ int run_fuzz(const FuzzCliOptions& o) {
   std::size_t frames = 0;
   const FuzzFrame status_probe{encode_frame({FrameKind::kCommand, profile.address, 0x31, {}}), {}, "status poll after it"};
 
-  auto record = [&](const Verdict& v) {
+  std::optional<FuzzProgress> progress;
+  progress.emplace(!quiet());
+  auto record = [&](const live_fuzz::Verdict& v) {
     if (seen_kinds.count(v.kind)) return;  // one reproducer a kind
     seen_kinds.insert(v.kind);
     Finding f{v.kind, v.message, history, {}, false};
-    std::cout << fmt::format("FINDING {} after {} writes: {}\n", to_string(v.kind), frames, v.message) << std::flush;
+    progress->line(fmt::format("FINDING {} after {} writes: {}", to_string(v.kind), frames, v.message));
+    progress->update(frames, findings.size(), fmt::format("minimizing the {} finding", to_string(v.kind)));
     minimize(f, profile, so, fresh, fresh ? nullptr : &session);
     fs::create_directories(o.findings);
     const fs::path file = fs::path(o.findings) / fmt::format("fuzz-{}-{}-{}.yaml", seed, findings.size() + 1, to_string(v.kind));
     std::ofstream(file) << finding_vector_yaml(f, profile, {seed, command_line(o, seed), findings.size() + 1});
-    std::cout << fmt::format("  {} {} write(s) -> {}\n", f.reproduced ? "minimized to" : "NOT reproduced; kept",
-                             f.reproducer.size(), file.string())
-              << std::flush;
+    progress->line(fmt::format("  {} {} write(s) -> {}", f.reproduced ? "minimized to" : "NOT reproduced; kept",
+                               f.reproducer.size(), file.string()));
     written.push_back(file.string());
     findings.push_back(std::move(f));
+    progress->update(frames, findings.size());
   };
 
   if (first) {  // answered, but wrongly: a finding already
@@ -135,6 +202,7 @@ int run_fuzz(const FuzzCliOptions& o) {
       history.push_back(f);
       if (history.size() > kHistory) history.erase(history.begin());
       ++frames;
+      progress->update(frames, findings.size());
       auto v = session.step(f);
       if (v) record(*v);
       if (v || (so.liveness_every > 0 && frames % so.liveness_every == 0)) {
@@ -154,6 +222,7 @@ int run_fuzz(const FuzzCliOptions& o) {
     aborted = std::string("the device is lost: ") + e.what();
   }
   if (g_stop) aborted = "stopped by SIGINT";
+  progress.reset();  // its last line cleared before the totals
 
   const Counts& c = session.counts();
   const double wall = elapsed();
@@ -163,7 +232,8 @@ int run_fuzz(const FuzzCliOptions& o) {
                            c.ack, c.nak, c.offline, c.silence, c.garbage, c.refused);
   std::cout << fmt::format("traffic: bytes_sent={} bytes_received={} wall_s={:.3f} baud={}", c.bytes_sent, c.bytes_received,
                            wall, transport.baud());
-  if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
+  if (transport.baud() > 0 && pty) std::cout << fmt::format(" wire_s={:.3f} (at that baud rate; a pseudo-terminal has none, so no line_busy)", wire_s);
+  else if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
   std::cout << "\n";
   if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
   std::cout << fmt::format("{} finding(s)\n", findings.size());
@@ -178,13 +248,16 @@ Command add_fuzz_command(CLI::App& app) {
   auto o = std::make_shared<FuzzCliOptions>();
   CLI::App* sub = app.add_subcommand("fuzz", "Fuzz a controller live: damaged frames, an oracle from the spec, minimized findings");
   add_device_options(sub, o->device);
-  sub->add_option("--seed", o->seed, "Seed of the generator (default: random, printed)");
-  sub->add_option("--max-frames", o->max_frames, "Stop after N writes (default: no limit)");
-  sub->add_option("--max-time", o->max_time, "Stop after S seconds (default: no limit)");
-  sub->add_option("--max-findings", o->max_findings, "Stop after N findings (default 8; one per kind)");
+  sub->add_option("--seed", o->seed, "Seed of the generator (default: random, printed)")->check(kNonNegative);
+  sub->add_option("--max-frames", o->max_frames, "Stop after N writes (default: no limit)")->check(kNonNegative);
+  sub->add_option("--max-time", o->max_time, "Stop after S seconds (default: no limit)")->check(kNonNegative);
+  sub->add_option("--max-findings", o->max_findings, "Stop after N findings, 1-1000 (default 8; one per kind)")
+      ->check(CLI::Range(1, 1000));
   sub->add_option("--findings", o->findings, "Write each finding as a vector file into DIR (default fuzz-findings)");
-  sub->add_option("--liveness-every", o->liveness_every, "A device type query every N writes (default 50; 0: only after findings)");
-  sub->add_option("--pace", o->pace_ms, "Milliseconds between writes (default 1000 on a line, §4; 0 in-process)");
+  sub->add_option("--liveness-every", o->liveness_every, "A device type query every N writes (default 50; 0: only after findings)")
+      ->check(kNonNegative);
+  sub->add_option("--pace", o->pace_ms, "Milliseconds between writes, 0-60000 (default 1000 on a line, §4; 0 in-process)")
+      ->check(kPaceRange);
   sub->add_flag("--allow-motion", o->allow_motion, "Also send commands that move the antenna");
   sub->add_flag("--allow-destructive", o->allow_destructive, "Also send commands that change stored data");
   return {sub, [o] { return run_fuzz(*o); }};

@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
                                "share/sabus beside the executable, then the source tree it was built from)")
       ->type_name("DIR")
       ->each([](const std::string& dir) { sabus::harness::set_data_dir_option(dir); });
+  bool verbose = false, quiet = false;
+  auto* verbose_flag = app.add_flag("-v,--verbose", verbose, "Say more: every vector's verdict on a terminal, how a port was opened");
+  app.add_flag("-q,--quiet", quiet, "Say less: only failures, errors and the summary")->excludes(verbose_flag);
   app.set_version_flag("--version", sabus::cli::version_text, "Print the version and the data directory, and exit");
   const std::vector<sabus::cli::Command> commands = {
       sabus::cli::add_decode_command(app),
@@ -35,6 +38,9 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? sabus::cli::kExitOk : sabus::cli::kExitUsage;
   }
+  sabus::cli::g_verbosity = quiet     ? sabus::cli::Verbosity::kQuiet
+                            : verbose ? sabus::cli::Verbosity::kVerbose
+                                      : sabus::cli::Verbosity::kNormal;
   try {
     for (const auto& c : commands)
       if (c.app->parsed()) return c.run();

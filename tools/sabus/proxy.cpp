@@ -134,7 +134,7 @@ std::unique_ptr<Line> open_device(const ProxyOptions& o) {
   std::string note;
   const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);
   auto line = open_serial_line(o.port, o.baud, backend, o.line == "7E1" ? CharFormat::k7E1 : CharFormat::k8N1, &note);
-  if (!note.empty()) std::cerr << "sabus proxy: " << note << "\n";
+  if (!note.empty() && verbose()) std::cerr << "sabus proxy: " << note << "\n";
   return line;
 }
 
@@ -299,7 +299,7 @@ Command add_proxy_command(CLI::App& app) {
   sub->add_option("--listen-tcp", o->listen_tcp, "M&C side: accept one TCP client at a time on HOST:PORT (port 0: any)");
   sub->add_option("--port", o->port, "Device side: a serial port (a pty works too)");
   sub->add_option("--tcp", o->tcp, "Device side: a TCP serial server HOST:PORT");
-  sub->add_option("--baud", o->baud, "Device side baud rate")->check(CLI::Range(300, 115200));
+  sub->add_option("--baud", o->baud, "Device side baud rate")->check(kBaudRange);
   sub->add_option("--line", o->line, "8N1 (default: parity in bit 7, forwarded as is) or 7E1 (a true 7E1 port)")
       ->check(CLI::IsMember({"8N1", "7E1"}));
   sub->add_option("--serial-backend", o->serial_backend, "auto, libserialport or termios")

@@ -20,6 +20,13 @@ int run_report(const ReportOptions& o) {
     std::cerr << "sabus report: give at least one of --html F, --junit F, --md F, --json F\n";
     return kExitUsage;
   }
+  if (const std::string why = reports::report_paths_problem({{"--html", o.html}, {"--junit", o.junit}, {"--md", o.md}, {"--json", o.json}});
+      !why.empty()) {
+    std::cerr << "sabus report: " << why << "\n";
+    return kExitUsage;
+  }
+  // A report on standard output keeps it to itself.
+  const bool to_stdout = o.html == "-" || o.junit == "-" || o.md == "-" || o.json == "-";
   std::string error;
   reports::JournalNotes notes;
   const auto doc = reports::read_run_or_journal(o.run, notes, error);
@@ -51,7 +58,8 @@ int run_report(const ReportOptions& o) {
       ok = false;
     }
   }
-  std::cout << doc->verdict() << ": " << reports::summary_line(doc->counts()) << " (" << doc->status << ")\n";
+  (to_stdout ? std::cerr : std::cout) << doc->verdict() << ": " << reports::summary_line(doc->counts()) << " ("
+                                       << doc->status << ")\n";
   return ok ? kExitOk : kExitFailed;
 }
 
@@ -61,10 +69,10 @@ Command add_report_command(CLI::App& app) {
   auto o = std::make_shared<ReportOptions>();
   CLI::App* sub = app.add_subcommand("report", "Write HTML, JUnit, Markdown or JSON reports from a run's JSON or journal");
   sub->add_option("RUN", o->run, "The JSON a run wrote (sabus run --json), or its journal (RUN.journal.jsonl)")->required();
-  sub->add_option("--html", o->html, "Write the HTML report");
-  sub->add_option("--junit", o->junit, "Write JUnit XML");
-  sub->add_option("--md", o->md, "Write the Markdown summary");
-  sub->add_option("--json", o->json, "Write the run JSON (from a journal: the run a killed process left)");
+  sub->add_option("--html", o->html, "Write the HTML report (- : standard output)");
+  sub->add_option("--junit", o->junit, "Write JUnit XML (- : standard output)");
+  sub->add_option("--md", o->md, "Write the Markdown summary (- : standard output)");
+  sub->add_option("--json", o->json, "Write the run JSON (from a journal: the run a killed process left; - : standard output)");
   return {sub, [o] { return run_report(*o); }};
 }
 

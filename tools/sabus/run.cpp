@@ -1,6 +1,7 @@
 // `sabus run`: the conformance suite against the in-process reference
 // controller (default), a serial port or a TCP serial server.
 #include <fmt/format.h>
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,10 +11,12 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "device.hpp"
+#include "selection.hpp"
 #include "version.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
@@ -35,8 +38,9 @@ extern "C" void on_sigint(int) { g_stop = true; }
 
 struct RunCliOptions {
   DeviceOptions device;
+  SelectionOptions selection;
   std::string level = "informative", junit, json, html, md, report_dir, known_issues;
-  std::vector<std::string> vectors, filters, excludes;
+  std::vector<std::string> vectors;
   int repeat = 0;
   long pace_ms = -1;
   std::uint64_t seed = 0;
@@ -51,30 +55,140 @@ std::optional<Level> parse_level(const std::string& s) {
 }
 
 // Known issues: one vector id per line, then its reason ("id: reason" or
-// "id  reason"); '#' starts a comment.
-std::optional<std::map<std::string, std::string>> read_known_issues(const std::string& path) {
+// "id  reason"); '#' starts a comment. Every id must name a vector of the
+// suite: a mistyped id would leave its failure failing the run and the
+// list silently wrong. On an error, says which line and returns nullopt.
+std::optional<std::map<std::string, std::string>> read_known_issues(const std::string& path,
+                                                                    const std::set<std::string>& ids) {
   std::ifstream in(path);
-  if (!in) return std::nullopt;
+  if (!in) {
+    std::cerr << "sabus run: --known-issues " << path << ": cannot read\n";
+    return std::nullopt;
+  }
   std::map<std::string, std::string> out;
+  std::size_t line_number = 0, unknown = 0;
   for (std::string line; std::getline(in, line);) {
+    ++line_number;
     line = line.substr(0, line.find('#'));
     const auto a = line.find_first_not_of(" \t");
     if (a == std::string::npos) continue;
     const auto b = line.find_first_of(": \t", a);
     const std::string id = line.substr(a, b == std::string::npos ? std::string::npos : b - a);
+    if (!ids.count(id)) {
+      std::cerr << fmt::format("sabus run: {}:{}: no vector has the id \"{}\"\n", path, line_number, id);
+      ++unknown;
+      continue;
+    }
     std::string reason = b == std::string::npos ? "" : line.substr(b + 1);
     reason.erase(0, reason.find_first_not_of(" \t:"));
     out[id] = reason.empty() ? "listed as a known issue" : reason;
   }
+  if (unknown) return std::nullopt;
   return out;
 }
 
+struct ReportPaths {
+  std::string json, junit, html, md;
+  bool to_stdout() const { return json == "-" || junit == "-" || html == "-" || md == "-"; }
+};
+
+// The report paths, each checked before the device is touched, so an hour's
+// run never ends in "cannot write": one report at most on standard output
+// ("-"), no two on the same file, no directory, device, pipe or link to one
+// (reports::output_path_problem), and no journal of an earlier run that did
+// not end beside the JSON (it holds that run's results). An error names
+// the option; nullopt then.
+std::optional<ReportPaths> report_paths(const RunCliOptions& o) {
+  ReportPaths r{o.json, o.junit, o.html, o.md};
+  auto fail = [](const std::string& why) -> std::optional<ReportPaths> {
+    std::cerr << "sabus run: " << why << "\n";
+    return std::nullopt;
+  };
+  if (!o.report_dir.empty()) {
+    if (o.report_dir == "-")
+      return fail("--report-dir -: give a folder; one report goes to standard output with --json -, --junit -, --html - or --md -");
+    std::error_code ec;
+    fs::create_directories(o.report_dir, ec);
+    if (ec) return fail("--report-dir " + o.report_dir + ": " + ec.message());
+    auto in_dir = [&](std::string& path, const char* name) {
+      if (path.empty()) path = (fs::path(o.report_dir) / name).string();
+    };
+    in_dir(r.json, "run.json");
+    in_dir(r.junit, "junit.xml");
+    in_dir(r.html, "report.html");
+    in_dir(r.md, "summary.md");
+  }
+  if (const std::string why = reports::report_paths_problem({{"--json", r.json}, {"--junit", r.junit}, {"--html", r.html}, {"--md", r.md}});
+      !why.empty())
+    return fail(why);
+  if (!r.json.empty() && r.json != "-") {
+    const std::string journal = reports::journal_path_for(r.json);
+    if (fs::exists(fs::symlink_status(journal)))
+      return fail(fmt::format("{} exists: the journal of a run that did not end, with its results; make its JSON with "
+                              "`sabus report {} --json FILE`, or remove it",
+                              journal, journal));
+  }
+  return r;
+}
+
+// A private folder for the journal of a run whose JSON goes to standard
+// output; removed with what is in it.
+struct TempFolder {
+  fs::path path;
+  TempFolder() {
+    std::string name = (fs::temp_directory_path() / "sabus-run-XXXXXX").string();
+    if (::mkdtemp(name.data()) != nullptr) path = name;
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+// What the console says while the run goes on: on a terminal a progress line
+// and the failures (every vector with -v); elsewhere, as in CI, one line per
+// vector as it finishes, flushed at once; with -q only the failures.
+class Console {
+ public:
+  Console(std::ostream& out, int fd, std::size_t total) : out_(out), tty_(::isatty(fd) == 1), colour_(use_colour(fd)) {
+    progress_.total = total;
+    t0_ = std::chrono::steady_clock::now();
+  }
+  void vector_done(const reports::VectorRecord& v) {
+    ++progress_.done;
+    progress_.passed += v.outcome == "pass";
+    progress_.failed += v.is_failure();
+    progress_.skipped += v.is_skip();
+    progress_.current = v.id;
+    progress_.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0_);
+    const bool every = verbose() || (!tty_ && !quiet());
+    if (v.is_failure() || every) line(reports::verdict_line(v, colour_));
+    if (tty_ && !quiet()) {
+      out_ << "\r\033[K" << reports::progress_line(progress_) << std::flush;
+      drawn_ = true;
+    }
+  }
+  // A line of its own (the progress line, if any, is redrawn by the next vector).
+  void line(const std::string& text) {
+    end();
+    out_ << text << std::endl;
+  }
+  // Clears the progress line.
+  void end() {
+    if (drawn_) out_ << "\r\033[K" << std::flush;
+    drawn_ = false;
+  }
+  bool colour() const { return colour_; }
+
+ private:
+  std::ostream& out_;
+  bool tty_, colour_, drawn_ = false;
+  reports::Progress progress_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
 int run_run(RunCliOptions o) {
   const auto level = parse_level(o.level);
-  if (!level) {
-    std::cerr << "sabus run: --level must be must, should or informative\n";
-    return kExitUsage;
-  }
   LoadResult suite = load_vectors(o.vectors.empty() ? std::vector<std::string>{default_vectors_dir()} : o.vectors);
   auto lint_errors = lint(suite.files);
   suite.errors.insert(suite.errors.end(), lint_errors.begin(), lint_errors.end());
@@ -83,59 +197,61 @@ int run_run(RunCliOptions o) {
     std::cerr << "sabus run: " << suite.errors.size() << " vector error(s)\n";
     return kExitUsage;
   }
-  std::vector<Vector> vectors;
-  for (const auto& f : suite.files) vectors.insert(vectors.end(), f.vectors.begin(), f.vectors.end());
+  std::vector<Vector> all;
+  std::set<std::string> ids;
+  for (const auto& f : suite.files)
+    for (const auto& v : f.vectors) {
+      all.push_back(v);
+      ids.insert(v.id);
+    }
+
+  RunOptions ro;
+  const Selection selection = select_vectors(all, o.selection, ro);
+  if (!quiet())
+    for (const auto& note : selection.notes) std::cerr << "sabus run: " << note << "\n";
+  if (selection.selected == 0) {
+    // Said before the device is touched: there is nothing to ask it.
+    std::cerr << "sabus run: NOTHING RAN: " << empty_selection_reason(o.selection) << " (" << all.size()
+              << " vectors loaded; `sabus vectors list --filter GLOB` previews a selection)\n";
+    return kExitNothingRan;
+  }
+  if (!o.known_issues.empty()) {
+    auto known = read_known_issues(o.known_issues, ids);
+    if (!known) return kExitUsage;
+    ro.known_issues = *known;
+  }
+  const auto paths = report_paths(o);
+  if (!paths) return kExitUsage;
 
   OpenedDevice device = open_device("run", o.device);
   if (device.exit_code != kExitOk) return device.exit_code;
   const Profile& profile = device.profile;
   std::unique_ptr<Transport>& transport = device.transport;
 
-  RunOptions ro;
   ro.allow_motion = o.allow_motion;
   ro.allow_destructive = o.allow_destructive;
   ro.max_level = *level;
-  ro.filters = o.filters;
-  ro.excludes = o.excludes;
   ro.repeat = o.repeat;
   ro.strict = o.strict;
   ro.seed = o.seed;
   // §4: no more than one status request a second, and wait for ACK/NAK.
   ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport->in_process() ? 0 : 1000));
-  if (!o.known_issues.empty()) {
-    auto known = read_known_issues(o.known_issues);
-    if (!known) {
-      std::cerr << "sabus run: cannot read " << o.known_issues << "\n";
-      return kExitUsage;
-    }
-    ro.known_issues = *known;
-  }
   ro.stop = [] { return g_stop.load(); };
   ro.keep_transcripts = false;  // the run document and its journal have them
+  // The stored-data backup (taken before the first destructive vector) is
+  // for a device that outlives the run: the in-process controller is gone
+  // at exit, so there is nothing to back up or restore.
+  ro.backup_stored_data = !transport->in_process();
+  const bool json_file = !paths->json.empty() && paths->json != "-";
+  ro.backup_path = !ro.backup_stored_data ? ""
+                   : !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
+                   : json_file             ? paths->json + ".backup.json"
+                                           : "sabus-backup.json";
 
-  std::string json_path = o.json, junit_path = o.junit, html_path = o.html, md_path = o.md;
-  if (!o.report_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(o.report_dir, ec);
-    if (ec) {
-      std::cerr << "sabus run: --report-dir " << o.report_dir << ": " << ec.message() << "\n";
-      return kExitUsage;
-    }
-    auto in_dir = [&](std::string& path, const char* name) {
-      if (path.empty()) path = (fs::path(o.report_dir) / name).string();
-    };
-    in_dir(json_path, "run.json");
-    in_dir(junit_path, "junit.xml");
-    in_dir(html_path, "report.html");
-    in_dir(md_path, "summary.md");
-  }
-  // The stored-data backup (taken before the first destructive vector).
-  // In-process, the device is gone at exit: a backup file is written only
-  // next to a report there.
-  ro.backup_path = !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
-                   : !json_path.empty()  ? json_path + ".backup.json"
-                   : transport->in_process() ? ""
-                                             : "sabus-backup.json";
+  // A report on standard output keeps it to itself: the console goes to
+  // standard error then.
+  std::ostream& out = paths->to_stdout() ? std::cerr : std::cout;
+  Console console(out, paths->to_stdout() ? STDERR_FILENO : STDOUT_FILENO, selection.selected);
 
   reports::RunDocument doc;
   doc.generator = "sabus " + full_version();
@@ -148,30 +264,38 @@ int run_run(RunCliOptions o) {
                  {"level", o.level},               {"seed", o.seed},
                  {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
                  {"strict", o.strict},
-                 {"filters", o.filters},           {"excludes", o.excludes},
+                 {"filters", o.selection.filters}, {"excludes", o.selection.excludes},
+                 {"paragraphs", o.selection.paragraphs},
                  {"known_issues", o.known_issues}, {"vectors", o.vectors}};
-  for (const auto& v : vectors) doc.planned += is_selected(ro, v.id);
+  doc.planned = selection.selected;
   // §3.1: who answers, asked once before the first vector.
   doc.identity = reports::query_identity(*transport, profile.address);
   if (!doc.identity.ok) std::cerr << "sabus run: device identity: " << doc.identity.error << "\n";
+  else if (!quiet())
+    console.line("device: controller " + doc.identity.controller_type + ", firmware " + doc.identity.firmware_version);
   if (ro.pace.count() > 0) transport->pause(ro.pace);  // §4 pacing before the runner's first command
 
   // The journal takes each vector as it finishes (reports/journal.hpp); the
   // JSON is written now, saying the run goes on and where its vectors are,
-  // and once more at the end (also after SIGINT or a lost device).
+  // and once more at the end (also after SIGINT or a lost device). For a JSON
+  // on standard output the journal is a private temporary file, and the JSON
+  // is written once, at the end.
   reports::JournalWriter journal;
+  std::optional<TempFolder> journal_folder;
   std::string error;
-  if (!json_path.empty()) {
-    const std::string journal_path = reports::journal_path_for(json_path);
-    doc.journal = fs::path(journal_path).filename().string();
+  if (!paths->json.empty()) {
+    std::string journal_path;
+    if (json_file) {
+      journal_path = reports::journal_path_for(paths->json);
+      doc.journal = fs::path(journal_path).filename().string();
+    } else {
+      journal_folder.emplace();
+      journal_path = (journal_folder->path / "run.journal.jsonl").string();
+    }
     if (!journal.open(journal_path, doc)) std::cerr << "sabus run: " << journal.error() << "\n";
-    else if (!reports::write_run_json(json_path, doc, error)) std::cerr << "sabus run: " << error << "\n";
+    else if (json_file && !reports::write_run_json(paths->json, doc, error)) std::cerr << "sabus run: " << error << "\n";
   }
 
-  const bool tty = isatty(1);
-  reports::Progress progress;
-  progress.total = doc.planned;
-  const auto t0 = std::chrono::steady_clock::now();
   auto last_result = std::chrono::steady_clock::now();
   ro.on_result = [&](const VectorResult& r) {
     reports::VectorRecord record = reports::vector_record(r);
@@ -181,22 +305,14 @@ int run_run(RunCliOptions o) {
     if (journal.is_open() && !journal.append(record)) std::cerr << "sabus run: " << journal.error() << "\n";
     reports::compact_for_reports(record);  // the journal has the fields; the reports need them for failures only
     doc.vectors.push_back(std::move(record));
-    const reports::VectorRecord& v = doc.vectors.back();
-    ++progress.done;
-    progress.passed += v.outcome == "pass";
-    progress.failed += v.is_failure();
-    progress.skipped += v.is_skip();
-    progress.current = v.id;
-    progress.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
-    if (v.is_failure()) std::cout << (tty ? "\r\033[K" : "") << reports::failure_line(v) << "\n";
-    if (tty) std::cout << "\r\033[K" << reports::progress_line(progress) << std::flush;
+    console.vector_done(doc.vectors.back());
     last_result = std::chrono::steady_clock::now();  // writing this one is not the next one's time
   };
   std::signal(SIGINT, on_sigint);
 
   Runner runner(*transport, profile, ro);
   last_result = std::chrono::steady_clock::now();
-  RunResult run = runner.run(vectors);
+  RunResult run = runner.run(selection.vectors);
   reports::finish(doc, run, reports::utc_now());
   doc.journal.clear();
   if (journal.is_open()) {
@@ -204,54 +320,74 @@ int run_run(RunCliOptions o) {
     const std::string journal_path = journal.path();
     if (!journal.close(doc)) std::cerr << "sabus run: " << journal.error() << "\n";
     std::error_code ec;
-    if (reports::write_run_json(json_path, doc, journal_path, error))
+    if (reports::write_run_json(paths->json, doc, journal_path, error))
       fs::remove(journal_path, ec);  // the JSON holds every vector now
-    else
+    else if (json_file)
       std::cerr << "sabus run: " << error << "; the journal keeps every vector: sabus report " << journal_path << " --json "
-                << json_path << "\n";
-  } else if (!json_path.empty()) {
-    std::cerr << "sabus run: " << json_path << " not written: the journal could not be written\n";
+                << paths->json << "\n";
+    else
+      std::cerr << "sabus run: " << error << "\n";
+  } else if (!paths->json.empty()) {
+    std::cerr << "sabus run: " << paths->json << " not written: the journal could not be written\n";
   }
   // Each report is made only when asked for.
   auto write = [&](const std::string& path, std::string (*make)(const reports::RunDocument&)) {
     if (!path.empty() && !reports::write_file(path, make(doc), error)) std::cerr << "sabus run: " << error << "\n";
   };
-  write(junit_path, reports::junit_xml);
-  write(html_path, reports::html_report);
-  write(md_path, reports::markdown_summary);
-  if (tty) std::cout << "\r\033[K";
-  if (doc.identity.ok)
-    std::cout << "device: controller " << doc.identity.controller_type << ", firmware " << doc.identity.firmware_version << "\n";
+  write(paths->junit, reports::junit_xml);
+  write(paths->html, reports::html_report);
+  write(paths->md, reports::markdown_summary);
+  console.end();
   for (const auto& l : run.liveness)
-    if (!l.alive) std::cout << fmt::format("LIVENESS {}: {}\n", l.when, l.detail);
-  if (run.backup.taken && !ro.backup_path.empty()) std::cout << "stored data backed up to " << ro.backup_path << "\n";
-  for (const auto& n : run.restore_notes) std::cout << "RESTORE " << n << "\n";
-  if (run.aborted) std::cout << "ABORTED: " << run.abort_reason << "\n";
-  std::cout << reports::summary_line(*doc.summary) << "\n";
-  return run.exit_code();
+    if (!l.alive) console.line(fmt::format("LIVENESS {}: {}", l.when, l.detail));
+  if (run.backup.taken && !ro.backup_path.empty() && !quiet()) console.line("stored data backed up to " + ro.backup_path);
+  for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
+  if (run.aborted) console.line("ABORTED: " + run.abort_reason);
+  console.line(reports::summary_line(*doc.summary));
+  const int status = run.exit_code();
+  if (status == kExitNothingRan)
+    console.line(std::string(console.colour() ? "\033[33mNOTHING RAN\033[0m: " : "NOTHING RAN: ") +
+                 reports::nothing_ran_reason(*doc.summary) + "; a run that checked nothing is not a success (exit 5)");
+  return status;
 }
+
+static_assert(kExitNothingRan == harness::kNothingRanExitCode);
+
+constexpr const char* kRunExitStatus = R"(Exit status:
+  0  every must-level vector that ran passed (with --strict every should-level one too), and at least one ran
+  1  a must-level vector failed (with --strict a should-level one too), a listed known issue passed, a
+     liveness check failed, or the run was stopped (SIGINT, a lost device)
+  2  usage: a bad option or value, a profile, vector or known-issues file that does not load, an unknown id
+     in --known-issues, a report path that cannot be written
+  3  the device could not be reached: the port or socket does not open, or nothing answers
+  5  nothing ran: no vector matches the selection, or every selected vector was skipped (the summary says
+     why, by cause); a run that checked nothing is not a success, and 5 is pytest's code for it too
+)";
 
 }  // namespace
 
 Command add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunCliOptions>();
   CLI::App* sub = app.add_subcommand("run", "Run the conformance vectors against a controller");
+  sub->footer(kRunExitStatus);
   add_device_options(sub, o->device);
   sub->add_option("--vectors", o->vectors, "Vector files or folders (default vectors/)");
-  sub->add_option("--filter", o->filters, "Run only vectors whose id matches this glob (repeatable)");
-  sub->add_option("--exclude", o->excludes, "Skip vectors whose id matches this glob (repeatable)");
-  sub->add_option("--level", o->level, "Run vectors up to this level: must, should, informative");
+  add_selection_options(sub, o->selection);
+  sub->add_option("--level", o->level, "Run vectors up to this level: must, should, informative")
+      ->check(CLI::IsMember({"must", "should", "informative"}));
   sub->add_flag("--allow-motion", o->allow_motion, "Run vectors that move the antenna");
   sub->add_flag("--allow-destructive", o->allow_destructive, "Run vectors that change stored data");
   sub->add_option("--known-issues", o->known_issues, "Vector ids expected to fail, with reasons");
-  sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times");
+  sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times (0-100)")->check(CLI::Range(0, 100));
   sub->add_flag("--strict", o->strict, "A should-level failure fails the run too (exit 1)");
-  sub->add_option("--seed", o->seed, "Seed for every random choice");
-  sub->add_option("--pace", o->pace_ms, "Milliseconds between commands (default 1000 on a line, 0 in-process)");
-  sub->add_option("--junit", o->junit, "Write JUnit XML");
-  sub->add_option("--json", o->json, "Write the JSON result (each vector journaled as it finishes, the JSON at the end)");
-  sub->add_option("--html", o->html, "Write the HTML report");
-  sub->add_option("--md", o->md, "Write the Markdown summary");
+  sub->add_option("--seed", o->seed, "Seed for every random choice")->check(kNonNegative);
+  sub->add_option("--pace", o->pace_ms, "Milliseconds between commands, 0-60000 (default 1000 on a line, 0 in-process)")
+      ->check(kPaceRange);
+  sub->add_option("--junit", o->junit, "Write JUnit XML (- : standard output)");
+  sub->add_option("--json", o->json,
+                  "Write the JSON result (each vector journaled as it finishes, the JSON at the end; - : standard output)");
+  sub->add_option("--html", o->html, "Write the HTML report (- : standard output)");
+  sub->add_option("--md", o->md, "Write the Markdown summary (- : standard output)");
   sub->add_option("--report-dir", o->report_dir, "Write run.json, junit.xml, report.html and summary.md into DIR");
   return {sub, [o] { return run_run(*o); }};
 }

@@ -163,7 +163,7 @@ int run_sim(const SimOptions& o) {
       std::string note;
       auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);
       auto line = open_serial_line(o.port, serve_options.baud, backend, &note);
-      if (!note.empty()) std::cerr << "sabus sim: " << note << "\n";
+      if (!note.empty() && verbose()) std::cerr << "sabus sim: " << note << "\n";
       std::cout << "READY " << o.port << std::endl;
       status = serve(*line, bus, serve_options, g_stop);
     }
@@ -187,7 +187,7 @@ Command add_sim_command(CLI::App& app) {
   sub->add_option("--link", o->link, "Symlink PATH to the pseudo-terminal; removed on exit");
   sub->add_option("--port", o->port, "Serve a serial port (e.g. /dev/ttyUSB0)");
   sub->add_option("--tcp", o->tcp, "Serve raw TCP at HOST:PORT, as a serial device server (port 0: any free port)");
-  sub->add_option("--baud", o->baud, "Baud rate (default: the profile's)");
+  sub->add_option("--baud", o->baud, "Baud rate, 300-115200 (default: the profile's)")->check(kBaudRange);
   sub->add_option("--serial-backend", o->serial_backend, "auto, libserialport or termios")
       ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
   sub->add_option("--profile", o->profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");
@@ -196,7 +196,8 @@ Command add_sim_command(CLI::App& app) {
   sub->add_option("--fault", o->faults, "Inject a named fault (repeatable); see --list-faults");
   sub->add_option("--state-file", o->state_file, "Keep non-volatile data (STORE list, presets, ...) in this file");
   sub->add_flag("--emulate-line", o->emulate_line, "Hold each reply byte for its wire time at the baud rate");
-  sub->add_option("--turnaround", o->turnaround_ms, "Reply turnaround in ms with --emulate-line (default: the profile's)");
+  sub->add_option("--turnaround", o->turnaround_ms, "Reply turnaround in ms with --emulate-line, 0-10000 (default: the profile's)")
+      ->check(CLI::Range(0.0, 10'000.0));
   sub->add_option("--parity", o->parity, "even: bit 7 carries even parity (a 7E1 line); none: 7-bit characters")
       ->check(CLI::IsMember({"even", "none"}));
   sub->add_option("--log", o->log, "Append a decoded transcript to FILE");

@@ -16,6 +16,7 @@
 #include <set>
 
 #include "commands.hpp"
+#include "selection.hpp"
 #include "sabus/harness/coverage.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/expressions.hpp"
@@ -32,6 +33,7 @@ using harness::Vector;
 
 struct VectorsOptions {
   std::vector<std::string> paths;
+  SelectionOptions selection;  // list: preview a selection as `sabus run` takes it
   bool json = false;
   bool missing_only = false;
   bool summary = false;
@@ -90,20 +92,37 @@ nlohmann::json vector_json(const Vector& v) {
           {"steps", v.steps.size()}};
 }
 
-// One line a vector: id, paragraph, level, tags. Load errors go to stderr
-// and make the exit status 1; the vectors that loaded are listed anyway.
+// One line a vector: id, paragraph, level, tags. With --filter, --exclude
+// or --paragraph, only the vectors `sabus run` would take with them (a
+// preview), the count and any note on stderr, and exit 5 when there are
+// none. Load errors go to stderr and make the exit status 1; the vectors
+// that loaded are listed anyway.
 int run_list(const VectorsOptions& o) {
   LoadResult r = load(o);
   for (const auto& e : r.errors) std::cerr << e.text() << "\n";
+  std::vector<Vector> all;
+  for (const auto& f : r.files) all.insert(all.end(), f.vectors.begin(), f.vectors.end());
+  harness::RunOptions globs;
+  const Selection selection = select_vectors(all, o.selection, globs);
+  const bool selecting = !o.selection.filters.empty() || !o.selection.excludes.empty() || !o.selection.paragraphs.empty();
+  std::vector<const Vector*> shown;
+  for (const auto& v : selection.vectors)
+    if (harness::is_selected(globs, v.id)) shown.push_back(&v);
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
-    for (const auto& f : r.files)
-      for (const auto& v : f.vectors) out.push_back(vector_json(v));
+    for (const Vector* v : shown) out.push_back(vector_json(*v));
     std::cout << out.dump(2) << "\n";
   } else {
-    for (const auto& f : r.files)
-      for (const auto& v : f.vectors)
-        std::cout << fmt::format("{:<44} §{:<5} {:<12} {}\n", v.id, v.paragraph, harness::to_string(v.level), joined(v.tags));
+    for (const Vector* v : shown)
+      std::cout << fmt::format("{:<44} §{:<5} {:<12} {}\n", v->id, v->paragraph, harness::to_string(v->level), joined(v->tags));
+  }
+  if (selecting) {
+    for (const auto& note : selection.notes) std::cerr << "sabus vectors list: " << note << "\n";
+    std::cerr << fmt::format("{} of {} vectors selected\n", shown.size(), all.size());
+    if (shown.empty()) {
+      std::cerr << "sabus vectors list: " << empty_selection_reason(o.selection) << "\n";
+      if (r.errors.empty()) return kExitNothingRan;
+    }
   }
   return r.errors.empty() ? kExitOk : kExitFailed;
 }
@@ -288,10 +307,12 @@ Command add_vectors_command(CLI::App& app) {
   const std::string where = "vector files or directories (default: vectors/ in the data directory, see sabus --version)";
   CLI::App* lint = sub->add_subcommand("lint", "Load and lint the vectors; print every error, then a summary");
   lint->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
-  CLI::App* list = sub->add_subcommand("list", "List the vectors: id, paragraph, level, tags");
+  CLI::App* list = sub->add_subcommand(
+      "list", "List the vectors: id, paragraph, level, tags; with --filter, --exclude, --paragraph the ones `sabus run` would take");
   list->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   list->add_flag("--json", opts->json, "Print JSON");
   list->add_flag("--summary", opts->summary, "Print the suite by paragraph with counts per level (Markdown)");
+  add_selection_options(list, opts->selection);
   CLI::App* errata = sub->add_subcommand("errata", "The vectors resting on each errata entry (their flags' notes)");
   errata->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   auto* update = errata->add_option("--update", opts->update, "Rewrite the Vectors lines of this ERRATA.md");

@@ -21,15 +21,29 @@ std::string read_link(const std::string& path) {
   return std::string(buf, static_cast<std::size_t>(n));
 }
 
-// Points link_path at target. An existing symlink (a stale one from a server
-// that died) is replaced atomically by renaming a fresh link over it; any
-// other file is left alone. The check and the rename are two steps: a file
-// created at link_path in between would be replaced, which is acceptable for
-// a path the user named for this purpose.
+// Points link_path at target. Only a link to nothing (a stale one from a
+// server that died: its pty is gone) is replaced, atomically by renaming a
+// fresh link over it. A link to a pseudo-terminal that exists belongs to a
+// server that is running (a pty's /dev/pts entry lives as long as its
+// master is open): taking it over would cut that server's clients off and
+// delete its link on exit. A link to anything else, and any other file,
+// is left alone too. The check and the rename are two steps: a file created
+// at link_path in between would be replaced, which is acceptable for a path
+// the user named for this purpose.
 void make_link(const std::string& link_path, const std::string& target, int unique) {
   struct stat st {};
-  if (::lstat(link_path.c_str(), &st) == 0 && !S_ISLNK(st.st_mode))
-    throw LineError("pty link " + link_path + " exists and is not a symbolic link; refusing to replace it");
+  if (::lstat(link_path.c_str(), &st) == 0) {
+    if (!S_ISLNK(st.st_mode))
+      throw LineError("pty link " + link_path + " exists and is not a symbolic link; refusing to replace it");
+    const std::string current = read_link(link_path);
+    if (is_pseudo_terminal(link_path))
+      throw LineError("pty link " + link_path + " points to " + current +
+                      ", a pseudo-terminal in use (another sabus sim or proxy serves it); refusing to take it over. "
+                      "Stop that server, or give another --link");
+    if (::stat(link_path.c_str(), &st) == 0)
+      throw LineError("pty link " + link_path + " points to " + current +
+                      ", which is not a pseudo-terminal; refusing to replace it");
+  }
   const std::string tmp = link_path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(unique);
   (void)::unlink(tmp.c_str());
   if (::symlink(target.c_str(), tmp.c_str()) != 0)

@@ -27,6 +27,18 @@ std::string_view to_string(Verdict v) {
   return "?";
 }
 
+std::string_view to_string(SkipCause c) {
+  switch (c) {
+    case SkipCause::kNone: return "";
+    case SkipCause::kLevel: return "level";
+    case SkipCause::kProfile: return "profile";
+    case SkipCause::kMotion: return "motion";
+    case SkipCause::kDestructive: return "destructive";
+    case SkipCause::kParity: return "parity";
+  }
+  return "?";
+}
+
 bool VectorResult::counts_as_failure(bool strict) const {
   return (verdict == Verdict::kFail && (level == Level::kMust || (strict && level == Level::kShould))) ||
          verdict == Verdict::kUnexpectedPass;
@@ -37,7 +49,7 @@ int RunResult::exit_code() const {
   if (aborted) return 1;
   for (const auto& v : vectors)
     if (v.counts_as_failure(strict)) return 1;
-  return 0;
+  return ran() == 0 ? kNothingRanExitCode : 0;
 }
 
 bool is_selected(const RunOptions& options, const std::string& id) {
@@ -115,18 +127,24 @@ std::optional<std::string> missing_capability(const Vector& v, const ExprContext
     }
   return missing;
 }
+struct Skip {
+  SkipCause cause;
+  std::string reason;
+};
 
 // Gate: why a selected vector does not run here, or nullopt when it runs.
-std::optional<std::string> skip_reason(const Vector& v, const RunOptions& o, const Profile& profile,
-                                       const Transport& transport) {
-  if (static_cast<int>(v.level) > static_cast<int>(o.max_level)) return "level " + std::string(to_string(v.level));
+std::optional<Skip> skip_reason(const Vector& v, const RunOptions& o, const Profile& profile, const Transport& transport) {
+  if (static_cast<int>(v.level) > static_cast<int>(o.max_level))
+    return Skip{SkipCause::kLevel, "level " + std::string(to_string(v.level))};
   for (const auto& req : v.requires_)
-    if (auto why = unmet_requirement(profile, req)) return "requires: " + *why;
-  if (auto why = missing_capability(v, ExprContext{profile, nullptr, o.pace})) return "needs " + *why;
-  if (v.has_tag("motion") && !o.allow_motion) return "moves the antenna: needs --allow-motion";
-  if (v.has_tag("destructive") && !o.allow_destructive) return "changes stored data: needs --allow-destructive";
+    if (auto why = unmet_requirement(profile, req)) return Skip{SkipCause::kProfile, "requires: " + *why};
+  if (auto why = missing_capability(v, ExprContext{profile, nullptr, o.pace}))
+    return Skip{SkipCause::kProfile, "needs " + *why};
+  if (v.has_tag("motion") && !o.allow_motion) return Skip{SkipCause::kMotion, "moves the antenna: needs --allow-motion"};
+  if (v.has_tag("destructive") && !o.allow_destructive)
+    return Skip{SkipCause::kDestructive, "changes stored data: needs --allow-destructive"};
   if (v.has_tag("parity") && !transport.can_send_parity_errors())
-    return "sends parity errors: the port is a true 7E1 port (--line 7E1)";
+    return Skip{SkipCause::kParity, "sends parity errors: the port is a true 7E1 port (--line 7E1)"};
   return std::nullopt;
 }
 
@@ -200,7 +218,10 @@ void journal(RunResult& result, VectorResult r, const RunOptions& o) {
   switch (r.verdict) {
     case Verdict::kPass: ++result.passed; break;
     case Verdict::kFail: ++result.failed; break;
-    case Verdict::kSkip: ++result.skipped; break;
+    case Verdict::kSkip:
+      ++result.skipped;
+      ++result.skipped_by_cause[r.skip_cause];
+      break;
     case Verdict::kKnownFailure: ++result.known; break;
     case Verdict::kUnexpectedPass: ++result.unexpected; break;
   }
@@ -245,9 +266,10 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
     VectorResult r = result_of(v);
     if (auto why = skip_reason(v, options_, profile_, transport_)) {
       r.verdict = Verdict::kSkip;
-      r.skip_reason = std::move(*why);
+      r.skip_cause = why->cause;
+      r.skip_reason = std::move(why->reason);
     } else {
-      if (v.has_tag("destructive") && !result.backup.taken) {
+      if (v.has_tag("destructive") && options_.backup_stored_data && !result.backup.taken) {
         try {
           result.backup = detail::take_backup(s);
         } catch (const TransportLost& e) {

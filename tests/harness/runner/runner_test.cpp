@@ -446,3 +446,53 @@ TEST(Runner, AnsweredIsAnAckOrANakToTheFrameSentNeverSilence) {
 
 }  // namespace
 }  // namespace sabus::harness
+
+namespace sabus::harness {
+namespace {
+
+// The gate names a cause for every skip, and the run counts them; a run in
+// which every vector was skipped checked nothing: exit code 5, not 0.
+TEST(Runner, SkipsAreCountedByCauseAndARunThatRanNothingExits5) {
+  const Step status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  Vector above = vector_with("3.2-informative", {status});
+  above.level = Level::kInformative;
+  Vector other_profile = vector_with("3.2-other-profile", {status});
+  other_profile.requires_ = {Requirement{"name", {"no-such-profile"}, {}}};
+  const Vector moves = vector_with("3.2-moves", {status}, {"motion"});
+  const Vector stores = vector_with("3.2-stores", {status}, {"destructive"});
+  RunOptions o;
+  o.max_level = Level::kMust;
+  RunResult r = run_in_process({above, other_profile, moves, stores}, {}, o);
+  ASSERT_EQ(r.vectors.size(), 4u);
+  EXPECT_EQ(r.vectors[0].skip_cause, SkipCause::kLevel);
+  EXPECT_EQ(r.vectors[1].skip_cause, SkipCause::kProfile);
+  EXPECT_EQ(r.vectors[2].skip_cause, SkipCause::kMotion);
+  EXPECT_EQ(r.vectors[3].skip_cause, SkipCause::kDestructive);
+  EXPECT_EQ(r.skipped, 4u);
+  EXPECT_EQ(r.skipped_by_cause,
+            (std::map<SkipCause, std::size_t>{{SkipCause::kLevel, 1}, {SkipCause::kProfile, 1}, {SkipCause::kMotion, 1},
+                                              {SkipCause::kDestructive, 1}}));
+  EXPECT_EQ(r.ran(), 0u);
+  EXPECT_EQ(r.exit_code(), kNothingRanExitCode);
+  EXPECT_EQ(run_in_process({}).exit_code(), kNothingRanExitCode) << "no vector at all";
+  RunResult one_ran = run_in_process({moves, vector_with("3.2-status", {status})});
+  EXPECT_EQ(one_ran.vectors[1].skip_cause, SkipCause::kNone);
+  EXPECT_EQ(one_ran.exit_code(), 0) << "one vector ran and passed";
+  EXPECT_EQ(to_string(SkipCause::kParity), "parity");
+}
+
+// Against a controller that is gone when the run ends (the in-process one),
+// nothing is backed up or restored.
+TEST(Runner, NoBackupWhenTheDeviceDoesNotOutliveTheRun) {
+  auto write5 = send_command("write_satellite", "", {{"index", "5"}, {"sat name", "NEW"}}, Expectation::Kind::kAck);
+  RunOptions o;
+  o.allow_destructive = true;
+  o.backup_stored_data = false;
+  RunResult r = run_in_process({vector_with("3.10-write", {write5}, {"destructive"})}, {}, o);
+  ASSERT_EQ(r.vectors[0].verdict, Verdict::kPass) << r.vectors[0].failures[0];
+  EXPECT_FALSE(r.backup.taken);
+  EXPECT_TRUE(r.restore_notes.empty());
+}
+
+}  // namespace
+}  // namespace sabus::harness

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -43,6 +44,7 @@ struct VectorRecord {
   std::string id, paragraph, file, level, outcome;  // outcome: harness to_string(Verdict)
   std::vector<std::string> failures;
   std::string skip_reason, known_issue, quote, comment;
+  std::string skip_cause;                // harness to_string(SkipCause): "motion", "profile", ...; "" when not skipped
   double duration_ms = 0;                // transport clock: virtual in-process, real on a line
   std::optional<double> wall_ms;         // wall clock (v3); absent in documents of versions 1 and 2
   int repeats = 0, repeat_failures = 0;
@@ -74,6 +76,9 @@ struct Liveness {
 struct Summary {
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
   int exit_code = 0;
+  // Skipped vectors by cause ("level", "profile", "motion", "destructive",
+  // "parity"; "" for a vector of a document that did not record it).
+  std::map<std::string, std::size_t> skipped_by_cause = {};
 };
 
 struct RunDocument {
@@ -98,7 +103,8 @@ struct RunDocument {
 
   // Counts from the vectors (the summary may be absent in an aborted run).
   Summary counts() const;
-  // "PASS", "FAIL" or "ABORTED" / "INCOMPLETE".
+  // "PASS", "FAIL", "NOTHING RAN" (exit code 5: every vector skipped, or
+  // none selected), or "ABORTED" / "INCOMPLETE".
   std::string verdict() const;
 };
 

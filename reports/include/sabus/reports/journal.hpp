@@ -58,8 +58,10 @@ class JsonStreamWriter {
 // "vectors" last (a reader sees the header first), one vector a line.
 std::string json_text(const RunDocument& doc);
 
-// Writes the run JSON to PATH.tmp, fsyncs it and renames it over PATH, so
-// PATH is always a whole document.
+// Writes the run JSON to a new temporary file beside PATH, fsyncs it and
+// renames it over PATH, so PATH is always a whole document; "-" writes it to
+// standard output. A PATH that is not a regular file (or a link to one) is
+// refused (output_path_problem), and never replaced.
 bool write_run_json(const std::string& path, const RunDocument& doc, std::string& error);
 // The same with the header of `header` and the vectors of a journal that
 // this process wrote (JournalWriter), copied line by line as they were

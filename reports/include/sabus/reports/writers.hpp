@@ -8,6 +8,7 @@
 #include <vector>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "sabus/harness/transport.hpp"
 #include "sabus/reports/document.hpp"
@@ -32,8 +33,22 @@ struct Progress {
 std::string progress_line(const Progress& p, std::size_t width = 100);
 // "FAIL 3.2-status-length §3.2 must: expected 52 bytes, got 51"
 std::string failure_line(const VectorRecord& v);
-// "N passed, N failed, N skipped" (and ", N known failures" when there are any).
+// "PASS", "FAIL" (a failure or an unexpected pass), "SKIP" or "KNOWN" (a known failure).
+std::string_view verdict_word(const VectorRecord& v);
+// One line a vector as it finishes: "PASS 3.1-x §3.1 must", the failure line
+// for a failure, "SKIP 3.4-x §3.4 must: <skip reason>", "KNOWN 3.2-x §3.2
+// must: <difference> (known issue: <reason>)". With `colour`, the first word
+// in ANSI colour.
+std::string verdict_line(const VectorRecord& v, bool colour = false);
+// The skipped vectors by cause: "98 need another profile, 113 need
+// --allow-motion, 68 need --allow-destructive"; "" when none is recorded.
+std::string skip_causes_text(const Summary& s);
+// "N passed, N failed, N skipped (the skips by cause)" (and ", N known
+// failures" when there are any).
 std::string summary_line(const Summary& s);
+// Why a run checked nothing (exit code 5): "all 34 vectors selected were
+// skipped (34 need --allow-motion)", "no vector was selected".
+std::string nothing_ran_reason(const Summary& s);
 // "m:ss" or "h:mm:ss".
 std::string clock_text(std::chrono::milliseconds d);
 
@@ -52,7 +67,23 @@ std::string markdown_summary(const RunDocument& doc);
 
 std::string xml_escape(std::string_view s);  // also for HTML text and attributes
 
-// Writes text to a file; false with `error` set when it cannot.
+// A report path that means standard output.
+inline constexpr const char* kStandardOutput = "-";
+// Why a report cannot be written at `path`, or "" when it can: a regular
+// file, a symbolic link to one (written through: the link stays), or a new
+// name in an existing folder. Directories, devices, FIFOs, sockets, links to
+// them or to nothing, and this process's own standard output or error
+// (`/dev/stdout` redirected to a file) are refused with the reason; a report
+// for standard output is "-". Callers check every report path before a run.
+std::string output_path_problem(const std::string& path);
+// The reports of one command, each checked before anything is written: at
+// most one on standard output, no two on one file, and each path's
+// output_path_problem. Pairs of (option, path); empty paths are not asked
+// for. The first problem, naming the option ("--md /tmp is a directory: ..."),
+// or "".
+std::string report_paths_problem(const std::vector<std::pair<std::string, std::string>>& reports);
+// Writes text to a file, or to standard output for "-"; false with `error`
+// set when it cannot (output_path_problem's refusals included).
 bool write_file(const std::string& path, const std::string& text, std::string& error);
 
 }  // namespace sabus::reports

@@ -157,10 +157,11 @@ class FdLine : public Line {
 class PtyLine final : public FdLine {
  public:
   // Opens a pty in raw 8N1 mode and, unless link_path is empty, symlinks
-  // link_path to the slave (a stale symlink is replaced; any other file is
-  // refused). Throws LineError.
+  // link_path to the slave. A stale symlink (to nothing) is replaced; a link
+  // to a live pty (another server's), a link to anything else and any other
+  // file are refused. Throws LineError.
   static std::unique_ptr<PtyLine> create(const std::string& link_path);
-  ~PtyLine() override;  // removes the link if it still points at this pty
+  ~PtyLine() override;  // removes the link it made, if it still points at this pty
 
   std::string describe() const override;
   const std::string& slave_name() const { return slave_name_; }

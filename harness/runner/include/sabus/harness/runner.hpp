@@ -53,6 +53,14 @@ Bytes apply_modifiers(Bytes frame, const Modifiers& m);
 enum class Verdict : std::uint8_t { kPass, kFail, kSkip, kKnownFailure, kUnexpectedPass };
 std::string_view to_string(Verdict v);
 
+// Why the gate passed a selected vector over (Verdict::kSkip): its level is
+// above the one asked, the profile lacks what it requires, it moves the
+// antenna or changes stored data and that was not allowed, or it sends
+// parity errors a true 7E1 port cannot send.
+enum class SkipCause : std::uint8_t { kNone, kLevel, kProfile, kMotion, kDestructive, kParity };
+// "", "level", "profile", "motion", "destructive", "parity" (the run JSON's skip_cause).
+std::string_view to_string(SkipCause c);
+
 struct TranscriptEntry {
   double t_ms = 0;         // since the start of the run
   bool sent = false;       // true: to the device; false: from it
@@ -71,6 +79,7 @@ struct VectorResult {
   Verdict verdict = Verdict::kPass;
   std::vector<std::string> failures;   // one line each
   std::string skip_reason;
+  SkipCause skip_cause = SkipCause::kNone;
   std::string known_issue_reason;
   std::vector<TranscriptEntry> transcript;
   double duration_ms = 0;
@@ -103,6 +112,9 @@ struct RunOptions {
   // a run of thousands of vectors does not hold every frame it exchanged.
   bool keep_transcripts = true;
   std::string backup_path;                    // where the stored-data backup is written ("" : not written)
+  // false: no backup and no restore, for a device that does not outlive the
+  // run (the in-process reference controller).
+  bool backup_stored_data = true;
 };
 
 // The controller's stored data as read back through the protocol before the
@@ -117,6 +129,9 @@ struct StoredDataBackup {
   std::string to_json() const;
 };
 
+// RunResult::exit_code when no vector ran.
+inline constexpr int kNothingRanExitCode = 5;
+
 struct RunResult {
   std::vector<VectorResult> vectors;
   std::vector<LivenessResult> liveness;
@@ -130,11 +145,15 @@ struct RunResult {
   StoredDataBackup backup;
   std::vector<std::string> restore_notes;  // what was restored, and what could not be
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
+  std::map<SkipCause, std::size_t> skipped_by_cause;
   // 0: every must-level vector that ran passed; 1: otherwise (a liveness
   // check failed on a device that sends bytes, too); 3: the device could not
-  // be reached (nothing came back to the first liveness check).
+  // be reached (nothing came back to the first liveness check); 5: no vector
+  // ran (every one was skipped, or none was given): a run that checked
+  // nothing is not a success (pytest's "no tests ran" is 5 too).
   bool strict = false;  // RunOptions::strict: should-level failures fail the run too
   int exit_code() const;
+  std::size_t ran() const { return passed + failed + known + unexpected; }
 };
 
 // Whether a vector id is part of a run with these filters and excludes
