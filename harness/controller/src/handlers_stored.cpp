@@ -179,16 +179,7 @@ Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
 
 // ---- §3.22 / §3.23 Navigation data ---------------------------------------------------
 Outcome Handlers::read_navigation(C& c) {
-  const Navigation& n = c.state_.navigation;
-  NavigationDataReply r;
-  r.latlon_source = n.latlon_source;
-  r.latitude = n.latitude_min;
-  r.longitude = n.longitude_min;
-  r.heading_source = n.heading_source;
-  r.heading = n.heading_tenths;
-  r.magvar_status = n.magvar_tenths ? 1 : 0;
-  r.magvar = n.magvar_tenths;
-  return ack(c, 0x45, r);
+  return ack(c, 0x45, navigation_reply(c.state_.navigation));
 }
 Outcome Handlers::write_navigation(C& c, const WriteNavigation& w) {
   // sddmm / sdddmm: degrees and minutes in one integer (§3.23).

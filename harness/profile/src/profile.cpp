@@ -1,4 +1,4 @@
-// Profiles for several controllers on one bus.
+// Profiles for several controllers on one bus; navigation data as read.
 #include "sabus/harness/profile.hpp"
 
 #include <string>
@@ -28,6 +28,18 @@ std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint
     p.name.append(std::to_string(address));
   }
   return out;
+}
+
+NavigationDataReply navigation_reply(const Navigation& n) {
+  NavigationDataReply r;
+  r.latlon_source = n.latlon_source;
+  r.latitude = n.latitude_min;
+  r.longitude = n.longitude_min;
+  r.heading_source = n.heading_source;
+  r.heading = n.heading_tenths;
+  r.magvar_status = n.magvar_tenths ? 1 : 0;  // §3.22 byte 35: 41h ready, 40h not
+  r.magvar = n.magvar_tenths;
+  return r;
 }
 
 }  // namespace sabus::harness

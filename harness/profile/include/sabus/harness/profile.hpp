@@ -139,6 +139,10 @@ struct Profile {
   bool restore_lost_locate_exit = true;                    // E-28
 };
 
+// The 45h reply of a controller holding this navigation data (§3.22): magvar
+// ready when it has a value.
+NavigationDataReply navigation_reply(const Navigation& n);
+
 // Controllers on one RS-422 bus (sabus sim --address 50,51,60): one profile
 // per address, the rest shared.
 std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint8_t>& addresses);
