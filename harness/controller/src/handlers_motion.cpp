@@ -130,7 +130,7 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
     if (!c.faults_.has(Fault::kSecondAxisJogKeepsFirst))
       for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
         if (other != a && c.axis(other).motion == AxisState::Motion::kJog)
-          c.axis(other).motion = AxisState::Motion::kIdle;
+          c.stop_axis(other);
     const double before = c.axis(a).position;
     c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));
     if (code == 0x47) return jog_position(c, a, before);
@@ -149,8 +149,9 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
 Outcome Handlers::jog_position(C& c, AxisId a, double position) {
   JogPositionReply r;
   r.axis = a == AxisId::kAz ? 'A' : a == AxisId::kEl ? 'E' : 'P';
-  const bool no_feed = a == AxisId::kPol && c.profile_.pol_type == PolType::kCircular;
-  r.position = no_feed ? std::nullopt : std::optional<std::int32_t>(static_cast<std::int32_t>(std::lround(position * 10)));
+  // '*' without a rotating feed or on an A/D error (E-42).
+  const bool no_reading = (a == AxisId::kPol && c.profile_.pol_type == PolType::kCircular) || c.axis_profile(a).ad_error;
+  r.position = no_reading ? std::nullopt : std::optional<std::int32_t>(static_cast<std::int32_t>(std::lround(position * 10)));
   return ack(c, 0x47, r);
 }
 
@@ -179,13 +180,17 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
       return nak(c, 0x41, NakRule::kLocateIndex, "index " + std::to_string(l.preset.index));
     const auto& p = l.preset.index >= 1 && l.preset.index <= 20 ? c.state_.presets[l.preset.index - 1] : std::nullopt;
     if (!p) return nak(c, 0x41, NakRule::kLocateEmptyPreset);
+    // A preset with no name or a blank or out-of-range field cannot be
+    // located either (the data form's rule).
+    if (!satellite_fields_ok(p->data) || p->data.name.empty())
+      return nak(c, 0x41, NakRule::kLocateField, "preset " + std::to_string(l.preset.index));
     sat = p->data;
   } else {
     if (!satellite_fields_ok(l.sat) || l.sat.name.empty()) return nak(c, 0x41, NakRule::kLocateField);
     sat = l.sat;
   }
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
-  c.state_.displayed_sat = sat.name;
+  c.state_.displayed_sat = capitals(sat.name);  // §3.2 bytes 3-12, ERRATA E-68
   c.state_.last_located = sat;
   const Navigation& nav = c.state_.navigation;
   if (!nav.latitude_min || !nav.longitude_min) {

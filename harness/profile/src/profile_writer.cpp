@@ -67,8 +67,8 @@ std::string minutes_text(const std::optional<std::int32_t>& m, int width, char p
 
 template <class T, std::size_t N>
 std::string name_text(const Named<T> (&table)[N], T value) {
-  for (const auto& n : table)
-    if (n.value == value) return std::string(n.name);
+  const std::string_view name = name_of(table, value);
+  if (!name.empty()) return std::string(name);
   return std::to_string(static_cast<long long>(value));  // a raw source code 1-7
 }
 
@@ -92,7 +92,11 @@ std::string axis_text(const AxisProfile& a) {
                {"max_deg", number_text(a.max_deg)},
                {"initial_deg", number_text(a.initial_deg)},
                {"has_stow_limit", bool_text(a.has_stow_limit)},
-               {"stow_deg", number_text(a.stow_deg)}});
+               {"stow_deg", number_text(a.stow_deg)},
+               {"tolerance_deg", number_text(a.tolerance_deg)},
+               {"accel_dps2", a.accel_dps2 ? number_text(*a.accel_dps2) : "~"},
+               {"power_on_speed", name_text(kAxisSpeeds, a.power_on_speed)},
+               {"ad_error", bool_text(a.ad_error)}});
 }
 
 // A list of flow maps, one entry a line; "[]" when empty.
@@ -120,6 +124,7 @@ std::string to_yaml(const Profile& p) {
   line("firmware", quoted(p.firmware));
   line("polarization", name_text(kPolTypes, p.pol_type));
   line("azimuth_sensor", name_text(kAzSensors, p.az_sensor));
+  line("fluxgate_heading", name_text(kHeadingReferences, p.fluxgate_heading));
   line("hundredths", bool_text(p.hundredths));
   line("stow", bool_text(p.stow));
   line("deploy", bool_text(p.deploy));
@@ -132,6 +137,13 @@ std::string to_yaml(const Profile& p) {
   sub("pol", axis_text(p.pol));
   line("turnaround_ms", number_text(p.turnaround_ms));
   line("agc", std::to_string(p.agc));
+  line("agc_channel", name_text(kAgcChannels, p.agc_channel));
+  out += "display:\n";
+  sub("satellite", quoted(p.display.satellite));
+  sub("pol_code", name_text(kPolCodes, p.display.pol_code));
+  sub("cursor_row", std::to_string(p.display.cursor_row));
+  sub("cursor_column", std::to_string(p.display.cursor_column));
+  sub("cursor_blinking", bool_text(p.display.cursor_blinking));
   write_list(out, "store", p.store, [](const StoredSatellite& s) {
     return flow({{"name", quoted(s.name)},
                  {"az_deg", number_text(s.az_deg)},
