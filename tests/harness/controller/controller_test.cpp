@@ -856,6 +856,34 @@ TEST(Bus, BadLrcParityAndForeignAddressAreIgnored) {
   for (auto b : out) EXPECT_TRUE(has_even_parity(b));
 }
 
+// A master set to 8N1 (no parity bit): its bytes outside a frame are logged
+// as parity errors, and the transcript has one hint line.
+TEST(Bus, AMasterWithoutParityGetsParityErrorsAndOneHint) {
+  VirtualClock clock;
+  Bus bus({test_profile()}, clock);
+  Bytes out;
+  const Bytes seven_bit = encode_request(StatusPoll{}, '2');  // 02 32 31 03 02: four of five fail
+  for (int i = 0; i < 20; ++i) bus.receive(seven_bit, out);
+  EXPECT_TRUE(out.empty());
+  const std::string log = bus.take_log();
+  EXPECT_NE(log.find("parity error: 0x02 (STX)"), std::string::npos) << log;
+  EXPECT_EQ(log.find("unknown bytes: 0x02"), std::string::npos) << log;
+  const auto hint = log.find("is the master set to 7E1?");
+  ASSERT_NE(hint, std::string::npos) << log;
+  EXPECT_EQ(log.find("is the master set to 7E1?", hint + 1), std::string::npos) << "one hint";
+  for (int i = 0; i < 20; ++i) bus.receive(seven_bit, out);
+  EXPECT_EQ(bus.take_log().find("7E1"), std::string::npos) << "and only once";
+
+  // A 7E1 master with a parity error now and then gets no hint.
+  Bus good({test_profile()}, clock);
+  for (int i = 0; i < 20; ++i) {
+    Bytes w = wire(StatusPoll{}, '2');
+    if (i % 5 == 0) w[2] ^= 0x80;
+    good.receive(w, out);
+  }
+  EXPECT_EQ(good.take_log().find("7E1"), std::string::npos);
+}
+
 // ---- faults ------------------------------------------------------------------------------------
 
 TEST(Faults, EveryFaultHasAUniqueName) {

@@ -160,7 +160,9 @@ class Bus : public LineDevice {
   void tick() override;
   std::string take_log() override;
   // Whether receive() writes the transcript that take_log() returns (on by
-  // default). Off, a frame costs no text formatting (describe_frame): for
+  // default). Besides each frame and each ignored run, the transcript has one
+  // hint line, once, when most bytes of a stretch of the line fail the
+  // parity check (a master that is not set to 7E1). Off, a frame costs no text formatting (describe_frame): for
   // callers that never read the log, such as the whole-controller fuzz target.
   void set_transcript(bool on) { transcript_ = on; }
   // The names of the NAK rules applied since the last call, oldest first.
@@ -174,9 +176,13 @@ class Bus : public LineDevice {
  private:
   struct Unit;
   void trim_log();
+  void watch_parity(ByteView wire);
   std::vector<std::unique_ptr<Unit>> units_;
   Parity parity_;
   bool transcript_ = true;
+  // The line's bytes counted for the parity hint of the transcript.
+  std::size_t window_bytes_ = 0, window_bad_ = 0;
+  bool parity_hint_given_ = false;
   std::string log_;
   std::vector<std::string> nak_rules_;
   std::function<void(const Controller&)> on_change_;
