@@ -111,13 +111,16 @@ struct Range {
   double min, max;
 };
 
-Range az_range(Draw& d) {
+// §3.2 bytes 14-31 show -180.0 to 180.0; a fluxgate azimuth 0.0 to 359.9
+// (NOTE).
+Range az_range(Draw& d, AzSensor sensor) {
+  const double top = sensor == AzSensor::kFluxgate ? 360 : 180;
   switch (d.integer(0, 2)) {
     case 0: return {-180, 180};
-    case 1: return {0, 359.9};  // a fluxgate heading (§3.2 NOTE)
+    case 1: return sensor == AzSensor::kFluxgate ? Range{0, 359.9} : Range{-90, 90};
     default: {
-      const double lo = d.stepped(-180, 340, 0.1);
-      return {lo, d.stepped(lo + 10, 360, 0.1)};
+      const double lo = d.stepped(-180, top - 10, 0.1);
+      return {lo, d.stepped(lo + 10, top, 0.1)};
     }
   }
 }
@@ -280,7 +283,7 @@ void mount(Draw& d, Profile& p) {
   p.dvb_receiver = d.chance(0.5);
   p.counts_per_degree = std::max(0.01, Draw::round_to(d.log_real(1, 10000), 0.01));
   p.count_offset = static_cast<std::int32_t>(d.integer(0, 99999));
-  p.az = axis(d, az_range(d));
+  p.az = axis(d, az_range(d, p.az_sensor));
   p.el = axis(d, el_range(d));
   p.pol = axis(d, pol_range(d));
   p.turnaround_ms = d.chance(0.5) ? d.stepped(0, 10, 0.1) : d.stepped(0, kRandomMaxTurnaroundMs, 0.1);
@@ -307,7 +310,9 @@ void track_and_alarms(Draw& d, Profile& p) {
   auto alarm = [&] { return d.chance(0.2) ? pick_value(d, kAxisAlarms) : std::uint8_t{0}; };
   p.alarms.az = alarm();
   p.alarms.el = alarm();
-  p.alarms.pol = alarm();
+  // §3.2 byte 38: no off axis (1000) or drive (1100) alarm for polarization.
+  do p.alarms.pol = alarm();
+  while (p.alarms.pol == 8 || p.alarms.pol == 12);
   p.alarms.code = d.chance(0.25) ? static_cast<std::uint8_t>(d.integer(0, 63)) : 0;
 }
 

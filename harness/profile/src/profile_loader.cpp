@@ -15,6 +15,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <span>
+#include <tuple>
 
 #include "profile_tables.hpp"
 #include "sabus/harness/data_dir.hpp"
@@ -203,8 +204,14 @@ class IndexSet {
 // Sections
 // ---------------------------------------------------------------------------
 
-// Reads into `axis` so that an absent key keeps that axis's own default.
-void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis) {
+// Where each axis's range was given, for the rules that need other keys.
+struct AxisRanges {
+  std::optional<At> az, el, pol;
+};
+
+// Reads into `axis` so that an absent key keeps that axis's own default;
+// `range` is where its range was given.
+void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::optional<At>& range_at) {
   MapReader r(v, at,
               {"fast_dps", "slow_dps", "min_deg", "max_deg", "initial_deg", "has_stow_limit", "stow_deg", "tolerance_deg",
                "accel_dps2", "power_on_speed", "ad_error"});
@@ -231,6 +238,7 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis) {
   // Reaching a limit asserts its limit bit (§3.2 bytes 32-34): min below max,
   // and the power-on and stow positions between them.
   const At range = r.at(r.has("max_deg") ? "max_deg" : "min_deg");
+  range_at = range;
   if (axis.min_deg >= axis.max_deg)
     fail(range, "min_deg " + number_text(axis.min_deg) + " must be below max_deg " + number_text(axis.max_deg));
   if (axis.max_deg - axis.min_deg < kMinAxisSpan)
@@ -243,11 +251,25 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis) {
     fail(r.at("stow_deg"), "stow_deg " + number_text(axis.stow_deg) + " is outside min_deg..max_deg");
 }
 
-void read_axes(const YAML::Node& v, const At& at, Profile& p) {
+void read_axes(const YAML::Node& v, const At& at, Profile& p, AxisRanges& ranges) {
   MapReader r(v, at, {"az", "el", "pol"});
-  r.with("az", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.az); });
-  r.with("el", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.el); });
-  r.with("pol", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.pol); });
+  r.with("az", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.az, ranges.az); });
+  r.with("el", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.el, ranges.el); });
+  r.with("pol", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.pol, ranges.pol); });
+}
+
+// §3.2 bytes 14-31: a position field shows -180.0 to 180.0; only an azimuth
+// read from the fluxgate compass shows 0.0-359.9 (§3.2 NOTE).
+void check_shown_ranges(const Profile& p, const AxisRanges& ranges, const At& axes) {
+  const std::tuple<const char*, const AxisProfile*, const std::optional<At>*> all[] = {
+      {"az", &p.az, &ranges.az}, {"el", &p.el, &ranges.el}, {"pol", &p.pol, &ranges.pol}};
+  for (const auto& [name, axis, at] : all) {
+    const bool heading = axis == &p.az && p.az_sensor == AzSensor::kFluxgate;
+    if (axis->max_deg > 180.0 && !heading)
+      fail(at->value_or(axes), std::string(name) + " max_deg " + number_text(axis->max_deg) +
+                                   " is beyond 180, the most a position field shows (§3.2); only a fluxgate "
+                                   "azimuth (azimuth_sensor: fluxgate) reads up to 359.9");
+  }
 }
 
 // §3.6: names are unique (a STORE of an existing name overwrites it, §3.19).
@@ -378,6 +400,10 @@ void read_alarms(const YAML::Node& v, const At& at, AlarmProfile& alarms) {
   r.read("az", alarms.az, axis);
   r.read("el", alarms.el, axis);
   r.read("pol", alarms.pol, axis);
+  // §3.2 byte 38: off axis and drive alarms are "not currently supported" for polarization.
+  if (alarms.pol == 8 || alarms.pol == 12)
+    fail(r.at("pol"), "a polarization axis does not report the " + std::string(name_of(kAxisAlarms, alarms.pol)) +
+                          " alarm (§3.2 byte 38: not currently supported)");
   // §3.2 byte 39: A5..A0.
   r.read("code", alarms.code, [](const YAML::Node& n, const At& a) { return static_cast<std::uint8_t>(to_integer_in(n, a, 0, 63)); });
 }
@@ -444,7 +470,8 @@ Profile read_profile(const YAML::Node& root) {
   // §3.16: five-digit counts.
   r.read("count_offset", p.count_offset,
          [](const YAML::Node& n, const At& a) { return static_cast<std::int32_t>(to_integer_in(n, a, 0, 99999)); });
-  r.with("axes", [&](const YAML::Node& n, const At& a) { read_axes(n, a, p); });
+  AxisRanges ranges;
+  r.with("axes", [&](const YAML::Node& n, const At& a) { read_axes(n, a, p, ranges); });
   r.read("turnaround_ms", p.turnaround_ms, [](const YAML::Node& n, const At& a) { return to_number_in(n, a, 0, 60000); });
   // §3.2 bytes 41-43.
   r.read("agc", p.agc, [](const YAML::Node& n, const At& a) { return static_cast<std::uint16_t>(to_integer_in(n, a, 0, 999)); });
@@ -461,6 +488,7 @@ Profile read_profile(const YAML::Node& root) {
   // §3.20 NOTE / ERRATA E-23: signposts exist only with the DVB receiver option.
   if (!p.signposts.empty() && !p.dvb_receiver)
     fail(r.at("signposts"), "signposts need the DVB receiver option (dvb_receiver: true; §3.20, ERRATA E-23)");
+  check_shown_ranges(p, ranges, r.at("axes"));
   // §3.2 byte 35: without a rotating feed there is no polarization to show.
   if (p.display.pol_code != 0 && p.pol_type == PolType::kCircular)
     fail(r.at("display"), "a polarization code is displayed only with a rotating feed (polarization: single_port or dual_port)");

@@ -301,6 +301,11 @@ TEST(profile, ErrorAxisRules) {
   expect_error("axes:\n  az: {accel_dps2: -3}\n", 2, 8, "axes.az.accel_dps2", "greater than 0");
   expect_error("axes:\n  az: {power_on_speed: medium}\n", 2, 8, "axes.az.power_on_speed", "not one of fast, slow");
   expect_error("axes:\n  az: {ad_error: 1}\n", 2, 8, "axes.az.ad_error", "true or false");
+  // §3.2: positions show -180.0 to 180.0; a fluxgate azimuth 0.0 to 359.9.
+  expect_error("axes:\n  az: {max_deg: 200}\n", 2, 8, "axes.az.max_deg", "az max_deg 200 is beyond 180");
+  expect_error("axes:\n  el: {max_deg: 180.1}\n", 2, 8, "axes.el.max_deg", "only a fluxgate azimuth");
+  expect_error("axes:\n  az: {min_deg: 0, max_deg: 359.9}\nazimuth_sensor: pulse\n", 2, 20, "axes.az.max_deg", "beyond 180");
+  load_ok("axes:\n  az: {min_deg: 0, max_deg: 359.9}\nazimuth_sensor: fluxgate\n");
   Profile p = load_ok("axes:\n  el: {accel_dps2: 2.5, tolerance_deg: 1.5, power_on_speed: slow, ad_error: true}\n");
   EXPECT_EQ(p.el.accel_dps2, 2.5);
   EXPECT_EQ(p.el.tolerance_deg, 1.5);
@@ -369,6 +374,10 @@ TEST(profile, DisplayAndStatusFields) {
   // §3.2 byte 35: no polarization code without a rotating feed.
   expect_error("polarization: circular\ndisplay: {pol_code: V}\n", 2, 1, "display", "rotating feed");
   EXPECT_TRUE(load_profile_text("polarization: circular\ndisplay: {pol_code: none}\n"));
+  // §3.2 byte 38: off axis and drive alarms are not supported for polarization.
+  expect_error("alarms:\n  pol: drive\n", 2, 3, "alarms.pol", "does not report the drive alarm");
+  expect_error("alarms:\n  pol: off_axis\n", 2, 3, "alarms.pol", "off_axis");
+  EXPECT_EQ(load_ok("alarms:\n  pol: jammed\n  el: drive\n").alarms.el, 12);
 }
 
 TEST(profile, ErrorInitialPositionOutsideLimits) {
@@ -475,7 +484,7 @@ Profile every_field_set() {
   p.counts_per_degree = 123.456;
   p.count_offset = 99999;
   p.fluxgate_heading = 'M';
-  p.az = {3.3, 0.1, -170.5, 350.25, 12.125, true, 0.1, 5, 0.25, AxisSpeed::kSlow, true};
+  p.az = {3.3, 0.1, -170.5, 179.25, 12.125, true, 0.1, 5, 0.25, AxisSpeed::kSlow, true};
   p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0, 0.1, 1000, AxisSpeed::kFast, false};
   p.pol = {9, 3, -45, 45, -44.9, true, 44.9, 2.5, std::nullopt, AxisSpeed::kSlow, false};
   p.turnaround_ms = 0.25;
