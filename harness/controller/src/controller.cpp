@@ -339,6 +339,11 @@ std::int32_t Controller::tenths(AxisId a) const {
 std::optional<std::int32_t> Controller::reading(AxisId a) const {
   if (axis_profile(a).ad_error) return std::nullopt;  // '*' (§3.2 bytes 14-31, E-42)
   if (a == AxisId::kPol && profile_.pol_type == PolType::kCircular) return std::nullopt;  // no rotating feed
+  if (a == AxisId::kAz && profile_.az_sensor == AzSensor::kFluxgate) {
+    // §3.2 NOTE: the compass reads a heading 0.0-359.9 (ERRATA E-72).
+    const std::int32_t h = tenths(a) % 3600;
+    return h < 0 ? h + 3600 : h;
+  }
   return tenths(a);
 }
 
@@ -392,10 +397,8 @@ StatusBlock Controller::status_block() const {
   if (!az) {
     b.azimuth = {fields::AzimuthReading::Kind::kError, 0, 0};
   } else if (profile_.az_sensor == AzSensor::kFluxgate) {
-    // §3.2 NOTE: a heading 0.0-359.9 and 'M' or 'T' when the compass is primary.
-    std::int32_t h = *az % 3600;
-    if (h < 0) h += 3600;
-    b.azimuth = {fields::AzimuthReading::Kind::kHeading, h, profile_.fluxgate_heading};
+    // §3.2 NOTE: a heading and 'M' or 'T' when the compass is primary.
+    b.azimuth = {fields::AzimuthReading::Kind::kHeading, *az, profile_.fluxgate_heading};
   } else {
     b.azimuth = {fields::AzimuthReading::Kind::kPosition, *az, 0};
   }

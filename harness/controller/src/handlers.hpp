@@ -61,7 +61,7 @@ struct Handlers {
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMovePol& m);
   static Outcome move_az_el(C& c, double az, double el, std::string note);
   static Outcome jog(C& c, std::uint8_t code, const JogFields& j);
-  static Outcome jog_position(C& c, AxisId a, double position);
+  static Outcome jog_position(C& c, AxisId a);
   static Outcome pol_preset(C& c, const PolPreset& p);
   static Outcome remote_locate(C& c, const RemoteLocate& l);
 

@@ -131,27 +131,24 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
       for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
         if (other != a && c.axis(other).motion == AxisState::Motion::kJog)
           c.stop_axis(other);
-    const double before = c.axis(a).position;
-    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));
-    if (code == 0x47) return jog_position(c, a, before);
+    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));  // moves from the next update on
+    if (code == 0x47) return jog_position(c, a);
     return status(c, code, "jog " + std::string(1, j.direction));
   }
   // 'X': stop all movement (speed and duration are still required, READING-NOTES 14).
   if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
   take_remote_control(c);
-  const double az = c.state_.az.position;
-  c.stop_all();
-  if (code == 0x47) return jog_position(c, AxisId::kAz, az);  // ERRATA E-46
+  c.stop_all();  // from the next update on
+  if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46
   return status(c, code, "stop all movement");
 }
 
-// §3.24: "the position (at the time the command is received) of the axis".
-Outcome Handlers::jog_position(C& c, AxisId a, double position) {
+// §3.24: "the position (at the time the command is received) of the axis",
+// as the status reply shows it (E-42 '*', E-72 a fluxgate heading).
+Outcome Handlers::jog_position(C& c, AxisId a) {
   JogPositionReply r;
   r.axis = a == AxisId::kAz ? 'A' : a == AxisId::kEl ? 'E' : 'P';
-  // '*' without a rotating feed or on an A/D error (E-42).
-  const bool no_reading = (a == AxisId::kPol && c.profile_.pol_type == PolType::kCircular) || c.axis_profile(a).ad_error;
-  r.position = no_reading ? std::nullopt : std::optional<std::int32_t>(static_cast<std::int32_t>(std::lround(position * 10)));
+  r.position = c.reading(a);
   return ack(c, 0x47, r);
 }
 

@@ -469,7 +469,9 @@ TEST(Controller, PowerOnStatusFieldsFromTheProfile) {
   p.az_sensor = AzSensor::kFluxgate;
   p.fluxgate_heading = 'M';
   p.az.initial_deg = -90;
-  EXPECT_EQ(Rig(p).status().azimuth, (fields::AzimuthReading{fields::AzimuthReading::Kind::kHeading, 2700, 'M'}));
+  Rig flux(p);
+  EXPECT_EQ(flux.status().azimuth, (fields::AzimuthReading{fields::AzimuthReading::Kind::kHeading, 2700, 'M'}));
+  EXPECT_EQ(flux.reply<JogPositionReply>(JogMinimal{{'W', 'S', 50}}).position, 2700) << "47h as 31h shows it (E-72)";
 
   p = test_profile();
   p.az.ad_error = true;

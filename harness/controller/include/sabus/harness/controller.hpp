@@ -128,7 +128,8 @@ class Controller {
   void on_motion_done();
 
   std::int32_t tenths(AxisId a) const;
-  // §3.2 bytes 14-31 / §3.24 bytes 4-9: the tenths shown, nullopt for an A/D error.
+  // §3.2 bytes 14-31 / §3.24 bytes 4-9: the tenths shown (a heading for a
+  // fluxgate azimuth), nullopt for '*': an A/D error or no rotating feed.
   std::optional<std::int32_t> reading(AxisId a) const;
   std::uint32_t hundredths_digit(AxisId a) const;
   double position_of_counts(std::uint32_t count) const;
