@@ -106,6 +106,40 @@ void write_list(std::string& out, std::string_view key, const std::vector<T>& it
   for (const auto& item : items) out += "  - " + entry(item) + "\n";
 }
 
+// The stored lists (§3.6, §3.10, §3.12, §3.20), one entry a line.
+void write_stored_data(std::string& out, const Profile& p) {
+  write_list(out, "store", p.store, [](const StoredSatellite& s) {
+    return flow({{"name", quoted(s.name)},
+                 {"az_deg", number_text(s.az_deg)},
+                 {"el_deg", number_text(s.el_deg)},
+                 {"h_pol_deg", number_text(s.h_pol_deg)},
+                 {"v_pol_deg", number_text(s.v_pol_deg)}});
+  });
+  write_list(out, "presets", p.presets, [](const PresetSatellite& s) {
+    return flow({{"index", std::to_string(s.index)},
+                 {"name", quoted(s.data.name)},
+                 {"longitude", opt_text(s.data.longitude, tenths_text)},
+                 {"inclination", opt_text(s.data.inclination, int_text)},
+                 {"band", item_text(layouts::kBands, s.data.band, false)},
+                 {"ephemeris", item_text(layouts::kEphemeris, s.data.ephemeris, false)},
+                 {"pol_offset", opt_text(s.data.pol_offset, tenths_text)},
+                 {"dual_band", bool_text(s.dual_band)}});
+  });
+  write_list(out, "tles", p.tles, [](const TleSet& t) {
+    return flow({{"index", std::to_string(t.index)}, {"line1", quoted(t.line1)}, {"line2", quoted(t.line2)}});
+  });
+  write_list(out, "signposts", p.signposts, [](const Signpost& s) {
+    return flow({{"index", std::to_string(s.index)},
+                 {"longitude", opt_text(s.data.longitude, tenths_text)},
+                 {"frequency", opt_text(s.data.frequency, int_text)},
+                 {"symbol_rate", opt_text(s.data.symbol_rate, int_text)},
+                 {"fec", item_text(layouts::kFec, s.data.fec, false)},
+                 {"polarization", item_text(layouts::kSignpostPol, s.data.polarization, true)},
+                 {"id", quoted(s.data.id)},
+                 {"priority", std::to_string(s.data.priority)}});
+  });
+}
+
 }  // namespace
 
 std::string to_yaml(const Profile& p) {
@@ -144,36 +178,7 @@ std::string to_yaml(const Profile& p) {
   sub("cursor_row", std::to_string(p.display.cursor_row));
   sub("cursor_column", std::to_string(p.display.cursor_column));
   sub("cursor_blinking", bool_text(p.display.cursor_blinking));
-  write_list(out, "store", p.store, [](const StoredSatellite& s) {
-    return flow({{"name", quoted(s.name)},
-                 {"az_deg", number_text(s.az_deg)},
-                 {"el_deg", number_text(s.el_deg)},
-                 {"h_pol_deg", number_text(s.h_pol_deg)},
-                 {"v_pol_deg", number_text(s.v_pol_deg)}});
-  });
-  write_list(out, "presets", p.presets, [](const PresetSatellite& s) {
-    return flow({{"index", std::to_string(s.index)},
-                 {"name", quoted(s.data.name)},
-                 {"longitude", opt_text(s.data.longitude, tenths_text)},
-                 {"inclination", opt_text(s.data.inclination, int_text)},
-                 {"band", item_text(layouts::kBands, s.data.band, false)},
-                 {"ephemeris", item_text(layouts::kEphemeris, s.data.ephemeris, false)},
-                 {"pol_offset", opt_text(s.data.pol_offset, tenths_text)},
-                 {"dual_band", bool_text(s.dual_band)}});
-  });
-  write_list(out, "tles", p.tles, [](const TleSet& t) {
-    return flow({{"index", std::to_string(t.index)}, {"line1", quoted(t.line1)}, {"line2", quoted(t.line2)}});
-  });
-  write_list(out, "signposts", p.signposts, [](const Signpost& s) {
-    return flow({{"index", std::to_string(s.index)},
-                 {"longitude", opt_text(s.data.longitude, tenths_text)},
-                 {"frequency", opt_text(s.data.frequency, int_text)},
-                 {"symbol_rate", opt_text(s.data.symbol_rate, int_text)},
-                 {"fec", item_text(layouts::kFec, s.data.fec, false)},
-                 {"polarization", item_text(layouts::kSignpostPol, s.data.polarization, true)},
-                 {"id", quoted(s.data.id)},
-                 {"priority", std::to_string(s.data.priority)}});
-  });
+  write_stored_data(out, p);
   const Navigation& nav = p.navigation;
   out += "navigation:\n";
   sub("latlon_source", name_text(kLatLonSources, nav.latlon_source));
