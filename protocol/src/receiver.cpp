@@ -175,9 +175,26 @@ void Receiver::discard_frame(DiscardReason reason, std::uint64_t end, std::uint6
 
 void Receiver::flush_unknown(ReceiverSink& sink) {
   if (unknown_len_ == 0) return;
-  Discard d{DiscardReason::kUnknown, unknown_start_, unknown_len_, unknown_start_, unknown_first_, 0};
+  Discard d{unknown_reason_, unknown_start_, unknown_len_, unknown_start_, unknown_first_, 0};
   unknown_len_ = 0;
   sink.on_discard(d);
+}
+
+DiscardReason Receiver::idle_reason(std::uint8_t byte_class) {
+  return byte_class == kBadParity ? DiscardReason::kParityError
+         : byte_class == kNotAscii ? DiscardReason::kNotAscii
+                                   : DiscardReason::kUnknown;
+}
+
+void Receiver::idle_byte(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink) {
+  const DiscardReason r = idle_reason(class_[wire]);
+  if (unknown_len_ != 0 && r != unknown_reason_) flush_unknown(sink);
+  if (unknown_len_ == 0) {
+    unknown_start_ = at;
+    unknown_first_ = wire;
+    unknown_reason_ = r;
+  }
+  ++unknown_len_;
 }
 
 void Receiver::complete_frame(std::uint64_t at, std::uint8_t wire, ReceiverSink& sink) {
@@ -212,11 +229,7 @@ void Receiver::step_slow(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink
         flush_unknown(sink);
         begin_frame(c, at);
       } else {
-        if (unknown_len_ == 0) {
-          unknown_start_ = at;
-          unknown_first_ = wire;
-        }
-        ++unknown_len_;
+        idle_byte(wire, at, sink);
       }
       return;
 
@@ -285,14 +298,13 @@ void Receiver::feed(ByteView chunk, ReceiverSink& sink) {
   std::size_t i = 0;
   while (i < n) {
     if (state_ == ReceiverState::kSlaveIdle) {
-      // Fast path: skip bytes that cannot start a frame.
-      const std::size_t run = i;
-      while (i < n && class_[p[i]] != kStart) ++i;
-      if (i > run) {
-        if (unknown_len_ == 0) {
-          unknown_start_ = base + run;
-          unknown_first_ = p[run];
-        }
+      // Fast path: skip bytes that cannot start a frame, a run of one kind
+      // (idle_byte) at a time.
+      while (i < n && class_[p[i]] != kStart) {
+        idle_byte(p[i], base + i, sink);
+        const DiscardReason kind = unknown_reason_;
+        const std::size_t run = ++i;
+        while (i < n && class_[p[i]] != kStart && idle_reason(class_[p[i]]) == kind) ++i;
         unknown_len_ += i - run;
       }
       if (i == n) break;

@@ -138,6 +138,29 @@ RC_GTEST_PROP(ReceiverProperties, EveryByteIsAccountedForExactlyOnce, ()) {
   RC_ASSERT(next == stream.size());
 }
 
+RC_GTEST_PROP(ReceiverProperties, RunsOutsideFramesAreOfOneKind, ()) {
+  // A run outside a frame starts at its offset (at == offset) and holds bytes
+  // of one kind: all with a wrong parity bit (parity error), all 8-bit
+  // characters (parity checking off), or all well-formed characters.
+  const std::uint8_t address = static_cast<std::uint8_t>(*rc::gen::inRange(0x31, 0x70));
+  const ReceiverOptions o = random_options(address);
+  const Bytes stream = *rc::gen::arbitrary<bool>() ? on_wire(o, line_noise(address))
+                                                   : *rc::gen::container<Bytes>(rc::gen::arbitrary<std::uint8_t>());
+  const auto log = test::receive(o, stream);
+  for (const auto& d : log.discards()) {
+    const bool outside = d.reason == DiscardReason::kUnknown ||
+                         ((d.reason == DiscardReason::kParityError || d.reason == DiscardReason::kNotAscii) && d.at == d.offset);
+    if (!outside) continue;
+    for (std::uint64_t i = d.offset; i < d.offset + d.length; ++i) {
+      const std::uint8_t b = stream[static_cast<std::size_t>(i)];
+      const bool bad_parity = o.parity == Parity::kEvenBit7 && !has_even_parity(b);
+      const bool eight_bit = o.parity == Parity::kNone && b > 0x7F;
+      RC_ASSERT(bad_parity == (d.reason == DiscardReason::kParityError));
+      RC_ASSERT(eight_bit == (d.reason == DiscardReason::kNotAscii));
+    }
+  }
+}
+
 RC_GTEST_PROP(ReceiverProperties, ArbitraryStreamsNeverCrash, ()) {
   // Run under ASan/UBSan by the test command's sanitizer build.
   ReceiverOptions o = random_options(static_cast<std::uint8_t>(*rc::gen::inRange(0x31, 0x70)));

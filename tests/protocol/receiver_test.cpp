@@ -185,6 +185,28 @@ TEST(Receiver, ParityErrorOnEachPartOfTheFrame) {
   EXPECT_EQ(receive(wire, good).frames()[0], command('2', 0x36, "RA"));
 }
 
+// A master set to 8N1 sends no parity bit: outside a frame its bytes with an
+// odd number of ones are parity errors, not unknown bytes, one run per kind.
+TEST(Receiver, ParityErrorsOutsideAFrameAreNamedAsSuch) {
+  const ReceiverOptions wire = ReceiverOptions::slave('2');
+  // 02 32 31 03 00 as 7-bit characters: STX, '2' and '1' have odd parity.
+  auto log = receive(wire, hex("02 32 31 03 00 41 c3"));
+  const auto ds = log.discards();
+  ASSERT_EQ(ds.size(), 2u);
+  EXPECT_EQ(ds[0].reason, R::kParityError);
+  EXPECT_EQ(ds[0].offset, 0u);
+  EXPECT_EQ(ds[0].length, 3u);
+  EXPECT_EQ(ds[0].message(), "bytes 0-2 (3): parity error: 0x02 (STX) at offset 0");
+  EXPECT_EQ(ds[1].reason, R::kUnknown) << "ETX, NUL, 'A' and 'C' (C3h, with its parity bit) have even parity";
+  EXPECT_EQ(ds[1].offset, 3u);
+  EXPECT_EQ(ds[1].length, 4u);
+  // Without parity checking, bit 7 outside a frame is an 8-bit character.
+  const auto seven = receive(kSlave50, hex("41 c1 c2 42"));
+  ASSERT_EQ(seven.discards().size(), 3u);
+  EXPECT_EQ(seven.discards()[1].reason, R::kNotAscii);
+  EXPECT_EQ(seven.discards()[1].length, 2u);
+}
+
 TEST(Receiver, UncheckedParityStripsBit7) {
   ReceiverOptions lenient = ReceiverOptions::slave('2');
   lenient.parity = Parity::kUnchecked;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "sabus/harness/line.hpp"
@@ -141,6 +142,49 @@ TEST(Sim, EmulatedLineTakesTheWireTime) {
   std::printf("status poll round trip on an emulated 9600-baud line: %.1f ms\n", took);
   line.reset();
   EXPECT_EQ(sim.interrupt(), 0);
+}
+
+// The profile's turnaround_ms is the device's reply turnaround: with
+// --emulate-line the first reply byte comes no sooner.
+TEST(Sim, EmulatedLineWaitsTheProfilesTurnaround) {
+  const std::string profile = temp_path("slow.yaml");
+  std::ofstream(profile) << "turnaround_ms: 400\n";
+  const std::string link = temp_path("turnaround");
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", link, "--emulate-line", "--profile", profile});
+  ASSERT_EQ(sim.line(5s), "READY " + link);
+  auto line = TermiosSerialLine::open(link, 9600);
+  const auto start = std::chrono::steady_clock::now();
+  auto r = talk(*line, encode_request(DeviceTypeQuery{}, '2'), 2000ms);
+  const auto took = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_GE(took, 400.0) << "the reply came before the profile's 400 ms turnaround";
+  std::printf("device type round trip with a 400 ms turnaround: %.1f ms\n", took);
+  line.reset();
+  EXPECT_EQ(sim.interrupt(), 0);
+  fs::remove(profile);
+}
+
+// A master set to 8N1 sends its characters without the parity bit: the log
+// names the bytes parity errors and says once what to check.
+TEST(Sim, LogNamesParityErrorsAndHintsAt7E1) {
+  const std::string log = temp_path("parity.log");
+  fs::remove(log);
+  const std::string link = temp_path("parity");
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", link, "--log", log});
+  ASSERT_EQ(sim.line(5s), "READY " + link);
+  auto line = TermiosSerialLine::open(link, 9600);
+  for (int i = 0; i < 10; ++i) line->write(encode_request(StatusPoll{}, '2'));  // no parity bit
+  EXPECT_EQ(talk(*line, encode_request(DeviceTypeQuery{}, '2')).size(), 1u) << "a 7E1 frame is still answered";
+  line.reset();
+  EXPECT_EQ(sim.interrupt(), 0);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("parity error: 0x02 (STX)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("unknown bytes: 0x02"), std::string::npos) << text;
+  const auto hint = text.find("is the master set to 7E1?");
+  EXPECT_NE(hint, std::string::npos) << text;
+  EXPECT_EQ(text.find("is the master set to 7E1?", hint + 1), std::string::npos) << text;
+  fs::remove(log);
 }
 
 TEST(Sim, UsageErrorsExit2) {

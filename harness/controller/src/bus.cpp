@@ -57,6 +57,27 @@ Bus::~Bus() = default;
 
 Controller& Bus::controller(std::size_t i) { return units_[i]->controller; }
 
+// §1 Data Format, E-1: 7E1, even parity in bit 7. A master set to 8N1
+// sends about half its bytes with the wrong bit 7, one set to 7O1 all of
+// them; both show as parity errors. When more than half the bytes of a
+// stretch of the line fail, the transcript says once what to check.
+void Bus::watch_parity(ByteView wire) {
+  constexpr std::size_t kWindow = 32;  // bytes: a few commands
+  if (!transcript_ || parity_ != Parity::kEvenBit7 || parity_hint_given_) return;
+  for (std::uint8_t b : wire) {
+    ++window_bytes_;
+    if (!has_even_parity(b)) ++window_bad_;
+    if (window_bytes_ < kWindow) continue;
+    if (window_bad_ * 2 > window_bytes_) {
+      log_ += "hint: " + std::to_string(window_bad_) + " of the last " + std::to_string(window_bytes_) +
+              " bytes failed the parity check (even parity in bit 7, §1 Data Format): is the master set to 7E1?\n";
+      parity_hint_given_ = true;
+      return;
+    }
+    window_bytes_ = window_bad_ = 0;
+  }
+}
+
 void Bus::receive(ByteView wire, Bytes& out) {
   constexpr std::size_t kRecent = 512;
   for (auto& u : units_) {
@@ -99,6 +120,7 @@ void Bus::receive(ByteView wire, Bytes& out) {
       u->recent_base += drop;
     }
   }
+  watch_parity(wire);  // after the runs it ignored: the hint follows them in the transcript
 }
 
 void Bus::trim_log() {

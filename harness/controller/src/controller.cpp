@@ -14,8 +14,91 @@ namespace sabus::harness {
 namespace {
 
 constexpr double kEpsilon = 1e-6;
+// Positions are shown in tenths (§3.2 bytes 14-31), truncated with 0.01 deg
+// feedback: a reading is off by less than this.
+constexpr double kDisplayResolution = 0.1;
+// A step of a ramped axis takes at most a few phases of constant
+// acceleration (stop, speed up, cruise, slow down); the bound keeps a
+// degenerate one from looping.
+constexpr int kMaxPhases = 16;
 
 double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
+int sign_of(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
+
+// ---- an axis with an acceleration ramp (ERRATA E-71) ------------------------
+
+struct Kinematics {
+  double x;  // degrees
+  double v;  // degrees per second
+};
+
+void coast(Kinematics& k, double accel, double t) {
+  k.x += k.v * t + 0.5 * accel * t * t;
+  k.v += accel * t;
+}
+
+// Toward velocity `want` at `accel`, for at most `horizon` seconds; returns
+// the time taken. A change of direction first stops at zero, so that within
+// one phase the axis moves one way only (a limit it passes is seen).
+double ramp_toward(Kinematics& k, double want, double accel, double horizon) {
+  const double goal = sign_of(k.v) * sign_of(want) < 0 ? 0.0 : want;
+  const double dv = goal - k.v;
+  if (std::abs(dv) < 1e-12) {
+    k.v = goal;
+    coast(k, 0, horizon);
+    return horizon;
+  }
+  const double need = std::abs(dv) / accel;
+  if (need > horizon) {
+    coast(k, sign_of(dv) * accel, horizon);
+    return horizon;
+  }
+  coast(k, sign_of(dv) * accel, need);
+  k.v = goal;
+  return need;
+}
+
+// One phase of an auto move to `aim` (speed up to `vmax`, cruise, slow down
+// to stop there); returns the time taken, at most `horizon`; 0 when the
+// axis is at rest at `aim`.
+double approach(Kinematics& k, double aim, double vmax, double accel, double horizon) {
+  const double d = aim - k.x;
+  const double dist = std::abs(d);
+  if (dist < kEpsilon && std::abs(k.v) < 1e-9) return 0;
+  const int toward = d > 0 ? 1 : d < 0 ? -1 : -sign_of(k.v);
+  const double u = std::abs(k.v);
+  // Moving away, or too close to stop in time: brake (and turn if need be).
+  if (k.v * toward < 0 || u * u / (2 * accel) >= dist - 1e-12) return ramp_toward(k, 0, accel, horizon);
+  if (u < vmax - 1e-12) {
+    // Speed up until vmax, or until braking must begin: where the speed w
+    // satisfies w^2/2a (braking) + (w^2 - u^2)/2a (speeding up) = dist.
+    const double top = std::min(vmax, std::sqrt(accel * dist + u * u / 2));
+    const double phase = (top - u) / accel;
+    if (phase > horizon) {
+      coast(k, toward * accel, horizon);
+      return horizon;
+    }
+    coast(k, toward * accel, phase);
+    k.v = toward * top;
+    return phase;
+  }
+  const double cruise = std::max(0.0, (dist - u * u / (2 * accel)) / u);
+  const double t = std::min(cruise, horizon);
+  coast(k, 0, t);
+  return t;
+}
+
+// ERRATA E-71: an auto move stops where a reading of it is within the
+// axis's tolerance of the target: up to tolerance_deg less the display's
+// resolution short of it. A move to a limit or stow position ends on its
+// switch; an axis already that close does not move.
+double aim_for(const AxisProfile& p, double from, double target) {
+  const double deadband = std::max(0.0, p.tolerance_deg - kDisplayResolution);
+  auto at = [&](double x) { return std::abs(target - x) < kEpsilon; };
+  if (deadband < kEpsilon || at(p.min_deg) || at(p.max_deg) || (p.has_stow_limit && at(p.stow_deg))) return target;
+  if (std::abs(target - from) <= deadband) return from;
+  return target > from ? target - deadband : target + deadband;
+}
 
 }  // namespace
 
@@ -45,13 +128,17 @@ Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faul
   state_.pol.alarm = profile_.alarms.pol;
   state_.alarm_code = profile_.alarms.code;
   state_.track = {profile_.track.active, profile_.track.activity, profile_.track.band, profile_.track.dual_band};
+  // What the controller shows at power-on (§3.2 bytes 3-12, 35 ZZZ, 36-38 'S').
+  state_.displayed_sat = profile_.display.satellite;
+  state_.pol_code = profile_.display.pol_code;
+  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) axis(a).fast = axis_profile(a).power_on_speed == AxisSpeed::kFast;
   // Power-on: INIT has finished; MANUAL (or TRACK, for profiles that test it).
   state_.mode.last_mode = mode_value("INIT_MODE");
   state_.mode.exit_status = enum_value(enums::exit_list_for_mode(state_.mode.last_mode, enum_reading()),
                                        "INIT_NORMAL_EXIT");
   if (state_.track.active) {
     state_.mode.mode = mode_value("TRACK_MODE");
-    set_state(track_state_name(state_.track.activity));
+    set_state(track_submode(state_.track.activity).state);
   } else {
     state_.mode.mode = mode_value("MANUAL_MODE");
     set_state("MANUAL_IDLE");
@@ -110,8 +197,18 @@ bool Controller::moving() const {
   return false;
 }
 
+void Controller::stop_axis(AxisId a) {
+  AxisState& s = axis(a);
+  if (!axis_profile(a).accel_dps2 || std::abs(s.velocity) < 1e-9) {
+    s.motion = AxisState::Motion::kIdle;
+    s.velocity = 0;
+    return;
+  }
+  s.motion = AxisState::Motion::kStopping;  // down its ramp (E-71)
+}
+
 void Controller::stop_all() {
-  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) axis(a).motion = AxisState::Motion::kIdle;
+  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) stop_axis(a);
 }
 
 void Controller::start_jog(AxisId a, int direction, bool fast, Duration duration) {
@@ -126,27 +223,36 @@ void Controller::start_move(AxisId a, double target, bool remote) {
   AxisState& s = axis(a);
   const AxisProfile& p = axis_profile(a);
   s.target = std::clamp(target, p.min_deg, p.max_deg);
-  s.direction = s.target >= s.position ? 1 : -1;
-  if (faults_.has(Fault::kMoveStopsShort) && std::abs(s.target - s.position) > 1.0) s.target -= s.direction * 1.0;
-  s.motion = std::abs(s.target - s.position) < kEpsilon ? AxisState::Motion::kIdle
-             : remote                                  ? AxisState::Motion::kRemoteAutoMove
-                                                       : AxisState::Motion::kAutoMove;
+  // Fault move-stops-short: the axis stops 1 degree before its target.
+  if (faults_.has(Fault::kMoveStopsShort) && std::abs(s.target - s.position) > 1.0)
+    s.target -= (s.target >= s.position ? 1.0 : -1.0);
+  s.aim = aim_for(p, s.position, s.target);
   s.fast = true;
+  if (std::abs(s.aim - s.position) < kEpsilon && std::abs(s.velocity) < 1e-9) {
+    s.motion = AxisState::Motion::kIdle;
+    s.velocity = 0;
+    return;
+  }
+  s.direction = s.aim >= s.position ? 1 : -1;
+  s.motion = remote ? AxisState::Motion::kRemoteAutoMove : AxisState::Motion::kAutoMove;
 }
 
 void Controller::step_axis(AxisId a, TimePoint from, TimePoint to) {
   AxisState& s = axis(a);
   const AxisProfile& p = axis_profile(a);
   if (s.motion == AxisState::Motion::kIdle) return;
-  if (s.motion == AxisState::Motion::kJog) {
+  if (p.accel_dps2) return step_ramped(a, from, to);
+  if (s.motion == AxisState::Motion::kStopping) {
+    s.motion = AxisState::Motion::kIdle;
+  } else if (s.motion == AxisState::Motion::kJog) {
     const bool timed = !faults_.has(Fault::kJogIgnoresDuration);
     const TimePoint end = timed ? std::min(to, s.jog_end) : to;
     if (end > from) s.position += s.direction * (s.fast ? p.fast_dps : p.slow_dps) * seconds(end - from);
     if (timed && to >= s.jog_end) s.motion = AxisState::Motion::kIdle;
   } else {
     const double step = p.fast_dps * seconds(to - from);
-    if (std::abs(s.target - s.position) <= step) {
-      s.position = s.target;
+    if (std::abs(s.aim - s.position) <= step) {
+      s.position = s.aim;
       s.motion = AxisState::Motion::kIdle;
     } else {
       s.position += s.direction * step;
@@ -157,6 +263,49 @@ void Controller::step_axis(AxisId a, TimePoint from, TimePoint to) {
     s.position = std::clamp(s.position, p.min_deg, p.max_deg);
     s.motion = AxisState::Motion::kIdle;
   }
+}
+
+// ERRATA E-71: the axis speeds up and slows down at accel_dps2. A jog runs
+// its timer at speed (from wherever the ramp has got) and then ramps down,
+// so it travels on after the timer; an auto move slows down to stop at its
+// aim. Phases of constant acceleration, each computed exactly, so that how
+// the time is cut into steps changes nothing.
+void Controller::step_ramped(AxisId a, TimePoint from, TimePoint to) {
+  using Motion = AxisState::Motion;
+  AxisState& s = axis(a);
+  const AxisProfile& p = axis_profile(a);
+  const double accel = *p.accel_dps2;
+  const double total = seconds(to - from);
+  Kinematics k{s.position, s.velocity};
+  double t = 0;
+  for (int phase = 0; phase < kMaxPhases && s.motion != Motion::kIdle && t < total; ++phase) {
+    const double left = total - t;
+    if (s.motion == Motion::kJog || s.motion == Motion::kStopping) {
+      const bool timed = s.motion == Motion::kStopping || !faults_.has(Fault::kJogIgnoresDuration);
+      const double until_end = s.motion == Motion::kStopping ? 0.0 : timed ? seconds(s.jog_end - from) - t : left;
+      const double want = until_end > 1e-9 ? s.direction * (s.fast ? p.fast_dps : p.slow_dps) : 0.0;
+      if (want == 0 && std::abs(k.v) < 1e-9) {
+        k.v = 0;
+        s.motion = Motion::kIdle;
+        break;
+      }
+      t += ramp_toward(k, want, accel, want != 0 ? std::min(left, until_end) : left);
+    } else {
+      t += approach(k, s.aim, p.fast_dps, accel, left);
+      if (std::abs(s.aim - k.x) < kEpsilon && std::abs(k.v) < 1e-9) {
+        k = {s.aim, 0};
+        s.motion = Motion::kIdle;
+      }
+    }
+    // A limit stops the axis there (§3.2 bytes 32-34).
+    if (k.x >= p.max_deg || k.x <= p.min_deg) {
+      k = {std::clamp(k.x, p.min_deg, p.max_deg), 0};
+      s.motion = Motion::kIdle;
+    }
+  }
+  s.position = k.x;
+  s.velocity = k.v;
+  if (s.motion != Motion::kJog && k.v != 0) s.direction = sign_of(k.v);
 }
 
 void Controller::update() {
@@ -190,8 +339,19 @@ std::int32_t Controller::tenths(AxisId a) const {
   return static_cast<std::int32_t>(std::lround(pos * 100) / 10);
 }
 
+std::optional<std::int32_t> Controller::reading(AxisId a) const {
+  if (axis_profile(a).ad_error) return std::nullopt;  // '*' (§3.2 bytes 14-31, E-42)
+  if (a == AxisId::kPol && profile_.pol_type == PolType::kCircular) return std::nullopt;  // no rotating feed
+  if (a == AxisId::kAz && profile_.az_sensor == AzSensor::kFluxgate) {
+    // §3.2 NOTE: the compass reads a heading 0.0-359.9 (ERRATA E-72).
+    const std::int32_t h = tenths(a) % 3600;
+    return h < 0 ? h + 3600 : h;
+  }
+  return tenths(a);
+}
+
 std::uint32_t Controller::hundredths_digit(AxisId a) const {
-  if (!profile_.hundredths) return 0;
+  if (!profile_.hundredths || axis_profile(a).ad_error) return 0;
   return static_cast<std::uint32_t>(std::labs(std::lround(axis(a).position * 100)) % 10);
 }
 
@@ -212,6 +372,7 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
     case AxisState::Motion::kIdle: code = 0x0; break;
     // ERRATA E-53: a remote jog reports "movement in progress" (0100/0101).
     case AxisState::Motion::kJog:
+    case AxisState::Motion::kStopping:
     case AxisState::Motion::kAutoMove: code = s.direction > 0 ? 0x5 : 0x4; break;
     case AxisState::Motion::kRemoteAutoMove: code = 0x7; break;
   }
@@ -220,40 +381,32 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
 }
 
 bool Controller::pol_moves_allowed() const {
-  // §3.2 byte 35 'Y': no polarization movement while TRACK peaks or searches.
-  return !(state_.track.active &&
-           (state_.track.activity == TrackActivity::kPeaking || state_.track.activity == TrackActivity::kSearching));
+  // §3.2 byte 35 'Y': no polarization movement while TRACK peaks or searches
+  // (which submodes those are: ERRATA E-69).
+  return !(state_.track.active && track_submode(state_.track.activity).peaking_or_search);
 }
 
 std::uint8_t Controller::track_byte() const {
-  // §3.2 byte 40: BBB<<4 | SSSS; BBB is never 000.
-  const std::uint8_t band = state_.track.band == 'K' ? 0b101 : 0b100;
-  std::uint8_t sub = 0;
-  if (state_.track.active) {
-    switch (state_.track.activity) {
-      case TrackActivity::kIdle: sub = 0b0011; break;       // step track submode active
-      case TrackActivity::kPeaking: sub = 0b0011; break;
-      case TrackActivity::kSearching: sub = 0b0100; break;  // auto search submode
-      case TrackActivity::kError: sub = 0b1101; break;      // track system error
-    }
-  }
+  // §3.2 byte 40: BBB<<4 | SSSS; BBB is never 000 (TrackBand's values are the codes).
+  const auto band = static_cast<std::uint8_t>(state_.track.band);
+  const std::uint8_t sub = state_.track.active ? track_submode(state_.track.activity).ssss : 0;
   return static_cast<std::uint8_t>(band << 4 | sub);
 }
 
 StatusBlock Controller::status_block() const {
   StatusBlock b;
   b.sat_name = state_.displayed_sat;
-  if (profile_.az_sensor == AzSensor::kFluxgate) {
-    // §3.2 NOTE: a heading 0.0-359.9 and 'T' (true) when the compass is primary.
-    std::int32_t h = tenths(AxisId::kAz) % 3600;
-    if (h < 0) h += 3600;
-    b.azimuth = {fields::AzimuthReading::Kind::kHeading, h, 'T'};
+  const auto az = reading(AxisId::kAz);
+  if (!az) {
+    b.azimuth = {fields::AzimuthReading::Kind::kError, 0, 0};
+  } else if (profile_.az_sensor == AzSensor::kFluxgate) {
+    // §3.2 NOTE: a heading and 'M' or 'T' when the compass is primary.
+    b.azimuth = {fields::AzimuthReading::Kind::kHeading, *az, profile_.fluxgate_heading};
   } else {
-    b.azimuth = {fields::AzimuthReading::Kind::kPosition, tenths(AxisId::kAz), 0};
+    b.azimuth = {fields::AzimuthReading::Kind::kPosition, *az, 0};
   }
-  b.elevation = tenths(AxisId::kEl);
-  if (profile_.pol_type != PolType::kCircular) b.polarization = tenths(AxisId::kPol);
-  else b.polarization = std::nullopt;  // "not equipped with a rotating feed": '******'
+  b.elevation = reading(AxisId::kEl);
+  b.polarization = reading(AxisId::kPol);  // '******' also "not equipped with a rotating feed"
   auto limit_bits = [&](AxisId a) {
     return static_cast<std::uint8_t>((limit(a, +1) ? 4 : 0) | (limit(a, -1) ? 2 : 0) | (stow_limit(a) ? 1 : 0));
   };
@@ -270,7 +423,7 @@ StatusBlock Controller::status_block() const {
   b.alarm_code = state_.alarm_code;
   b.track = track_byte();
   b.agc = profile_.agc;
-  b.agc_channel = 1;
+  b.agc_channel = profile_.agc_channel;
   return b;
 }
 
@@ -282,21 +435,28 @@ DisplayReply Controller::display() const {
   char row[64];
   std::snprintf(row, sizeof row, "%-14s %s", m.c_str(), state_.displayed_sat.c_str());
   d.rows[0] = row;
-  auto pos = [&](AxisId a) { return fields::format_scaled(tenths(a), 1); };
+  auto pos = [&](AxisId a) {
+    const auto r = reading(a);
+    return r ? fields::format_scaled(*r, 1) : std::string(a == AxisId::kPol && !axis_profile(a).ad_error ? "----" : "*****");
+  };
   std::snprintf(row, sizeof row, "AZ %6s  EL %6s  POL %6s", pos(AxisId::kAz).c_str(), pos(AxisId::kEl).c_str(),
-                profile_.pol_type == PolType::kCircular ? "  ----" : pos(AxisId::kPol).c_str());
+                pos(AxisId::kPol).c_str());
   d.rows[1] = row;
   std::snprintf(row, sizeof row, "STORED %2zu  %s", state_.store.size(), moving() ? "MOVING" : "");
   d.rows[2] = row;
   d.rows[3] = state_.alarm_code ? meanings::alarm_code(state_.alarm_code) : "";
   for (auto& r : d.rows) {
-    for (auto& c : r) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    // The LCD shows 7-bit characters (§3.8 "in ASCII format"): texts from
+    // the meanings tables may hold others ('§').
+    std::erase_if(r, [](char c) { return static_cast<unsigned char>(c) > 0x7E; });
+    for (auto& c : r) c = static_cast<char>(c < 0x20 ? ' ' : std::toupper(static_cast<unsigned char>(c)));
     if (r.size() > 40) r.resize(40);
     while (!r.empty() && r.back() == ' ') r.pop_back();
   }
-  d.cursor_row = 1;
-  d.cursor_column = 0;
-  d.blinking = '0';
+  // The cursor stays where it was at power-on: the model has no menus to move it.
+  d.cursor_row = profile_.display.cursor_row;
+  d.cursor_column = profile_.display.cursor_column;
+  d.blinking = profile_.display.cursor_blinking ? '1' : '0';
   return d;
 }
 

@@ -38,6 +38,13 @@ struct Handlers {
   static bool in_range(std::optional<std::int32_t> v, std::int32_t lo, std::int32_t hi) {
     return v && *v >= lo && *v <= hi;
   }
+  // A satellite name as the controller holds and shows it: §3.2 "in upper
+  // case letters", §3.6 "in capital letters" (ERRATA E-68).
+  static std::string capitals(std::string name) {
+    for (char& ch : name)
+      if (ch >= 'a' && ch <= 'z') ch = static_cast<char>(ch - 'a' + 'A');
+    return name;
+  }
   // §3.10 field bounds: longitude -179.9..179.9, inclination 0..19, pol offset -90.0..90.0.
   static bool satellite_fields_ok(const SatelliteData& s) {
     return in_range(s.longitude, -1799, 1799) && in_range(s.inclination, 0, 19) && in_range(s.pol_offset, -900, 900);
@@ -54,7 +61,7 @@ struct Handlers {
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMovePol& m);
   static Outcome move_az_el(C& c, double az, double el, std::string note);
   static Outcome jog(C& c, std::uint8_t code, const JogFields& j);
-  static Outcome jog_position(C& c, AxisId a, double position);
+  static Outcome jog_position(C& c, AxisId a);
   static Outcome pol_preset(C& c, const PolPreset& p);
   static Outcome remote_locate(C& c, const RemoteLocate& l);
 

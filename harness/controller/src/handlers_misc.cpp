@@ -102,14 +102,15 @@ Outcome Handlers::track_command(C& c, char param) {
   if (!c.state_.track.active) return nak(c, 0x36, NakRule::kMiscTrackNotActive);
   if (param == 'R') {
     // "the controller will react as if TRACK mode was activated via RECALL mode".
-    if (c.state_.track.activity == TrackActivity::kError) c.state_.track.activity = TrackActivity::kIdle;
-    c.set_state(track_state_name(c.state_.track.activity));
+    if (is_track_error(c.state_.track.activity)) c.state_.track.activity = TrackActivity::kIdle;
+    c.set_state(track_submode(c.state_.track.activity).state);
     return status(c, 0x36, "track error reset");
   }
+  // ERRATA E-70: a dual-band satellite is a C/Ku one; 'K' is Ku.
   if (!c.state_.track.dual_band) return nak(c, 0x36, NakRule::kMiscTrackNotDualBand);
   if (!c.pol_moves_allowed()) return nak(c, 0x36, NakRule::kMiscTrackPolNotAllowed);
-  c.state_.track.band = param;
-  return status(c, 0x36, std::string("band ") + param);
+  c.state_.track.band = param == 'C' ? TrackBand::kC : TrackBand::kKu;
+  return status(c, 0x36, std::string("band ") + (param == 'C' ? "C" : "Ku"));
 }
 
 // ---- §3.25 / §3.7 'K' keypad -----------------------------------------------------

@@ -130,27 +130,25 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
     if (!c.faults_.has(Fault::kSecondAxisJogKeepsFirst))
       for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
         if (other != a && c.axis(other).motion == AxisState::Motion::kJog)
-          c.axis(other).motion = AxisState::Motion::kIdle;
-    const double before = c.axis(a).position;
-    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));
-    if (code == 0x47) return jog_position(c, a, before);
+          c.stop_axis(other);
+    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));  // moves from the next update on
+    if (code == 0x47) return jog_position(c, a);
     return status(c, code, "jog " + std::string(1, j.direction));
   }
   // 'X': stop all movement (speed and duration are still required, READING-NOTES 14).
   if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
   take_remote_control(c);
-  const double az = c.state_.az.position;
-  c.stop_all();
-  if (code == 0x47) return jog_position(c, AxisId::kAz, az);  // ERRATA E-46
+  c.stop_all();  // from the next update on
+  if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46
   return status(c, code, "stop all movement");
 }
 
-// §3.24: "the position (at the time the command is received) of the axis".
-Outcome Handlers::jog_position(C& c, AxisId a, double position) {
+// §3.24: "the position (at the time the command is received) of the axis",
+// as the status reply shows it (E-42 '*', E-72 a fluxgate heading).
+Outcome Handlers::jog_position(C& c, AxisId a) {
   JogPositionReply r;
   r.axis = a == AxisId::kAz ? 'A' : a == AxisId::kEl ? 'E' : 'P';
-  const bool no_feed = a == AxisId::kPol && c.profile_.pol_type == PolType::kCircular;
-  r.position = no_feed ? std::nullopt : std::optional<std::int32_t>(static_cast<std::int32_t>(std::lround(position * 10)));
+  r.position = c.reading(a);
   return ack(c, 0x47, r);
 }
 
@@ -179,13 +177,17 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
       return nak(c, 0x41, NakRule::kLocateIndex, "index " + std::to_string(l.preset.index));
     const auto& p = l.preset.index >= 1 && l.preset.index <= 20 ? c.state_.presets[l.preset.index - 1] : std::nullopt;
     if (!p) return nak(c, 0x41, NakRule::kLocateEmptyPreset);
+    // A preset with no name or a blank or out-of-range field cannot be
+    // located either (the data form's rule).
+    if (!satellite_fields_ok(p->data) || p->data.name.empty())
+      return nak(c, 0x41, NakRule::kLocateField, "preset " + std::to_string(l.preset.index));
     sat = p->data;
   } else {
     if (!satellite_fields_ok(l.sat) || l.sat.name.empty()) return nak(c, 0x41, NakRule::kLocateField);
     sat = l.sat;
   }
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
-  c.state_.displayed_sat = sat.name;
+  c.state_.displayed_sat = capitals(sat.name);  // §3.2 bytes 3-12, ERRATA E-68
   c.state_.last_located = sat;
   const Navigation& nav = c.state_.navigation;
   if (!nav.latitude_min || !nav.longitude_min) {

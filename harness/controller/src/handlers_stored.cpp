@@ -110,18 +110,20 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
     if (s.preset.index < 1 || s.preset.index > 20) return nak(c, 0x42, NakRule::kStoreIndex);
     const auto& p = c.state_.presets[s.preset.index - 1];
     if (!p) return nak(c, 0x42, NakRule::kStoreEmptyPreset);
+    if (p->data.name.empty()) return nak(c, 0x42, NakRule::kStoreField, "a preset with no name");  // E-58
     sat = p->data;
   } else {
     if (!satellite_fields_ok(s.sat) || s.sat.name.empty()) return nak(c, 0x42, NakRule::kStoreField);
     sat = s.sat;
   }
-  StoredSatellite entry{sat.name, c.state_.az.position, c.state_.el.position, 0, 0};
+  // §3.6: stored names are in capital letters (ERRATA E-68).
+  StoredSatellite entry{capitals(sat.name), c.state_.az.position, c.state_.el.position, 0, 0};
   if (c.profile_.pol_type != PolType::kCircular) {  // "not applicable if feed type is circular"
     const double pol = c.state_.pol.position;
     switch (s.pol_selection) {
       case 'C':
         if (!c.state_.last_located) return nak(c, 0x42, NakRule::kStoreNeedsLocate);
-        entry.h_pol_deg = *c.state_.last_located->pol_offset / 10.0;
+        entry.h_pol_deg = c.state_.last_located->pol_offset.value_or(0) / 10.0;
         entry.v_pol_deg = wrap_pol(entry.h_pol_deg + 90);
         break;
       case 'S':

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <span>
+#include <tuple>
 
 #include "profile_tables.hpp"
 #include "sabus/harness/data_dir.hpp"
@@ -43,6 +44,13 @@ constexpr std::size_t kTleLine = 69;       // §3.12 "69 characters (including c
 // Positions as the 6-character fields of §3.2 carry them (E-12), with room for
 // a fluxgate azimuth of 0.0-359.9 (§3.2 NOTE).
 constexpr double kPositionMin = -180.0, kPositionMax = 360.0;
+// A real mount's axis moves through at least this many degrees.
+constexpr double kMinAxisSpan = 10.0;
+constexpr double kMaxSpeed = 1000.0;      // deg/s
+constexpr double kMaxAccel = 10000.0;     // deg/s^2
+// How close an auto move stops to its target, the display's 0.1 deg included.
+constexpr double kToleranceMin = 0.1, kToleranceMax = 5.0;
+constexpr std::size_t kDisplayRows = 4, kDisplayColumns = 40;  // §3.8 the 4x40 LCD
 
 // ---------------------------------------------------------------------------
 // Scalars
@@ -93,6 +101,15 @@ std::string to_field_text(const YAML::Node& v, const At& at, std::size_t min, st
   if (!std::all_of(s.begin(), s.end(), is_field_char))
     fail(at, quoted_clip(s) + " has a character outside printable ASCII 0x20-0x7e");
   if (min != max && !s.empty() && s.back() == ' ') fail(at, quoted_clip(s) + " ends in a blank (the field is blank-padded)");
+  return s;
+}
+
+// A satellite name as the controller holds and shows it: §3.2 "in upper
+// case letters", §3.6 "in capital letters" (ERRATA E-68).
+std::string to_capitals_name(const YAML::Node& v, const At& at, std::size_t min) {
+  std::string s = to_field_text(v, at, min, 10);
+  if (std::any_of(s.begin(), s.end(), [](char c) { return c >= 'a' && c <= 'z'; }))
+    fail(at, quoted_clip(s) + " has lower-case letters; the controller holds names in capitals (§3.2, §3.6, ERRATA E-68)");
   return s;
 }
 
@@ -187,11 +204,19 @@ class IndexSet {
 // Sections
 // ---------------------------------------------------------------------------
 
-// Reads into `axis` so that an absent key keeps that axis's own default.
-void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis) {
-  MapReader r(v, at, {"fast_dps", "slow_dps", "min_deg", "max_deg", "initial_deg", "has_stow_limit", "stow_deg"});
+// Where each axis's range was given, for the rules that need other keys.
+struct AxisRanges {
+  std::optional<At> az, el, pol;
+};
+
+// Reads into `axis` so that an absent key keeps that axis's own default;
+// `range` is where its range was given.
+void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::optional<At>& range_at) {
+  MapReader r(v, at,
+              {"fast_dps", "slow_dps", "min_deg", "max_deg", "initial_deg", "has_stow_limit", "stow_deg", "tolerance_deg",
+               "accel_dps2", "power_on_speed", "ad_error"});
   auto position = [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kPositionMin, kPositionMax); };
-  auto speed = [](const YAML::Node& n, const At& a) { return to_positive(n, a, 1000); };
+  auto speed = [](const YAML::Node& n, const At& a) { return to_positive(n, a, kMaxSpeed); };
   r.read("fast_dps", axis.fast_dps, speed);
   r.read("slow_dps", axis.slow_dps, speed);
   r.read("min_deg", axis.min_deg, position);
@@ -199,11 +224,26 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis) {
   r.read("initial_deg", axis.initial_deg, position);
   r.read("has_stow_limit", axis.has_stow_limit, to_bool);
   r.read("stow_deg", axis.stow_deg, position);
+  r.read("tolerance_deg", axis.tolerance_deg,
+         [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kToleranceMin, kToleranceMax); });
+  r.read("accel_dps2", axis.accel_dps2, [](const YAML::Node& n, const At& a) -> std::optional<double> {
+    if (n.IsNull()) return std::nullopt;  // none: the axis reaches its speed at once
+    return to_positive(n, a, kMaxAccel);
+  });
+  r.read("power_on_speed", axis.power_on_speed, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kAxisSpeeds); });
+  r.read("ad_error", axis.ad_error, to_bool);
+  if (axis.slow_dps > axis.fast_dps)
+    fail(r.at(r.has("slow_dps") ? "slow_dps" : "fast_dps"),
+         "slow_dps " + number_text(axis.slow_dps) + " is above fast_dps " + number_text(axis.fast_dps));
   // Reaching a limit asserts its limit bit (§3.2 bytes 32-34): min below max,
   // and the power-on and stow positions between them.
+  const At range = r.at(r.has("max_deg") ? "max_deg" : "min_deg");
+  range_at = range;
   if (axis.min_deg >= axis.max_deg)
-    fail(r.at(r.has("max_deg") ? "max_deg" : "min_deg"),
-         "min_deg " + number_text(axis.min_deg) + " must be below max_deg " + number_text(axis.max_deg));
+    fail(range, "min_deg " + number_text(axis.min_deg) + " must be below max_deg " + number_text(axis.max_deg));
+  if (axis.max_deg - axis.min_deg < kMinAxisSpan)
+    fail(range, "min_deg " + number_text(axis.min_deg) + " to max_deg " + number_text(axis.max_deg) + " spans less than " +
+                    number_text(kMinAxisSpan) + " degrees (a real mount's axis)");
   auto inside = [&](double d) { return d >= axis.min_deg && d <= axis.max_deg; };
   if (!inside(axis.initial_deg))
     fail(r.at("initial_deg"), "initial_deg " + number_text(axis.initial_deg) + " is outside min_deg..max_deg");
@@ -211,11 +251,25 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis) {
     fail(r.at("stow_deg"), "stow_deg " + number_text(axis.stow_deg) + " is outside min_deg..max_deg");
 }
 
-void read_axes(const YAML::Node& v, const At& at, Profile& p) {
+void read_axes(const YAML::Node& v, const At& at, Profile& p, AxisRanges& ranges) {
   MapReader r(v, at, {"az", "el", "pol"});
-  r.with("az", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.az); });
-  r.with("el", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.el); });
-  r.with("pol", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.pol); });
+  r.with("az", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.az, ranges.az); });
+  r.with("el", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.el, ranges.el); });
+  r.with("pol", [&](const YAML::Node& n, const At& a) { read_axis(n, a, p.pol, ranges.pol); });
+}
+
+// §3.2 bytes 14-31: a position field shows -180.0 to 180.0; only an azimuth
+// read from the fluxgate compass shows 0.0-359.9 (§3.2 NOTE).
+void check_shown_ranges(const Profile& p, const AxisRanges& ranges, const At& axes) {
+  const std::tuple<const char*, const AxisProfile*, const std::optional<At>*> all[] = {
+      {"az", &p.az, &ranges.az}, {"el", &p.el, &ranges.el}, {"pol", &p.pol, &ranges.pol}};
+  for (const auto& [name, axis, at] : all) {
+    const bool heading = axis == &p.az && p.az_sensor == AzSensor::kFluxgate;
+    if (axis->max_deg > 180.0 && !heading)
+      fail(at->value_or(axes), std::string(name) + " max_deg " + number_text(axis->max_deg) +
+                                   " is beyond 180, the most a position field shows (§3.2); only a fluxgate "
+                                   "azimuth (azimuth_sensor: fluxgate) reads up to 359.9");
+  }
 }
 
 // §3.6: names are unique (a STORE of an existing name overwrites it, §3.19).
@@ -226,7 +280,7 @@ void read_store(const YAML::Node& v, const At& at, Profile& p) {
     StoredSatellite s;
     auto position = [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kPositionMin, kPositionMax); };
     if (!r.has("name")) fail(ea, "a STORE entry needs a name");
-    r.read("name", s.name, [](const YAML::Node& n, const At& a) { return to_field_text(n, a, 1, 10); });
+    r.read("name", s.name, [](const YAML::Node& n, const At& a) { return to_capitals_name(n, a, 1); });
     r.read("az_deg", s.az_deg, position);
     r.read("el_deg", s.el_deg, position);
     r.read("h_pol_deg", s.h_pol_deg, position);
@@ -319,6 +373,25 @@ void read_track(const YAML::Node& v, const At& at, TrackProfile& track) {
   r.read("activity", track.activity, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kTrackActivities); });
   r.read("band", track.band, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kTrackBands); });
   r.read("dual_band", track.dual_band, to_bool);
+  // ERRATA E-70: a dual-band satellite is a C/Ku one (§3.10 band 2); the
+  // 'T' band change of §3.7 switches between C and K(u).
+  if (track.dual_band && track.band != TrackBand::kC && track.band != TrackBand::kKu)
+    fail(r.at(r.has("dual_band") ? "dual_band" : "band"),
+         "a dual-band satellite is tracked in C or Ku band, not " + std::string(name_of(kTrackBands, track.band)) + " (ERRATA E-70)");
+}
+
+// §3.2 bytes 3-12 and 35 ZZZ; §3.8 bytes 163-166.
+void read_display(const YAML::Node& v, const At& at, DisplayProfile& d) {
+  MapReader r(v, at, {"satellite", "pol_code", "cursor_row", "cursor_column", "cursor_blinking"});
+  r.read("satellite", d.satellite, [](const YAML::Node& n, const At& a) { return to_capitals_name(n, a, 0); });
+  r.read("pol_code", d.pol_code, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kPolCodes); });
+  r.read("cursor_row", d.cursor_row, [](const YAML::Node& n, const At& a) {
+    return static_cast<std::uint8_t>(to_integer_in(n, a, 1, kDisplayRows));
+  });
+  r.read("cursor_column", d.cursor_column, [](const YAML::Node& n, const At& a) {
+    return static_cast<std::uint8_t>(to_integer_in(n, a, 0, kDisplayColumns - 1));
+  });
+  r.read("cursor_blinking", d.cursor_blinking, to_bool);
 }
 
 void read_alarms(const YAML::Node& v, const At& at, AlarmProfile& alarms) {
@@ -327,6 +400,10 @@ void read_alarms(const YAML::Node& v, const At& at, AlarmProfile& alarms) {
   r.read("az", alarms.az, axis);
   r.read("el", alarms.el, axis);
   r.read("pol", alarms.pol, axis);
+  // §3.2 byte 38: off axis and drive alarms are "not currently supported" for polarization.
+  if (alarms.pol == 8 || alarms.pol == 12)
+    fail(r.at("pol"), "a polarization axis does not report the " + std::string(name_of(kAxisAlarms, alarms.pol)) +
+                          " alarm (§3.2 byte 38: not currently supported)");
   // §3.2 byte 39: A5..A0.
   r.read("code", alarms.code, [](const YAML::Node& n, const At& a) { return static_cast<std::uint8_t>(to_integer_in(n, a, 0, 63)); });
 }
@@ -371,9 +448,10 @@ Profile read_profile(const YAML::Node& root) {
   Profile p;
   if (root.IsNull()) return p;  // an empty document: every key at its default
   MapReader r(root, At{"", root.Mark()},
-              {"name", "address", "bus_peers", "remote_enabled", "baud", "firmware", "polarization", "azimuth_sensor", "hundredths",
-               "stow", "deploy", "dvb_receiver", "counts_per_degree", "count_offset", "axes", "turnaround_ms", "agc",
-               "store", "presets", "tles", "signposts", "navigation", "track", "alarms", "errata"});
+              {"name", "address", "bus_peers", "remote_enabled", "baud", "firmware", "polarization", "azimuth_sensor",
+               "fluxgate_heading", "hundredths", "stow", "deploy", "dvb_receiver", "counts_per_degree", "count_offset", "axes",
+               "turnaround_ms", "agc", "agc_channel", "display", "store", "presets", "tles", "signposts", "navigation",
+               "track", "alarms", "errata"});
   r.read("name", p.name, [](const YAML::Node& n, const At& a) { return to_field_text(n, a, 1, kMaxProfileName); });
   r.read("address", p.address, to_address);
   r.with("bus_peers", [&](const YAML::Node& n, const At& a) { read_bus_peers(n, a, p); });
@@ -382,6 +460,8 @@ Profile read_profile(const YAML::Node& root) {
   r.read("firmware", p.firmware, to_firmware);
   r.read("polarization", p.pol_type, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kPolTypes); });
   r.read("azimuth_sensor", p.az_sensor, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kAzSensors); });
+  r.read("fluxgate_heading", p.fluxgate_heading,
+         [](const YAML::Node& n, const At& a) { return to_choice(n, a, kHeadingReferences); });
   r.read("hundredths", p.hundredths, to_bool);
   r.read("stow", p.stow, to_bool);
   r.read("deploy", p.deploy, to_bool);
@@ -390,10 +470,13 @@ Profile read_profile(const YAML::Node& root) {
   // §3.16: five-digit counts.
   r.read("count_offset", p.count_offset,
          [](const YAML::Node& n, const At& a) { return static_cast<std::int32_t>(to_integer_in(n, a, 0, 99999)); });
-  r.with("axes", [&](const YAML::Node& n, const At& a) { read_axes(n, a, p); });
+  AxisRanges ranges;
+  r.with("axes", [&](const YAML::Node& n, const At& a) { read_axes(n, a, p, ranges); });
   r.read("turnaround_ms", p.turnaround_ms, [](const YAML::Node& n, const At& a) { return to_number_in(n, a, 0, 60000); });
   // §3.2 bytes 41-43.
   r.read("agc", p.agc, [](const YAML::Node& n, const At& a) { return static_cast<std::uint16_t>(to_integer_in(n, a, 0, 999)); });
+  r.read("agc_channel", p.agc_channel, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kAgcChannels); });
+  r.with("display", [&](const YAML::Node& n, const At& a) { read_display(n, a, p.display); });
   r.with("store", [&](const YAML::Node& n, const At& a) { read_store(n, a, p); });
   r.with("presets", [&](const YAML::Node& n, const At& a) { read_presets(n, a, p); });
   r.with("tles", [&](const YAML::Node& n, const At& a) { read_tles(n, a, p); });
@@ -405,6 +488,10 @@ Profile read_profile(const YAML::Node& root) {
   // §3.20 NOTE / ERRATA E-23: signposts exist only with the DVB receiver option.
   if (!p.signposts.empty() && !p.dvb_receiver)
     fail(r.at("signposts"), "signposts need the DVB receiver option (dvb_receiver: true; §3.20, ERRATA E-23)");
+  check_shown_ranges(p, ranges, r.at("axes"));
+  // §3.2 byte 35: without a rotating feed there is no polarization to show.
+  if (p.display.pol_code != 0 && p.pol_type == PolType::kCircular)
+    fail(r.at("display"), "a polarization code is displayed only with a rotating feed (polarization: single_port or dual_port)");
   return p;
 }
 

@@ -67,8 +67,8 @@ std::string minutes_text(const std::optional<std::int32_t>& m, int width, char p
 
 template <class T, std::size_t N>
 std::string name_text(const Named<T> (&table)[N], T value) {
-  for (const auto& n : table)
-    if (n.value == value) return std::string(n.name);
+  const std::string_view name = name_of(table, value);
+  if (!name.empty()) return std::string(name);
   return std::to_string(static_cast<long long>(value));  // a raw source code 1-7
 }
 
@@ -92,7 +92,11 @@ std::string axis_text(const AxisProfile& a) {
                {"max_deg", number_text(a.max_deg)},
                {"initial_deg", number_text(a.initial_deg)},
                {"has_stow_limit", bool_text(a.has_stow_limit)},
-               {"stow_deg", number_text(a.stow_deg)}});
+               {"stow_deg", number_text(a.stow_deg)},
+               {"tolerance_deg", number_text(a.tolerance_deg)},
+               {"accel_dps2", a.accel_dps2 ? number_text(*a.accel_dps2) : "~"},
+               {"power_on_speed", name_text(kAxisSpeeds, a.power_on_speed)},
+               {"ad_error", bool_text(a.ad_error)}});
 }
 
 // A list of flow maps, one entry a line; "[]" when empty.
@@ -102,36 +106,8 @@ void write_list(std::string& out, std::string_view key, const std::vector<T>& it
   for (const auto& item : items) out += "  - " + entry(item) + "\n";
 }
 
-}  // namespace
-
-std::string to_yaml(const Profile& p) {
-  std::string out;
-  auto line = [&out](std::string_view key, const std::string& value) { out += std::string(key) + ": " + value + "\n"; };
-  auto sub = [&out](std::string_view key, const std::string& value) { out += "  " + std::string(key) + ": " + value + "\n"; };
-  line("name", quoted(p.name));
-  line("address", std::to_string(p.address));
-  {
-    std::string peers;
-    for (auto a : p.bus_peers) peers += (peers.empty() ? "" : ", ") + std::to_string(a);
-    line("bus_peers", "[" + peers + "]");
-  }
-  line("remote_enabled", bool_text(p.remote_enabled));
-  line("baud", std::to_string(p.baud));
-  line("firmware", quoted(p.firmware));
-  line("polarization", name_text(kPolTypes, p.pol_type));
-  line("azimuth_sensor", name_text(kAzSensors, p.az_sensor));
-  line("hundredths", bool_text(p.hundredths));
-  line("stow", bool_text(p.stow));
-  line("deploy", bool_text(p.deploy));
-  line("dvb_receiver", bool_text(p.dvb_receiver));
-  line("counts_per_degree", number_text(p.counts_per_degree));
-  line("count_offset", std::to_string(p.count_offset));
-  out += "axes:\n";
-  sub("az", axis_text(p.az));
-  sub("el", axis_text(p.el));
-  sub("pol", axis_text(p.pol));
-  line("turnaround_ms", number_text(p.turnaround_ms));
-  line("agc", std::to_string(p.agc));
+// The stored lists (§3.6, §3.10, §3.12, §3.20), one entry a line.
+void write_stored_data(std::string& out, const Profile& p) {
   write_list(out, "store", p.store, [](const StoredSatellite& s) {
     return flow({{"name", quoted(s.name)},
                  {"az_deg", number_text(s.az_deg)},
@@ -162,6 +138,47 @@ std::string to_yaml(const Profile& p) {
                  {"id", quoted(s.data.id)},
                  {"priority", std::to_string(s.data.priority)}});
   });
+}
+
+}  // namespace
+
+std::string to_yaml(const Profile& p) {
+  std::string out;
+  auto line = [&out](std::string_view key, const std::string& value) { out += std::string(key) + ": " + value + "\n"; };
+  auto sub = [&out](std::string_view key, const std::string& value) { out += "  " + std::string(key) + ": " + value + "\n"; };
+  line("name", quoted(p.name));
+  line("address", std::to_string(p.address));
+  {
+    std::string peers;
+    for (auto a : p.bus_peers) peers += (peers.empty() ? "" : ", ") + std::to_string(a);
+    line("bus_peers", "[" + peers + "]");
+  }
+  line("remote_enabled", bool_text(p.remote_enabled));
+  line("baud", std::to_string(p.baud));
+  line("firmware", quoted(p.firmware));
+  line("polarization", name_text(kPolTypes, p.pol_type));
+  line("azimuth_sensor", name_text(kAzSensors, p.az_sensor));
+  line("fluxgate_heading", name_text(kHeadingReferences, p.fluxgate_heading));
+  line("hundredths", bool_text(p.hundredths));
+  line("stow", bool_text(p.stow));
+  line("deploy", bool_text(p.deploy));
+  line("dvb_receiver", bool_text(p.dvb_receiver));
+  line("counts_per_degree", number_text(p.counts_per_degree));
+  line("count_offset", std::to_string(p.count_offset));
+  out += "axes:\n";
+  sub("az", axis_text(p.az));
+  sub("el", axis_text(p.el));
+  sub("pol", axis_text(p.pol));
+  line("turnaround_ms", number_text(p.turnaround_ms));
+  line("agc", std::to_string(p.agc));
+  line("agc_channel", name_text(kAgcChannels, p.agc_channel));
+  out += "display:\n";
+  sub("satellite", quoted(p.display.satellite));
+  sub("pol_code", name_text(kPolCodes, p.display.pol_code));
+  sub("cursor_row", std::to_string(p.display.cursor_row));
+  sub("cursor_column", std::to_string(p.display.cursor_column));
+  sub("cursor_blinking", bool_text(p.display.cursor_blinking));
+  write_stored_data(out, p);
   const Navigation& nav = p.navigation;
   out += "navigation:\n";
   sub("latlon_source", name_text(kLatLonSources, nav.latlon_source));

@@ -138,7 +138,7 @@ Expected<Bytes> record_bytes(const StructuredCommand& c, const ExprContext& cx, 
 }
 
 // The navigation reply as the profile has it, except that after a 46h write
-// a controller reports both sources as remotely entered, 111 (E-68): each
+// a controller reports both sources as remotely entered, 111 (E-73): each
 // source is the profile's or 111.
 std::optional<std::string> check_navigation_record(const FrameDescription& got, const FrameDescription& want) {
   for (const auto& w : want.fields) {

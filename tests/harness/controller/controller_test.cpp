@@ -212,6 +212,100 @@ TEST(Controller, JogStopsAtTheLimitAndThenNaks) {
   EXPECT_FALSE(is_nak(r.send(Jog{{'D', 'F', 100}}))) << "away from the limit is fine";
 }
 
+// ---- acceleration ramps and arrival tolerance (ERRATA E-71) -------------------------
+
+Profile ramped_profile(double accel, double tolerance = 0.1) {
+  Profile p = test_profile();
+  p.az.accel_dps2 = accel;  // fast 2 deg/s, slow 0.5 deg/s
+  p.az.tolerance_deg = tolerance;
+  return p;
+}
+
+TEST(Controller, RampedJogRampsUpInTheTimerAndDownAfterIt) {
+  Rig r(ramped_profile(1.0));  // 2 s to reach 2 deg/s, 2 s to stop
+  ASSERT_FALSE(is_nak(r.send(Jog{{'W', 'F', 2000}})));
+  r.wait(1s);
+  EXPECT_EQ(r.status().azimuth.tenths, 5) << "a t^2 / 2 after 1 s";
+  r.wait(1s);
+  auto s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 20) << "at the end of the timer";
+  EXPECT_EQ(s.az_status & 0x0F, 0x5) << "still moving: ramping down after the timer";
+  r.wait(1s);
+  EXPECT_EQ(r.status().azimuth.tenths, 35);
+  r.wait(5s);
+  s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 40) << "v * t: the ramp down makes up for the ramp up";
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+}
+
+TEST(Controller, RampedShortJogNeverReachesItsSpeed) {
+  Rig r(ramped_profile(1.0));
+  ASSERT_FALSE(is_nak(r.send(Jog{{'E', 'F', 1000}})));  // up to 1 deg/s in 1 s, then 1 s down
+  r.wait(10s);
+  EXPECT_EQ(r.status().azimuth.tenths, -10) << "a t^2";
+}
+
+TEST(Controller, RampedMotionDoesNotDependOnHowTimeIsCut) {
+  Rig whole(ramped_profile(3.7)), steps(ramped_profile(3.7));
+  for (Rig* r : {&whole, &steps}) {
+    r->send(Jog{{'W', 'F', 1730}});
+    r->send(AutoMove{AutoMoveAzEl{-453, 300}});  // turns the running jog round
+  }
+  whole.wait(40s);
+  for (int i = 0; i < 40000; i += 7) steps.wait(7ms);
+  steps.wait(40s);
+  EXPECT_NEAR(whole.c.state().az.position, steps.c.state().az.position, 1e-6);
+  EXPECT_NEAR(whole.c.state().az.position, -45.3, 1e-6);
+  EXPECT_EQ(whole.c.state().az.motion, AxisState::Motion::kIdle);
+}
+
+TEST(Controller, RampedAutoMoveSlowsDownToItsTarget) {
+  Rig r(ramped_profile(0.5));  // 4 s to reach 2 deg/s over 4 deg
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveAzEl{300, 450}})));
+  r.wait(2s);
+  EXPECT_EQ(r.status().azimuth.tenths, 10) << "0.5 * 0.5 * 2^2";
+  r.wait(15s);
+  EXPECT_EQ(r.status().az_status & 0x0F, 0x7) << "cruising";
+  r.wait(60s);
+  auto s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 300);
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+}
+
+TEST(Controller, RampedStopRampsDown) {
+  Rig r(ramped_profile(1.0));
+  r.send(Jog{{'W', 'F', 9999}});
+  r.wait(5s);  // at 2 deg/s, 8 deg out
+  ASSERT_FALSE(is_nak(r.send(Jog{{'X', 'S', 0}})));
+  auto s = r.status();
+  EXPECT_EQ(s.az_status & 0x0F, 0x5) << "slowing down";
+  r.wait(10s);
+  s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 100) << "8 deg, then 2 deg ramping down";
+  EXPECT_EQ(s.az_status & 0x0F, 0);
+}
+
+TEST(Controller, AutoMoveStopsWithinTheTolerance) {
+  Rig r(ramped_profile(2.0, 2.0));  // stops up to 1.9 deg short, read within 2
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveAzEl{500, 450}})));
+  r.wait(60s);
+  EXPECT_EQ(r.status().azimuth.tenths, 481);
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveAzEl{490, 450}})));
+  r.wait(60s);
+  EXPECT_EQ(r.status().azimuth.tenths, 481) << "already within the tolerance: no move";
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveAzEl{1800, 450}})));
+  r.wait(200s);
+  auto s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 1800) << "a move to a limit ends on its switch";
+  EXPECT_EQ(s.az_limits & 4, 4);
+  Profile no_ramp = test_profile();
+  no_ramp.el.tolerance_deg = 1.0;
+  Rig q(no_ramp);
+  ASSERT_FALSE(is_nak(q.send(AutoMove{AutoMoveAzEl{0, 300}})));
+  q.wait(60s);
+  EXPECT_EQ(q.status().elevation, 309) << "0.9 deg short without a ramp too";
+}
+
 // ---- §3.5 - §3.7 ------------------------------------------------------------------------
 
 TEST(Controller, PolPresetUsesTheLastAutoMoveTarget) {
@@ -269,12 +363,165 @@ TEST(Controller, StowDeployAndSearchChangeTheMode) {
 
 TEST(Controller, TrackBandChangeAndErrorReset) {
   Profile p = test_profile();
-  p.track = {true, TrackActivity::kIdle, 'C', true};
+  p.track = {true, TrackActivity::kIdle, TrackBand::kC, true};
   Rig r(p);
   EXPECT_EQ(meanings::mode_name(r.extended().mode), "TRACK_MODE");
   ASSERT_FALSE(is_nak(r.send(Misc{'T', 'K'})));
   EXPECT_EQ(r.status().track >> 4, 0b101) << "Ku band";
   ASSERT_FALSE(is_nak(r.send(Misc{'T', 'R'})));
+}
+
+// §3.2 byte 40: BBB from the profile's band, "band not defined" included.
+TEST(Controller, TrackByteCarriesEveryBand) {
+  const std::pair<TrackBand, std::uint8_t> bands[] = {{TrackBand::kX, 0b001}, {TrackBand::kKa, 0b010},
+                                                      {TrackBand::kS, 0b011}, {TrackBand::kC, 0b100},
+                                                      {TrackBand::kKu, 0b101}, {TrackBand::kNone, 0b110},
+                                                      {TrackBand::kL, 0b111}};
+  for (const auto& [band, bbb] : bands) {
+    Profile p = test_profile();
+    p.track.band = band;
+    Rig r(p);
+    EXPECT_EQ(r.status().track, bbb << 4) << "TRACK not active: SSSS 0000";
+  }
+}
+
+// §3.2 byte 40 SSSS and byte 35 'Y', §3.17 byte 46, and the TRACK rules of
+// §3.4 for each submode (ERRATA E-69).
+TEST(Controller, EachTrackSubmodeHasItsByteStateAndRules) {
+  struct Row {
+    TrackActivity activity;
+    std::uint8_t ssss;
+    const char* state;
+    bool peaking_or_search;
+  };
+  const Row rows[] = {{TrackActivity::kSetup, 0b0001, "TRACK_INITIALIZING_PARAMETERS", false},
+                      {TrackActivity::kAutoEntry, 0b0010, "TRACK_ENTERING_MODE", false},
+                      {TrackActivity::kIdle, 0b0011, "TRACK_STEP_IDLE", false},
+                      {TrackActivity::kPeaking, 0b0011, "TRACK_STEP_PEAKING", true},
+                      {TrackActivity::kSearching, 0b0100, "TRACK_SEARCH_PERFORMING_SEARCH_PATTERN", true},
+                      {TrackActivity::kProgramTrack, 0b0101, "TRACK_TLE_IDLE", false},
+                      {TrackActivity::kManualSearch, 0b0110, "TRACK_MANUAL_SEARCH_ACTIVE", false},
+                      {TrackActivity::kJammedError, 0b1000, "TRACK_ERROR_CREEP_JAMMED", false},
+                      {TrackActivity::kLimitError, 0b1001, "TRACK_ERROR_CREEP_LIMIT", false},
+                      {TrackActivity::kDriveError, 0b1010, "TRACK_ERROR_CREEP_DRIVE", false},
+                      {TrackActivity::kPeakLimitError, 0b1011, "TRACK_ERROR_PEAK_LIMIT", false},
+                      {TrackActivity::kGeoPositionError, 0b1100, "TRACK_ERROR_TRACK_GEO", false},
+                      {TrackActivity::kError, 0b1101, "TRACK_ERROR_TRACK_SYSTEM", false},
+                      {TrackActivity::kChecksumError, 0b1110, "TRACK_ERROR_TRACK_CHECKSUM", false}};
+  for (const Row& row : rows) {
+    SCOPED_TRACE(row.state);
+    Profile p = test_profile();
+    p.track = {true, row.activity, TrackBand::kKu, true};
+    Rig r(p);
+    auto x = r.extended();
+    EXPECT_EQ(x.status.track, 0b101 << 4 | row.ssss);
+    EXPECT_EQ(meanings::mode_name(x.mode), "TRACK_MODE");
+    EXPECT_EQ(meanings::state_name(x.mode, x.state), row.state);
+    EXPECT_EQ((x.status.pol_equipment >> 3) & 1, row.peaking_or_search ? 0 : 1) << "byte 35 'Y'";
+    const auto band_change = r.send(Misc{'T', 'C'});
+    EXPECT_EQ(band_change.nak, row.peaking_or_search ? std::optional(NakRule::kMiscTrackPolNotAllowed) : std::nullopt);
+    const auto jog = r.send(Jog{{'O', 'S', 100}});
+    EXPECT_EQ(jog.nak, row.peaking_or_search ? std::optional(NakRule::kTrackPeaking) : std::nullopt);
+    ASSERT_FALSE(is_nak(r.send(Misc{'T', 'R'})));
+    x = r.extended();
+    const bool error = row.ssss >= 0b1000;
+    EXPECT_EQ(meanings::state_name(x.mode, x.state), error ? "TRACK_STEP_IDLE" : row.state)
+        << "'T' 'R' ends an error submode as if TRACK was entered from RECALL";
+  }
+}
+
+// ERRATA E-70: only a C/Ku (dual-band) satellite changes band; 'K' is Ku.
+TEST(Controller, BandChangeNeedsADualBandSatellite) {
+  Profile p = test_profile();
+  p.track = {true, TrackActivity::kIdle, TrackBand::kNone, false};
+  Rig none(p);
+  EXPECT_EQ(none.status().track, 0b110 << 4 | 0b0011) << "band not defined, step track";
+  EXPECT_EQ(none.send(Misc{'T', 'K'}).nak, NakRule::kMiscTrackNotDualBand);
+  p.track = {true, TrackActivity::kIdle, TrackBand::kKu, true};
+  Rig dual(p);
+  ASSERT_FALSE(is_nak(dual.send(Misc{'T', 'C'})));
+  EXPECT_EQ(dual.status().track >> 4, 0b100);
+  ASSERT_FALSE(is_nak(dual.send(Misc{'T', 'K'})));
+  EXPECT_EQ(dual.status().track >> 4, 0b101);
+}
+
+// What a controller reports at power-on, from the profile: §3.2 bytes 3-12,
+// 19, 35 ZZZ, 36-38 'S', 44, and the A/D error fields; §3.8 the cursor.
+TEST(Controller, PowerOnStatusFieldsFromTheProfile) {
+  Profile p = test_profile();
+  p.display = {"SBS 6", 'h', 3, 17, true};
+  p.agc_channel = 3;
+  p.el.power_on_speed = AxisSpeed::kSlow;
+  Rig r(p);
+  auto s = r.status();
+  EXPECT_EQ(s.sat_name, "SBS 6");
+  EXPECT_EQ(s.pol_equipment & 7, 1) << "'h' displayed";
+  EXPECT_EQ(s.agc_channel, 3) << "not applicable";
+  EXPECT_EQ(s.az_status & 0x10, 0x10) << "azimuth fast";
+  EXPECT_EQ(s.el_status & 0x10, 0) << "elevation configured for slow speed";
+  auto d = r.reply<DisplayReply>(ReflectDisplayQuery{});
+  EXPECT_EQ(d.cursor_row, 3u);
+  EXPECT_EQ(d.cursor_column, 17u);
+  EXPECT_EQ(d.blinking, '1');
+  EXPECT_NE(d.rows[0].find("SBS 6"), std::string::npos) << d.rows[0];
+
+  p = test_profile();
+  p.az_sensor = AzSensor::kFluxgate;
+  p.fluxgate_heading = 'M';
+  p.az.initial_deg = -90;
+  Rig flux(p);
+  EXPECT_EQ(flux.status().azimuth, (fields::AzimuthReading{fields::AzimuthReading::Kind::kHeading, 2700, 'M'}));
+  EXPECT_EQ(flux.reply<JogPositionReply>(JogMinimal{{'W', 'S', 50}}).position, 2700) << "47h as 31h shows it (E-72)";
+
+  p = test_profile();
+  p.az.ad_error = true;
+  p.pol.ad_error = true;
+  Rig ad(p);
+  s = ad.status();
+  EXPECT_EQ(s.azimuth.kind, fields::AzimuthReading::Kind::kError);
+  EXPECT_EQ(s.elevation, 450) << "only the axes with the error";
+  EXPECT_EQ(s.polarization, std::nullopt);
+  auto o = ad.send(Jog{{'X', 'S', 0}});
+  ASSERT_TRUE(o.reply);
+  EXPECT_NE(to_hex(*o.reply).find("2a 2a 2a 2a 2a 2a"), std::string::npos) << "'******' on the wire";
+  EXPECT_EQ(ad.reply<JogPositionReply>(JogMinimal{{'W', 'S', 50}}).position, std::nullopt) << "§3.24 bytes 4-9";
+  EXPECT_EQ(ad.reply<JogPositionReply>(JogMinimal{{'U', 'S', 50}}).position, 450);
+}
+
+// ERRATA E-68: a lower-case name is shown and stored in capitals.
+TEST(Controller, SatelliteNamesAreShownAndStoredInCapitals) {
+  Rig r;
+  RemoteLocate l;
+  l.preset.preset = false;
+  l.sat = {"probe loc", -971, 0, '1', '0', 0};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  EXPECT_EQ(r.status().sat_name, "PROBE LOC");
+  RemoteStore st;
+  st.preset.preset = false;
+  st.sat = {"new sat", -971, 0, '1', '0', 0};
+  st.pol_selection = 'H';
+  ASSERT_FALSE(is_nak(r.send(st)));
+  auto q = r.reply<QueryNameReply>(QueryName{{3}});
+  EXPECT_EQ(q.name, "NEW SAT");
+  EXPECT_FALSE(is_nak(r.send(AutoMove{AutoMoveStored{' ', "NEW SAT"}})));
+  EXPECT_EQ(r.send(AutoMove{AutoMoveStored{' ', "new sat"}}).nak, NakRule::kUnknownSatellite) << "§3.3 exact match";
+}
+
+// A preset with a blank field or no name cannot be located or stored: an
+// error in the satellite data, not a crash.
+TEST(Controller, PresetsWithBlankFieldsAreNakedNotUsed) {
+  Profile p = test_profile();
+  p.presets = {{3, {"NO LONG", std::nullopt, 0, '1', '0', 0}, false}, {4, {"", -971, 0, '1', '0', 0}, false}};
+  Rig r(p);
+  RemoteLocate l;
+  l.preset = {true, 3};
+  EXPECT_EQ(r.send(l).nak, NakRule::kLocateField);
+  l.preset = {true, 4};
+  EXPECT_EQ(r.send(l).nak, NakRule::kLocateField);
+  RemoteStore st;
+  st.preset = {true, 4};
+  st.pol_selection = 'H';
+  EXPECT_EQ(r.send(st).nak, NakRule::kStoreField);
 }
 
 TEST(Controller, KeypressJogsForTheHoldTime) {
@@ -421,7 +668,7 @@ std::vector<NakCase> nak_cases_of_frames_motion_and_misc() {
   auto none = [](Profile&) {};
   auto nothing = [](Rig&) {};
   auto circular = [](Profile& p) { p.pol_type = PolType::kCircular; };
-  auto peaking = [](Profile& p) { p.track = {true, TrackActivity::kPeaking, 'C', true}; };
+  auto peaking = [](Profile& p) { p.track = {true, TrackActivity::kPeaking, TrackBand::kC, true}; };
   return {
       {"unknown code", NakRule::kUnknownCommand, none, nothing, [](Rig& r) { return r.send_raw(0x29, ""); }},
       {"wrong length", NakRule::kWrongLength, none, nothing, [](Rig& r) { return r.send_raw(0x30, "1"); }},
@@ -454,7 +701,7 @@ std::vector<NakCase> nak_cases_of_frames_motion_and_misc() {
       {"track parameter", NakRule::kMiscTrackParameter, peaking, nothing, [](Rig& r) { return r.send(Misc{'T', 'Z'}); }},
       {"track inactive", NakRule::kMiscTrackNotActive, none, nothing, [](Rig& r) { return r.send(Misc{'T', 'C'}); }},
       {"track single band", NakRule::kMiscTrackNotDualBand,
-       [](Profile& p) { p.track = {true, TrackActivity::kIdle, 'C', false}; }, nothing,
+       [](Profile& p) { p.track = {true, TrackActivity::kIdle, TrackBand::kC, false}; }, nothing,
        [](Rig& r) { return r.send(Misc{'T', 'K'}); }},
       {"band change peaking", NakRule::kMiscTrackPolNotAllowed, peaking, nothing,
        [](Rig& r) { return r.send(Misc{'T', 'K'}); }},
@@ -642,6 +889,34 @@ TEST(Bus, ACopyCarriesOnFromTheSameStateAndIsIndependent) {
   EXPECT_EQ(bus.controller(0).state().store.size(), 2u);
 }
 
+// A master set to 8N1 (no parity bit): its bytes outside a frame are logged
+// as parity errors, and the transcript has one hint line.
+TEST(Bus, AMasterWithoutParityGetsParityErrorsAndOneHint) {
+  VirtualClock clock;
+  Bus bus({test_profile()}, clock);
+  Bytes out;
+  const Bytes seven_bit = encode_request(StatusPoll{}, '2');  // 02 32 31 03 02: four of five fail
+  for (int i = 0; i < 20; ++i) bus.receive(seven_bit, out);
+  EXPECT_TRUE(out.empty());
+  const std::string log = bus.take_log();
+  EXPECT_NE(log.find("parity error: 0x02 (STX)"), std::string::npos) << log;
+  EXPECT_EQ(log.find("unknown bytes: 0x02"), std::string::npos) << log;
+  const auto hint = log.find("is the master set to 7E1?");
+  ASSERT_NE(hint, std::string::npos) << log;
+  EXPECT_EQ(log.find("is the master set to 7E1?", hint + 1), std::string::npos) << "one hint";
+  for (int i = 0; i < 20; ++i) bus.receive(seven_bit, out);
+  EXPECT_EQ(bus.take_log().find("7E1"), std::string::npos) << "and only once";
+
+  // A 7E1 master with a parity error now and then gets no hint.
+  Bus good({test_profile()}, clock);
+  for (int i = 0; i < 20; ++i) {
+    Bytes w = wire(StatusPoll{}, '2');
+    if (i % 5 == 0) w[2] ^= 0x80;
+    good.receive(w, out);
+  }
+  EXPECT_EQ(good.take_log().find("7E1"), std::string::npos);
+}
+
 // ---- faults ------------------------------------------------------------------------------------
 
 TEST(Faults, EveryFaultHasAUniqueName) {
@@ -789,7 +1064,7 @@ TEST(Controller, EveryCommandAndFormIsServedWithTheCatalogLength) {
   p.dvb_receiver = true;
   p.implements_iess = true;
   p.implements_signal_strength = true;
-  p.track = {true, TrackActivity::kIdle, 'C', true};
+  p.track = {true, TrackActivity::kIdle, TrackBand::kC, true};
   WriteTle tle;
   tle.line1 = std::string(69, '1');
   tle.line2 = std::string(69, '2');

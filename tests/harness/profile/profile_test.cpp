@@ -59,45 +59,12 @@ void expect_error(std::string_view yaml, int line, int column, std::string_view 
   EXPECT_NE(e.message.find(message_part), std::string::npos) << e.text() << "\n  expected to contain: " << message_part;
 }
 
-auto axis_tuple(const AxisProfile& a) {
-  return std::tie(a.fast_dps, a.slow_dps, a.min_deg, a.max_deg, a.initial_deg, a.has_stow_limit, a.stow_deg);
-}
-auto track_tuple(const TrackProfile& t) { return std::tie(t.active, t.activity, t.band, t.dual_band); }
-
-// Every field of Profile except `source` (where it was read from).
+// Every field of Profile except `source` (where it was read from); on a
+// difference, both profiles as YAML.
 void expect_same(const Profile& a, const Profile& b) {
-  EXPECT_EQ(a.name, b.name);
-  EXPECT_EQ(a.address, b.address);
-  EXPECT_EQ(a.remote_enabled, b.remote_enabled);
-  EXPECT_EQ(a.baud, b.baud);
-  EXPECT_EQ(a.firmware, b.firmware);
-  EXPECT_EQ(a.pol_type, b.pol_type);
-  EXPECT_EQ(a.az_sensor, b.az_sensor);
-  EXPECT_EQ(a.hundredths, b.hundredths);
-  EXPECT_EQ(a.stow, b.stow);
-  EXPECT_EQ(a.deploy, b.deploy);
-  EXPECT_EQ(a.dvb_receiver, b.dvb_receiver);
-  EXPECT_EQ(a.counts_per_degree, b.counts_per_degree);
-  EXPECT_EQ(a.count_offset, b.count_offset);
-  EXPECT_TRUE(axis_tuple(a.az) == axis_tuple(b.az));
-  EXPECT_TRUE(axis_tuple(a.el) == axis_tuple(b.el));
-  EXPECT_TRUE(axis_tuple(a.pol) == axis_tuple(b.pol));
-  EXPECT_EQ(a.turnaround_ms, b.turnaround_ms);
-  EXPECT_EQ(a.agc, b.agc);
-  EXPECT_EQ(a.store, b.store);
-  EXPECT_EQ(a.presets, b.presets);
-  EXPECT_EQ(a.tles, b.tles);
-  EXPECT_EQ(a.signposts, b.signposts);
-  EXPECT_EQ(a.navigation, b.navigation);
-  EXPECT_TRUE(track_tuple(a.track) == track_tuple(b.track));
-  EXPECT_EQ(a.stx_restarts_in_data, b.stx_restarts_in_data);
-  EXPECT_EQ(a.unknown_command_while_offline, b.unknown_command_while_offline);
-  EXPECT_EQ(a.implements_signal_strength, b.implements_signal_strength);
-  EXPECT_EQ(a.implements_iess, b.implements_iess);
-  EXPECT_EQ(a.nak_bad_tle_checksum, b.nak_bad_tle_checksum);
-  EXPECT_EQ(a.locate_index_min, b.locate_index_min);
-  EXPECT_EQ(a.locate_index_max, b.locate_index_max);
-  EXPECT_EQ(a.restore_lost_locate_exit, b.restore_lost_locate_exit);
+  Profile x = a;
+  x.source = b.source;
+  EXPECT_TRUE(x == b) << "--- first:\n" << to_yaml(a) << "--- second:\n" << to_yaml(b);
 }
 
 // The TLE's own mod-10 checksum: digits count their value, '-' counts 1.
@@ -225,7 +192,7 @@ TEST(profile, VariantFilesChangeWhatTheySay) {
   Profile track = load_shipped("track-peaking");
   EXPECT_TRUE(track.track.active);
   EXPECT_EQ(track.track.activity, TrackActivity::kPeaking);
-  EXPECT_EQ(track.track.band, 'C');
+  EXPECT_EQ(track.track.band, TrackBand::kC);
   EXPECT_TRUE(track.track.dual_band);
 
   Profile iess = load_shipped("iess-implemented");
@@ -316,6 +283,101 @@ TEST(profile, ErrorOutOfRange) {
   expect_error("errata:\n  locate_index_min: 5\n  locate_index_max: 4\n", 3, 3, "errata.locate_index_max",
                "locate_index_min 5 is above locate_index_max 4");
   expect_error("firmware: \"1.5\"\n", 1, 1, "firmware", "\"A.BC\"");
+}
+
+// Axis rules: slow not above fast, a real mount's span, the arrival
+// tolerance and the acceleration ramp (ERRATA E-71).
+TEST(profile, ErrorAxisRules) {
+  expect_error("axes:\n  az: {fast_dps: 1, slow_dps: 2}\n", 2, 21, "axes.az.slow_dps", "slow_dps 2 is above fast_dps 1");
+  expect_error("axes:\n  el: {slow_dps: 1.5}\n", 2, 8, "axes.el.slow_dps", "above fast_dps 1");
+  // fast_dps lowered below the default slow speed: the error names fast_dps.
+  expect_error("axes:\n  pol: {fast_dps: 0.5}\n", 2, 9, "axes.pol.fast_dps", "slow_dps 1 is above fast_dps 0.5");
+  expect_error("axes:\n  pol: {min_deg: 0, max_deg: 9.9}\n", 2, 21, "axes.pol.max_deg", "spans less than 10 degrees");
+  expect_error("axes:\n  el: {min_deg: 40, max_deg: 49.9}\n", 2, 21, "axes.el.max_deg", "40 to max_deg 49.9 spans");
+  load_ok("axes:\n  el: {min_deg: 40, max_deg: 50, stow_deg: 40}\n");
+  expect_error("axes:\n  az: {tolerance_deg: 0.05}\n", 2, 8, "axes.az.tolerance_deg", "out of range 0.1 to 5");
+  expect_error("axes:\n  az: {tolerance_deg: 5.5}\n", 2, 8, "axes.az.tolerance_deg", "out of range 0.1 to 5");
+  expect_error("axes:\n  az: {accel_dps2: 0}\n", 2, 8, "axes.az.accel_dps2", "greater than 0");
+  expect_error("axes:\n  az: {accel_dps2: -3}\n", 2, 8, "axes.az.accel_dps2", "greater than 0");
+  expect_error("axes:\n  az: {power_on_speed: medium}\n", 2, 8, "axes.az.power_on_speed", "not one of fast, slow");
+  expect_error("axes:\n  az: {ad_error: 1}\n", 2, 8, "axes.az.ad_error", "true or false");
+  // §3.2: positions show -180.0 to 180.0; a fluxgate azimuth 0.0 to 359.9.
+  expect_error("axes:\n  az: {max_deg: 200}\n", 2, 8, "axes.az.max_deg", "az max_deg 200 is beyond 180");
+  expect_error("axes:\n  el: {max_deg: 180.1}\n", 2, 8, "axes.el.max_deg", "only a fluxgate azimuth");
+  expect_error("axes:\n  az: {min_deg: 0, max_deg: 359.9}\nazimuth_sensor: pulse\n", 2, 20, "axes.az.max_deg", "beyond 180");
+  load_ok("axes:\n  az: {min_deg: 0, max_deg: 359.9}\nazimuth_sensor: fluxgate\n");
+  Profile p = load_ok("axes:\n  el: {accel_dps2: 2.5, tolerance_deg: 1.5, power_on_speed: slow, ad_error: true}\n");
+  EXPECT_EQ(p.el.accel_dps2, 2.5);
+  EXPECT_EQ(p.el.tolerance_deg, 1.5);
+  EXPECT_EQ(p.el.power_on_speed, AxisSpeed::kSlow);
+  EXPECT_TRUE(p.el.ad_error);
+  EXPECT_EQ(p.az.accel_dps2, std::nullopt) << "another axis keeps its own defaults";
+  EXPECT_EQ(load_ok("axes:\n  az: {accel_dps2: ~}\n").az.accel_dps2, std::nullopt);
+}
+
+// §3.2 byte 40: every band and submode; "K" is read as Ku, "error" as the
+// track system error; the writer spells them Ku and system_error.
+TEST(profile, TrackBandsAndSubmodes) {
+  const std::pair<const char*, TrackBand> bands[] = {{"X", TrackBand::kX}, {"Ka", TrackBand::kKa}, {"S", TrackBand::kS},
+                                                     {"C", TrackBand::kC}, {"Ku", TrackBand::kKu}, {"K", TrackBand::kKu},
+                                                     {"L", TrackBand::kL}, {"none", TrackBand::kNone}};
+  for (const auto& [name, band] : bands)
+    EXPECT_EQ(load_ok(std::string("track: {band: ") + name + "}\n").track.band, band) << name;
+  EXPECT_NE(to_yaml(load_ok("track: {band: K}\n")).find("  band: Ku\n"), std::string::npos);
+  EXPECT_NE(to_yaml(load_ok("track: {band: none}\n")).find("  band: none\n"), std::string::npos);
+  const std::pair<const char*, TrackActivity> subs[] = {
+      {"setup", TrackActivity::kSetup},
+      {"auto_entry", TrackActivity::kAutoEntry},
+      {"idle", TrackActivity::kIdle},
+      {"peaking", TrackActivity::kPeaking},
+      {"searching", TrackActivity::kSearching},
+      {"program_track", TrackActivity::kProgramTrack},
+      {"manual_search", TrackActivity::kManualSearch},
+      {"jammed_error", TrackActivity::kJammedError},
+      {"limit_error", TrackActivity::kLimitError},
+      {"drive_error", TrackActivity::kDriveError},
+      {"peak_limit_error", TrackActivity::kPeakLimitError},
+      {"geo_position_error", TrackActivity::kGeoPositionError},
+      {"system_error", TrackActivity::kError},
+      {"error", TrackActivity::kError},
+      {"checksum_error", TrackActivity::kChecksumError}};
+  for (const auto& [name, activity] : subs)
+    EXPECT_EQ(load_ok(std::string("track: {activity: ") + name + "}\n").track.activity, activity) << name;
+  EXPECT_NE(to_yaml(load_ok("track: {activity: error}\n")).find("  activity: system_error\n"), std::string::npos);
+  expect_error("track:\n  band: Q\n", 2, 3, "track.band", "\"Q\" is not one of X, Ka, S, C, Ku, K, L, none");
+  expect_error("track:\n  activity: busy\n", 2, 3, "track.activity", "is not one of setup, auto_entry, idle");
+  // ERRATA E-70: a dual-band satellite is a C/Ku one.
+  expect_error("track:\n  band: X\n  dual_band: true\n", 3, 3, "track.dual_band", "C or Ku band, not X");
+  EXPECT_TRUE(load_profile_text("track:\n  band: Ku\n  dual_band: true\n"));
+}
+
+// What the controller shows at power-on, and the other status fields.
+TEST(profile, DisplayAndStatusFields) {
+  Profile p = load_ok(
+      "azimuth_sensor: fluxgate\nfluxgate_heading: M\nagc_channel: not_applicable\n"
+      "display: {satellite: \"SBS 6\", pol_code: h, cursor_row: 4, cursor_column: 39, cursor_blinking: true}\n");
+  EXPECT_EQ(p.fluxgate_heading, 'M');
+  EXPECT_EQ(p.agc_channel, 3);
+  EXPECT_EQ(p.display, (DisplayProfile{"SBS 6", 'h', 4, 39, true}));
+  EXPECT_EQ(load_ok("display: {pol_code: none}\n").display.pol_code, 0);
+  EXPECT_EQ(load_ok("agc_channel: SS2\n").agc_channel, 2);
+  expect_error("fluxgate_heading: X\n", 1, 1, "fluxgate_heading", "not one of T, M");
+  expect_error("agc_channel: SS3\n", 1, 1, "agc_channel", "not one of SS1, SS2, not_applicable");
+  // ERRATA E-68: names as the controller holds and shows them, in capitals.
+  expect_error("display:\n  satellite: Sbs 6\n", 2, 3, "display.satellite", "lower-case letters");
+  expect_error("display:\n  satellite: \"SBS 6 \"\n", 2, 3, "display.satellite", "ends in a blank");
+  expect_error("display:\n  satellite: ABCDEFGHIJK\n", 2, 3, "display.satellite", "11 characters, expected 0 to 10");
+  expect_error("store:\n  - {name: amc 21}\n", 2, 6, "store[0].name", "lower-case letters");
+  expect_error("display:\n  cursor_row: 5\n", 2, 3, "display.cursor_row", "out of range 1 to 4");
+  expect_error("display:\n  cursor_column: 40\n", 2, 3, "display.cursor_column", "out of range 0 to 39");
+  expect_error("display:\n  pol_code: x\n", 2, 3, "display.pol_code", "not one of H, h, V, v, none");
+  // §3.2 byte 35: no polarization code without a rotating feed.
+  expect_error("polarization: circular\ndisplay: {pol_code: V}\n", 2, 1, "display", "rotating feed");
+  EXPECT_TRUE(load_profile_text("polarization: circular\ndisplay: {pol_code: none}\n"));
+  // §3.2 byte 38: off axis and drive alarms are not supported for polarization.
+  expect_error("alarms:\n  pol: drive\n", 2, 3, "alarms.pol", "does not report the drive alarm");
+  expect_error("alarms:\n  pol: off_axis\n", 2, 3, "alarms.pol", "off_axis");
+  EXPECT_EQ(load_ok("alarms:\n  pol: jammed\n  el: drive\n").alarms.el, 12);
 }
 
 TEST(profile, ErrorInitialPositionOutsideLimits) {
@@ -421,12 +483,15 @@ Profile every_field_set() {
   p.dvb_receiver = true;
   p.counts_per_degree = 123.456;
   p.count_offset = 99999;
-  p.az = {3.3, 0.1, -170.5, 350.25, 12.125, true, 0.1, 0.1, std::nullopt};
-  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0, 0.1, std::nullopt};
-  p.pol = {9, 3, -45, 45, -44.9, true, 44.9, 0.1, std::nullopt};
+  p.fluxgate_heading = 'M';
+  p.az = {3.3, 0.1, -170.5, 179.25, 12.125, true, 0.1, 5, 0.25, AxisSpeed::kSlow, true};
+  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0, 0.1, 1000, AxisSpeed::kFast, false};
+  p.pol = {9, 3, -45, 45, -44.9, true, 44.9, 2.5, std::nullopt, AxisSpeed::kSlow, false};
   p.turnaround_ms = 0.25;
   p.agc = 0;
-  p.store = {{"A: #b", 1.5, -2.25, 0.1, -0.1}, {"'Q'", -180, 360, 0, 0}};
+  p.agc_channel = 3;
+  p.display = {" \"Q\" 1", 'v', 4, 39, true};
+  p.store = {{"A: #B", 1.5, -2.25, 0.1, -0.1}, {"'Q'", -180, 360, 0, 0}};
   p.presets = {{20, {"P20", -5, 19, '6', '2', std::nullopt}, true}, {7, {"", std::nullopt, std::nullopt, '3', '0', -900}, false}};
   p.tles = {{10, std::string(69, 'x'), std::string(68, ' ') + "9"}};
   SignpostData sp;
@@ -439,7 +504,7 @@ Profile every_field_set() {
   sp.priority = 9;
   p.signposts = {{20, sp}, {1, SignpostData{}}};
   p.navigation = {6, -(90 * 60), 179 * 60 + 59, 6, 0, -1};
-  p.track = {true, TrackActivity::kError, 'K', true};
+  p.track = {true, TrackActivity::kChecksumError, TrackBand::kKu, true};
   p.stx_restarts_in_data = false;
   p.unknown_command_while_offline = OfflineUnknown::kOffline;
   p.implements_signal_strength = true;

@@ -36,12 +36,14 @@ std::string_view to_string(ReceiverState s);
   X(kControlCharacter, "control character in the body",                                                     \
     "a control character 00h-1Fh other than ETX inside the frame (§1 Data Format, READING-NOTES 6)")        \
   X(kOverrun, "overrun", "the frame is longer than the longest valid frame (READING-NOTES 8)")             \
-  X(kParityError, "parity error", "bit 7 of the byte does not give even parity (§1 Data Format)")          \
-  X(kNotAscii, "8-bit character", "bit 7 set where characters are 7-bit (parity checking off)")           \
+  X(kParityError, "parity error",                                                                          \
+    "bit 7 of the byte does not give even parity (§1 Data Format); outside a frame, a run of such bytes")  \
+  X(kNotAscii, "8-bit character",                                                                          \
+    "bit 7 set where characters are 7-bit (parity checking off); outside a frame, a run of such bytes")   \
   X(kUnknownCommand, "unknown command", "state-diagram reading: an unknown command code is ignored (E-9)")  \
   X(kWrongLength, "wrong length", "state-diagram reading: a length that does not fit the command is ignored (E-9)") \
   X(kIncomplete, "incomplete", "the frame was cut short by a new start byte or the end of the input")      \
-  X(kUnknown, "unknown bytes", "bytes outside any frame (State 1 waits for a start byte)")
+  X(kUnknown, "unknown bytes", "well-formed characters outside any frame (State 1 waits for a start byte)")
 
 enum class DiscardReason : std::uint8_t {
 #define SABUS_X(id, name, description) id,
@@ -124,7 +126,7 @@ class Receiver {
   // Feeds a chunk. Every complete frame and every discarded run is reported.
   void feed(ByteView chunk, ReceiverSink& sink);
   // End of input: a partial frame is reported as incomplete, a pending run of
-  // unknown bytes is reported. The receiver is back in State 1.
+  // bytes outside a frame is reported. The receiver is back in State 1.
   void finish(ReceiverSink& sink);
   // Back to State 1 without reporting; the stream offset continues.
   void reset();
@@ -140,6 +142,10 @@ class Receiver {
   void discard_frame(DiscardReason reason, std::uint64_t end, std::uint64_t at, std::uint8_t byte,
                      ReceiverSink& sink, std::uint8_t expected = 0);
   void flush_unknown(ReceiverSink& sink);
+  // A byte outside any frame (State 1): it joins the run of its kind, or ends
+  // the run of another kind and starts its own.
+  void idle_byte(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink);
+  static DiscardReason idle_reason(std::uint8_t byte_class);
   void complete_frame(std::uint64_t at, std::uint8_t wire, ReceiverSink& sink);
   void step_slow(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink);
   bool all_data(std::uint64_t w) const;
@@ -156,9 +162,14 @@ class Receiver {
   std::uint8_t lrc_ = 0;
   std::uint64_t pos_ = 0;          // stream offset of the next byte
   std::uint64_t frame_start_ = 0;
+  // The run of bytes outside any frame: well-formed characters (kUnknown),
+  // bytes with a wrong parity bit (kParityError) or 8-bit characters
+  // (kNotAscii), one kind a run, so that a master sending with the wrong
+  // parity shows as parity errors, not as noise.
   std::uint64_t unknown_start_ = 0;
   std::uint64_t unknown_len_ = 0;
   std::uint8_t unknown_first_ = 0;
+  DiscardReason unknown_reason_ = DiscardReason::kUnknown;
 };
 
 }  // namespace sabus

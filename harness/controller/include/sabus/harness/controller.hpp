@@ -27,9 +27,12 @@ enum class AxisId : std::uint8_t { kAz, kEl, kPol };
 // One axis: position, motion and alarm (§3.2 bytes 32-38).
 struct AxisState {
   double position = 0;        // degrees
-  enum class Motion : std::uint8_t { kIdle, kJog, kAutoMove, kRemoteAutoMove } motion = Motion::kIdle;
+  // kStopping: slowing down its ramp after a stop (ERRATA E-71).
+  enum class Motion : std::uint8_t { kIdle, kJog, kAutoMove, kRemoteAutoMove, kStopping } motion = Motion::kIdle;
   int direction = 0;          // -1: ccw/down, +1: cw/up
-  double target = 0;          // auto moves
+  double target = 0;          // auto moves: the position asked for
+  double aim = 0;             // auto moves: where the drive stops (within the axis's tolerance of target)
+  double velocity = 0;        // degrees per second, signed; with an acceleration ramp only
   bool fast = true;           // §3.2 'S': configured for fast speed
   TimePoint jog_end{};
   std::uint8_t alarm = 0;     // §3.2 XXXX alarm code 8-C, 0 for none
@@ -44,7 +47,7 @@ struct ModeState {            // §3.17 bytes 45-48
 struct TrackState {           // §3.2 byte 40, §3.7 'T'
   bool active = false;
   TrackActivity activity = TrackActivity::kIdle;
-  char band = 'C';
+  TrackBand band = TrackBand::kC;
   bool dual_band = false;
 };
 
@@ -53,7 +56,7 @@ struct ControllerState {
   std::uint8_t alarm_code = 0;            // §3.2 byte 39
   ModeState mode;
   TrackState track;
-  std::string displayed_sat;              // §3.2 bytes 3-12
+  std::string displayed_sat;              // §3.2 bytes 3-12, upper case (E-68)
   char pol_code = 0;                      // §3.2 byte 35 ZZZ: 'H', 'h', 'V', 'v' or 0 (none)
   std::optional<StoredSatellite> last_target;   // §3.5: the last target of an auto move
   std::optional<SatelliteData> last_located;    // §3.19 'C': a LOCATE performed before
@@ -115,13 +118,19 @@ class Controller {
 
   bool stow_limit(AxisId a) const;
   bool moving() const;
+  // Stops an axis: at once, or down its deceleration ramp (accel_dps2).
+  void stop_axis(AxisId a);
   void stop_all();
   void start_jog(AxisId a, int direction, bool fast, Duration duration);
   void start_move(AxisId a, double target, bool remote);
   void step_axis(AxisId a, TimePoint from, TimePoint to);
+  void step_ramped(AxisId a, TimePoint from, TimePoint to);
   void on_motion_done();
 
   std::int32_t tenths(AxisId a) const;
+  // §3.2 bytes 14-31 / §3.24 bytes 4-9: the tenths shown (a heading for a
+  // fluxgate azimuth), nullopt for '*': an A/D error or no rotating feed.
+  std::optional<std::int32_t> reading(AxisId a) const;
   std::uint32_t hundredths_digit(AxisId a) const;
   double position_of_counts(std::uint32_t count) const;
   std::uint8_t axis_status_bits(AxisId a) const;
@@ -156,7 +165,9 @@ class Bus : public LineDevice {
   void tick() override;
   std::string take_log() override;
   // Whether receive() writes the transcript that take_log() returns (on by
-  // default). Off, a frame costs no text formatting (describe_frame): for
+  // default). Besides each frame and each ignored run, the transcript has one
+  // hint line, once, when most bytes of a stretch of the line fail the
+  // parity check (a master that is not set to 7E1). Off, a frame costs no text formatting (describe_frame): for
   // callers that never read the log, such as the whole-controller fuzz target.
   void set_transcript(bool on) { transcript_ = on; }
   // The names of the NAK rules applied since the last call, oldest first.
@@ -170,9 +181,13 @@ class Bus : public LineDevice {
  private:
   struct Unit;
   void trim_log();
+  void watch_parity(ByteView wire);
   std::vector<std::unique_ptr<Unit>> units_;
   Parity parity_;
   bool transcript_ = true;
+  // The line's bytes counted for the parity hint of the transcript.
+  std::size_t window_bytes_ = 0, window_bad_ = 0;
+  bool parity_hint_given_ = false;
   std::string log_;
   std::vector<std::string> nak_rules_;
   std::function<void(const Controller&)> on_change_;

@@ -20,6 +20,8 @@ enum class PolType : std::uint8_t { kCircular, kSinglePort, kDualPort };
 enum class AzSensor : std::uint8_t { kPot, kPulse, kResolver, kFluxgate };
 // E-10: what a disabled controller answers to an unknown command code.
 enum class OfflineUnknown : std::uint8_t { kNak, kOffline };
+// §3.2 bytes 36-38 'S': the speed an axis is configured for.
+enum class AxisSpeed : std::uint8_t { kFast, kSlow };
 
 struct AxisProfile {
   double fast_dps = 2.0;     // degrees per second at fast speed
@@ -35,6 +37,12 @@ struct AxisProfile {
   // Acceleration and deceleration, degrees per second squared; none: the
   // axis reaches its speed at once. Vectors widen motion windows for it.
   std::optional<double> accel_dps2;
+  // §3.2 bytes 36-38 'S': the speed the axis is configured for at power-on.
+  AxisSpeed power_on_speed = AxisSpeed::kFast;
+  // §3.2 bytes 14-31, §3.24 bytes 4-9: the A/D converter reports an error on
+  // this axis's sensor, so its position field holds '*' (E-42).
+  bool ad_error = false;
+  bool operator==(const AxisProfile&) const = default;
 };
 
 // An entry of the STORE list (§3.6: up to 50, read by 35h, recalled by 32h form 1).
@@ -74,13 +82,45 @@ struct Navigation {          // §3.22 / §3.23
   bool operator==(const Navigation&) const = default;
 };
 
-// TRACK mode at power-on, for profiles that test the TRACK rules (§3.4, §3.5, §3.7 'T').
-enum class TrackActivity : std::uint8_t { kIdle, kPeaking, kSearching, kError };
+// TRACK mode at power-on, for profiles that test the TRACK rules (§3.4, §3.5,
+// §3.7 'T'): the submode or error of §3.2 byte 40 SSSS. Step track is idle
+// or peaking (one SSSS, told apart by byte 35 'Y'); which submodes count as
+// "a peaking or search operation" is ERRATA E-69.
+enum class TrackActivity : std::uint8_t {
+  kSetup,             // 0001 track setup submode
+  kAutoEntry,         // 0010 track auto mode entry
+  kIdle,              // 0011 step track, not peaking
+  kPeaking,           // 0011 step track, peaking
+  kSearching,         // 0100 track auto search
+  kProgramTrack,      // 0101 program track
+  kManualSearch,      // 0110 track manual search
+  kJammedError,       // 1000
+  kLimitError,        // 1001
+  kDriveError,        // 1010
+  kPeakLimitError,    // 1011
+  kGeoPositionError,  // 1100
+  kError,             // 1101 track system error
+  kChecksumError,     // 1110
+};
+// §3.2 byte 40 BBB, by its wire code (000 is not used).
+enum class TrackBand : std::uint8_t { kX = 1, kKa = 2, kS = 3, kC = 4, kKu = 5, kNone = 6, kL = 7 };
 struct TrackProfile {
   bool active = false;
   TrackActivity activity = TrackActivity::kIdle;
-  char band = 'C';            // 'C' or 'K'
+  TrackBand band = TrackBand::kC;
+  // The satellite tracked was set up as dual band: a C/Ku satellite (E-70).
   bool dual_band = false;
+  bool operator==(const TrackProfile&) const = default;
+};
+
+// What the controller shows at power-on (§3.2 bytes 3-12 and 35 ZZZ, §3.8).
+struct DisplayProfile {
+  std::string satellite;     // §3.2 bytes 3-12: upper case (E-68); empty: blanks
+  char pol_code = 0;         // §3.2 byte 35 ZZZ: 'H', 'h', 'V', 'v'; 0: none displayed
+  std::uint8_t cursor_row = 1;     // §3.8 byte 163, 1-4
+  std::uint8_t cursor_column = 0;  // §3.8 bytes 164-165, 0-39
+  bool cursor_blinking = false;    // §3.8 byte 166
+  bool operator==(const DisplayProfile&) const = default;
 };
 
 // Alarms active at power-on: for the drive reset sequence (§3.7 'R').
@@ -89,6 +129,7 @@ struct AlarmProfile {
   // 10 runaway, 11 jammed, 12 drive.
   std::uint8_t az = 0, el = 0, pol = 0;
   std::uint8_t code = 0;  // §3.2 byte 39 A5..A0, 0-63 (2 Azimuth Jammed, ...)
+  bool operator==(const AlarmProfile&) const = default;
 };
 
 struct Profile {
@@ -107,6 +148,9 @@ struct Profile {
   std::string firmware = "1.59";            // §3.1 "A.BC"
   PolType pol_type = PolType::kSinglePort;
   AzSensor az_sensor = AzSensor::kPot;
+  // §3.2 byte 19 with a fluxgate compass as the azimuth sensor: 'T' (true)
+  // or 'M' (magnetic) heading.
+  char fluxgate_heading = 'T';
   bool hundredths = false;                  // 0.01 deg feedback (§3.3 form 2C, §3.17 bytes 49-50)
   bool stow = true;                         // §3.7 'S'
   bool deploy = true;                       // §3.7 'D'
@@ -116,8 +160,13 @@ struct Profile {
   AxisProfile az{2.0, 0.5, -180.0, 180.0, 0.0, false, 0.0, 0.1, std::nullopt};
   AxisProfile el{1.0, 0.25, -5.0, 90.0, 45.0, true, -5.0, 0.1, std::nullopt};
   AxisProfile pol{5.0, 1.0, -90.0, 90.0, 0.0, false, 0.0, 0.1, std::nullopt};
-  double turnaround_ms = 2.0;               // reply latency on a line (sabus sim --emulate-line)
+  // The device's reply turnaround: the longest it takes from the end of a
+  // request to the first byte of its reply (sabus sim --emulate-line waits
+  // this long; the runner allows for it).
+  double turnaround_ms = 2.0;
   std::uint16_t agc = 512;                  // §3.2 bytes 41-43
+  std::uint8_t agc_channel = 1;             // §3.2 byte 44 CC: 1 SS1, 2 SS2, 3 not applicable
+  DisplayProfile display;
 
   // Stored data at power-on.
   std::vector<StoredSatellite> store;       // STORE list, <= 50
@@ -137,6 +186,9 @@ struct Profile {
   std::uint8_t locate_index_min = 1;                       // E-22
   std::uint8_t locate_index_max = 20;
   bool restore_lost_locate_exit = true;                    // E-28
+
+  // Every field, `source` (where it was read from) included.
+  bool operator==(const Profile&) const = default;
 };
 
 // The 45h reply of a controller holding this navigation data (§3.22): magvar
