@@ -161,7 +161,7 @@ TEST(Console, VectorsListPreviewsASelection) {
   EXPECT_EQ(exact.status, 0);
   EXPECT_EQ(count(exact.out, " §3.2 "), 19u) << exact.out;
   EXPECT_EQ(count(exact.out, " §3.20 "), 0u);
-  EXPECT_NE(exact.out.find("\n19 of 452 vectors selected\n"), std::string::npos) << exact.out;
+  EXPECT_TRUE(std::regex_search(exact.out, std::regex("\n19 of [1-9][0-9]* vectors selected\n"))) << exact.out;
   const fs::path stderr_file = fs::temp_directory_path() / ("sabus-console-list-" + std::to_string(getpid()) + ".txt");
   const auto glob = shell(kSabus + " vectors list --filter '3.2*' 2>" + stderr_file.string());
   EXPECT_EQ(count(glob.out, " §3.2 "), 19u) << glob.out;
@@ -174,8 +174,8 @@ TEST(Console, VectorsListPreviewsASelection) {
       << notes.out;
   const auto none = shell(kSabus + " vectors list --filter '3.2-stauts*' 2>&1");
   EXPECT_EQ(none.status, 5);
-  EXPECT_NE(none.out.find("0 of 452 vectors selected\nsabus vectors list: no vector matches --filter '3.2-stauts*'\n"),
-            std::string::npos)
+  EXPECT_TRUE(std::regex_search(
+      none.out, std::regex(R"(\n0 of [1-9][0-9]* vectors selected\nsabus vectors list: no vector matches --filter '3\.2-stauts\*'\n)")))
       << none.out;
   const auto exclude = shell(kSabus + " vectors list --paragraph 3.1 --exclude '*-keeps-mode' 2>/dev/null");
   EXPECT_EQ(count(exclude.out, "\n"), 5u) << exclude.out;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -113,7 +114,8 @@ TEST(Run, AFilterThatMatchesNothingExits5AndSaysWhy) {
   const auto r = shell(kSabus + " run --filter '3.2-stauts*' 2>&1");
   EXPECT_EQ(r.status, 5) << r.out;
   EXPECT_NE(r.out.find("--filter '3.2-stauts*' matches no vector id"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("NOTHING RAN: no vector matches --filter '3.2-stauts*' (452 vectors loaded;"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(NOTHING RAN: no vector matches --filter '3\.2-stauts\*' \([1-9][0-9]* vectors loaded;)")))
+      << r.out;
   EXPECT_EQ(r.out.find("0 passed"), std::string::npos) << "no run, no summary line: " << r.out;
   EXPECT_EQ(shell(kSabus + " run --paragraph 9.9 2>&1").status, 5);
   EXPECT_EQ(shell(kSabus + " run --filter '3.1-*' --exclude '3.1-*' 2>&1").status, 5);
@@ -144,14 +146,19 @@ TEST(Run, EverythingSkippedExits5WithTheSkipsByCause) {
   EXPECT_NE(level.out.find(" skipped (1 above --level, "), std::string::npos) << level.out;
 }
 
-// A plain run skips 279 of 452: the summary line and summary.md say why.
+// A plain run skips vectors for three causes: the summary line and
+// summary.md say why, with the counts.
 TEST(Run, TheSummaryLineAndSummaryMdCountTheSkipsByCause) {
   const std::string md = temp_path("summary.md");
   const auto r = shell(kSabus + " run -q --md " + md);
   EXPECT_EQ(r.status, 0) << r.out;
-  const std::string line =
-      "173 passed, 0 failed, 279 skipped (98 need another profile, 113 need --allow-motion, 68 need --allow-destructive)";
-  EXPECT_EQ(r.out, line + "\n");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_match(r.out, m,
+                               std::regex(R"(([1-9][0-9]* passed, 0 failed, [1-9][0-9]* skipped \([1-9][0-9]* need another )"
+                                          R"(profile, [1-9][0-9]* need --allow-motion, [1-9][0-9]* need --allow-destructive\)))"
+                                          "\n")))
+      << r.out;
+  const std::string line = m[1];
   std::ifstream in(md);
   std::stringstream ss;
   ss << in.rdbuf();

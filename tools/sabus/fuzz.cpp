@@ -114,6 +114,26 @@ std::string command_line(const FuzzCliOptions& o, std::uint64_t seed) {
   return s;
 }
 
+// The totals after the run: writes, replies, traffic, findings.
+void print_totals(const Session& session, const Transport& transport, double wall, std::uint64_t seed, bool pty,
+                  const std::string& aborted, const std::vector<Finding>& findings,
+                  const std::vector<std::string>& written) {
+  const Counts& c = session.counts();
+  const double wire_s = transport.baud() > 0 ? (c.bytes_sent + c.bytes_received) * 10.0 / transport.baud() : 0.0;
+  std::cout << fmt::format("{} writes ({} liveness probes) in {:.1f} s, seed {}\n", c.writes, c.probes, wall, seed);
+  std::cout << fmt::format("replies: {} ack, {} nak, {} offline, {} silence, {} garbage; {} refused by the safety gate\n",
+                           c.ack, c.nak, c.offline, c.silence, c.garbage, c.refused);
+  std::cout << fmt::format("traffic: bytes_sent={} bytes_received={} wall_s={:.3f} baud={}", c.bytes_sent, c.bytes_received,
+                           wall, transport.baud());
+  if (transport.baud() > 0 && pty) std::cout << fmt::format(" wire_s={:.3f} (at that baud rate; a pseudo-terminal has none, so no line_busy)", wire_s);
+  else if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
+  std::cout << "\n";
+  if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
+  std::cout << fmt::format("{} finding(s)\n", findings.size());
+  for (std::size_t i = 0; i < findings.size(); ++i)
+    std::cout << fmt::format("  {} {}: {}\n", written[i], to_string(findings[i].kind), findings[i].message);
+}
+
 int run_fuzz(const FuzzCliOptions& o) {
   OpenedDevice device = open_device("fuzz", o.device);
   if (device.exit_code != kExitOk) return device.exit_code;
@@ -224,21 +244,7 @@ int run_fuzz(const FuzzCliOptions& o) {
   if (g_stop) aborted = "stopped by SIGINT";
   progress.reset();  // its last line cleared before the totals
 
-  const Counts& c = session.counts();
-  const double wall = elapsed();
-  const double wire_s = transport.baud() > 0 ? (c.bytes_sent + c.bytes_received) * 10.0 / transport.baud() : 0.0;
-  std::cout << fmt::format("{} writes ({} liveness probes) in {:.1f} s, seed {}\n", c.writes, c.probes, wall, seed);
-  std::cout << fmt::format("replies: {} ack, {} nak, {} offline, {} silence, {} garbage; {} refused by the safety gate\n",
-                           c.ack, c.nak, c.offline, c.silence, c.garbage, c.refused);
-  std::cout << fmt::format("traffic: bytes_sent={} bytes_received={} wall_s={:.3f} baud={}", c.bytes_sent, c.bytes_received,
-                           wall, transport.baud());
-  if (transport.baud() > 0 && pty) std::cout << fmt::format(" wire_s={:.3f} (at that baud rate; a pseudo-terminal has none, so no line_busy)", wire_s);
-  else if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
-  std::cout << "\n";
-  if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
-  std::cout << fmt::format("{} finding(s)\n", findings.size());
-  for (std::size_t i = 0; i < findings.size(); ++i)
-    std::cout << fmt::format("  {} {}: {}\n", written[i], to_string(findings[i].kind), findings[i].message);
+  print_totals(session, transport, elapsed(), seed, pty, aborted, findings, written);
   return findings.empty() ? kExitOk : kExitFailed;
 }
 

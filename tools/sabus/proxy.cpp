@@ -138,74 +138,36 @@ std::unique_ptr<Line> open_device(const ProxyOptions& o) {
   return line;
 }
 
-int run_proxy(const ProxyOptions& o) {
+// The option combinations proxy takes; false after saying what is wrong.
+bool check_options(const ProxyOptions& o, std::optional<HostPort>& listen_tcp) {
   if ((o.listen_pty.empty() ? 0 : 1) + (o.listen_tcp.empty() ? 0 : 1) != 1) {
     std::cerr << "sabus proxy: choose one M&C side: --listen-pty LINK or --listen-tcp HOST:PORT\n";
-    return kExitUsage;
+    return false;
   }
   if ((o.port.empty() ? 0 : 1) + (o.tcp.empty() ? 0 : 1) != 1) {
     std::cerr << "sabus proxy: choose one device side: --port DEV or --tcp HOST:PORT\n";
-    return kExitUsage;
+    return false;
   }
-  std::optional<HostPort> listen_tcp;
   if (!o.listen_tcp.empty() && !(listen_tcp = parse_host_port(o.listen_tcp))) {
     std::cerr << "sabus proxy: --listen-tcp HOST:PORT, with a port 0-65535\n";
-    return kExitUsage;
+    return false;
   }
   if (!o.tcp.empty() && !parse_host_port(o.tcp)) {
     std::cerr << "sabus proxy: --tcp HOST:PORT, with a port 0-65535\n";
-    return kExitUsage;
+    return false;
   }
   if (o.line == "7E1" && o.port.empty()) {
     std::cerr << "sabus proxy: --line 7E1 needs --port (a serial port)\n";
-    return kExitUsage;
+    return false;
   }
-  std::ofstream log_file;
-  if (!o.log.empty()) {
-    log_file.open(o.log, std::ios::trunc);
-    if (!log_file) {
-      std::cerr << "sabus proxy: cannot write " << o.log << "\n";
-      return kExitUsage;
-    }
-  }
-  std::ostream& log_out = o.log.empty() ? std::cout : log_file;
+  return true;
+}
 
-  std::unique_ptr<Line> device;
-  try {
-    device = open_device(o);
-  } catch (const LineError& e) {
-    std::cerr << "sabus proxy: cannot reach the device: " << e.what() << "\n";
-    return kExitUnreachable;
-  }
-  std::unique_ptr<PtyLine> pty;
-  std::unique_ptr<TcpListener> listener;
+// Forwards bytes both ways until a signal or a lost line; the exit status.
+int forward(Line& device_line, PtyLine* pty, TcpListener* listener, ProxyLogger& log, bool true_7e1) {
+  Line* device = &device_line;
   std::unique_ptr<TcpLine> client;
-  try {
-    if (listen_tcp) listener = TcpListener::listen(listen_tcp->host, listen_tcp->port);
-    else pty = PtyLine::create(o.listen_pty);
-  } catch (const LineError& e) {
-    std::cerr << "sabus proxy: " << e.what() << "\n";
-    return kExitFailed;
-  }
-  const std::string mc_side = pty ? pty->describe() : listener->describe();
-
-  // A true 7E1 port hands over 7-bit characters; the M&C side (a pty or a
-  // socket) carries 8 bits, where SAbus's parity travels in bit 7 (line.hpp).
-  const bool true_7e1 = o.line == "7E1";
-  ProxyLogger log(log_out, true_7e1 ? Parity::kNone : Parity::kEvenBit7);
-  log.write(proxy_header(mc_side, device->describe(), true_7e1 ? "7E1" : "8N1"));
-  if (!o.log.empty())
-    std::cout << (pty ? "READY " + o.listen_pty : fmt::format("READY tcp {}:{}", listen_tcp->host, listener->port()))
-              << std::endl;
-
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);  // no SA_RESTART: poll() returns at once
-  sigaction(SIGTERM, &sa, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
-
-  Line* mc = pty.get();
+  Line* mc = pty;
   std::uint8_t buf[4096];
   int status = kExitOk;
   while (!g_stop) {
@@ -284,6 +246,57 @@ int run_proxy(const ProxyOptions& o) {
       }
     }
   }
+  return status;
+}
+
+int run_proxy(const ProxyOptions& o) {
+  std::optional<HostPort> listen_tcp;
+  if (!check_options(o, listen_tcp)) return kExitUsage;
+  std::ofstream log_file;
+  if (!o.log.empty()) {
+    log_file.open(o.log, std::ios::trunc);
+    if (!log_file) {
+      std::cerr << "sabus proxy: cannot write " << o.log << "\n";
+      return kExitUsage;
+    }
+  }
+  std::ostream& log_out = o.log.empty() ? std::cout : log_file;
+
+  std::unique_ptr<Line> device;
+  try {
+    device = open_device(o);
+  } catch (const LineError& e) {
+    std::cerr << "sabus proxy: cannot reach the device: " << e.what() << "\n";
+    return kExitUnreachable;
+  }
+  std::unique_ptr<PtyLine> pty;
+  std::unique_ptr<TcpListener> listener;
+  try {
+    if (listen_tcp) listener = TcpListener::listen(listen_tcp->host, listen_tcp->port);
+    else pty = PtyLine::create(o.listen_pty);
+  } catch (const LineError& e) {
+    std::cerr << "sabus proxy: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  const std::string mc_side = pty ? pty->describe() : listener->describe();
+
+  // A true 7E1 port hands over 7-bit characters; the M&C side (a pty or a
+  // socket) carries 8 bits, where SAbus's parity travels in bit 7 (line.hpp).
+  const bool true_7e1 = o.line == "7E1";
+  ProxyLogger log(log_out, true_7e1 ? Parity::kNone : Parity::kEvenBit7);
+  log.write(proxy_header(mc_side, device->describe(), true_7e1 ? "7E1" : "8N1"));
+  if (!o.log.empty())
+    std::cout << (pty ? "READY " + o.listen_pty : fmt::format("READY tcp {}:{}", listen_tcp->host, listener->port()))
+              << std::endl;
+
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);  // no SA_RESTART: poll() returns at once
+  sigaction(SIGTERM, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  int status = forward(*device, pty.get(), listener.get(), log, true_7e1);
   log.finish();
   if (status == kExitOk) log.event("stop", "signal");
   return status;

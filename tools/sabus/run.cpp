@@ -187,31 +187,157 @@ class Console {
   std::chrono::steady_clock::time_point t0_;
 };
 
-int run_run(RunCliOptions o) {
-  const auto level = parse_level(o.level);
+// The suite loaded and linted, or nullopt after printing its errors.
+std::optional<std::vector<Vector>> load_suite(const RunCliOptions& o, std::set<std::string>& ids) {
   LoadResult suite = load_vectors(o.vectors.empty() ? std::vector<std::string>{default_vectors_dir()} : o.vectors);
   auto lint_errors = lint(suite.files);
   suite.errors.insert(suite.errors.end(), lint_errors.begin(), lint_errors.end());
   if (!suite.ok()) {
     for (const auto& e : suite.errors) std::cerr << e.text() << "\n";
     std::cerr << "sabus run: " << suite.errors.size() << " vector error(s)\n";
-    return kExitUsage;
+    return std::nullopt;
   }
   std::vector<Vector> all;
-  std::set<std::string> ids;
   for (const auto& f : suite.files)
     for (const auto& v : f.vectors) {
       all.push_back(v);
       ids.insert(v.id);
     }
+  return all;
+}
+
+// The runner's options from the command line and the device.
+void set_run_options(RunOptions& ro, const RunCliOptions& o, Level level, const Transport& transport,
+                     const ReportPaths& paths) {
+  ro.allow_motion = o.allow_motion;
+  ro.allow_destructive = o.allow_destructive;
+  ro.max_level = level;
+  ro.repeat = o.repeat;
+  ro.strict = o.strict;
+  ro.seed = o.seed;
+  // §4: no more than one status request a second, and wait for ACK/NAK.
+  ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
+  ro.stop = [] { return g_stop.load(); };
+  ro.keep_transcripts = false;  // the run document and its journal have them
+  // The stored-data backup (taken before the first destructive vector) is
+  // for a device that outlives the run: the in-process controller is gone
+  // at exit, so there is nothing to back up or restore.
+  ro.backup_stored_data = !transport.in_process();
+  const bool json_file = !paths.json.empty() && paths.json != "-";
+  ro.backup_path = !ro.backup_stored_data ? ""
+                   : !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
+                   : json_file             ? paths.json + ".backup.json"
+                                           : "sabus-backup.json";
+}
+
+// The run document before the first vector: who, what and how.
+reports::RunDocument start_document(const RunCliOptions& o, const RunOptions& ro, const OpenedDevice& device,
+                                    std::size_t planned) {
+  reports::RunDocument doc;
+  doc.generator = "sabus " + full_version();
+  doc.started_at = reports::utc_now();
+  doc.device = device.transport->describe();
+  doc.profile = device.profile.name;
+  doc.address = device.profile.address;
+  doc.faults = o.device.faults;
+  doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
+                 {"level", o.level},               {"seed", o.seed},
+                 {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
+                 {"strict", o.strict},
+                 {"filters", o.selection.filters}, {"excludes", o.selection.excludes},
+                 {"paragraphs", o.selection.paragraphs},
+                 {"known_issues", o.known_issues}, {"vectors", o.vectors}};
+  doc.planned = planned;
+  return doc;
+}
+
+// The journal takes each vector as it finishes (reports/journal.hpp); the
+// JSON is written at the start, saying the run goes on and where its vectors
+// are, and once more at the end (also after SIGINT or a lost device). For a
+// JSON on standard output the journal is a private temporary file, and the
+// JSON is written once, at the end.
+struct RunJournal {
+  reports::JournalWriter writer;
+  std::optional<TempFolder> folder;
+
+  void open(const ReportPaths& paths, reports::RunDocument& doc) {
+    if (paths.json.empty()) return;
+    const bool json_file = paths.json != "-";
+    std::string journal_path, error;
+    if (json_file) {
+      journal_path = reports::journal_path_for(paths.json);
+      doc.journal = fs::path(journal_path).filename().string();
+    } else {
+      folder.emplace();
+      journal_path = (folder->path / "run.journal.jsonl").string();
+    }
+    if (!writer.open(journal_path, doc)) std::cerr << "sabus run: " << writer.error() << "\n";
+    else if (json_file && !reports::write_run_json(paths.json, doc, error)) std::cerr << "sabus run: " << error << "\n";
+  }
+
+  // The end record and fsync, then the JSON from the journal, written once.
+  void close(const ReportPaths& paths, reports::RunDocument& doc) {
+    doc.journal.clear();
+    if (!writer.is_open()) {
+      if (!paths.json.empty())
+        std::cerr << "sabus run: " << paths.json << " not written: the journal could not be written\n";
+      return;
+    }
+    const std::string journal_path = writer.path();
+    std::string error;
+    if (!writer.close(doc)) std::cerr << "sabus run: " << writer.error() << "\n";
+    std::error_code ec;
+    if (reports::write_run_json(paths.json, doc, journal_path, error))
+      fs::remove(journal_path, ec);  // the JSON holds every vector now
+    else if (paths.json != "-")
+      std::cerr << "sabus run: " << error << "; the journal keeps every vector: sabus report " << journal_path
+                << " --json " << paths.json << "\n";
+    else
+      std::cerr << "sabus run: " << error << "\n";
+  }
+};
+
+// Each report is made only when asked for.
+void write_reports(const ReportPaths& paths, const reports::RunDocument& doc) {
+  std::string error;
+  auto write = [&](const std::string& path, std::string (*make)(const reports::RunDocument&)) {
+    if (!path.empty() && !reports::write_file(path, make(doc), error)) std::cerr << "sabus run: " << error << "\n";
+  };
+  write(paths.junit, reports::junit_xml);
+  write(paths.html, reports::html_report);
+  write(paths.md, reports::markdown_summary);
+}
+
+// The lines after the last vector: liveness, backup, restore, abort, summary;
+// the exit status.
+int finish_console(Console& console, const RunResult& run, const RunOptions& ro, const reports::RunDocument& doc) {
+  console.end();
+  for (const auto& l : run.liveness)
+    if (!l.alive) console.line(fmt::format("LIVENESS {}: {}", l.when, l.detail));
+  if (run.backup.taken && !ro.backup_path.empty() && !quiet()) console.line("stored data backed up to " + ro.backup_path);
+  for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
+  if (run.aborted) console.line("ABORTED: " + run.abort_reason);
+  console.line(reports::summary_line(*doc.summary));
+  const int status = run.exit_code();
+  if (status == kExitNothingRan)
+    console.line(std::string(console.colour() ? "\033[33mNOTHING RAN\033[0m: " : "NOTHING RAN: ") +
+                 reports::nothing_ran_reason(*doc.summary) + "; a run that checked nothing is not a success (exit 5)");
+  return status;
+}
+
+int run_run(RunCliOptions o) {
+  const auto level = parse_level(o.level);
+  std::set<std::string> ids;
+  const auto all = load_suite(o, ids);
+  if (!all) return kExitUsage;
 
   RunOptions ro;
-  const Selection selection = select_vectors(all, o.selection, ro);
+  const Selection selection = select_vectors(*all, o.selection, ro);
   if (!quiet())
     for (const auto& note : selection.notes) std::cerr << "sabus run: " << note << "\n";
   if (selection.selected == 0) {
     // Said before the device is touched: there is nothing to ask it.
-    std::cerr << "sabus run: NOTHING RAN: " << empty_selection_reason(o.selection) << " (" << all.size()
+    std::cerr << "sabus run: NOTHING RAN: " << empty_selection_reason(o.selection) << " (" << all->size()
               << " vectors loaded; `sabus vectors list --filter GLOB` previews a selection)\n";
     return kExitNothingRan;
   }
@@ -225,84 +351,32 @@ int run_run(RunCliOptions o) {
 
   OpenedDevice device = open_device("run", o.device);
   if (device.exit_code != kExitOk) return device.exit_code;
-  const Profile& profile = device.profile;
-  std::unique_ptr<Transport>& transport = device.transport;
-
-  ro.allow_motion = o.allow_motion;
-  ro.allow_destructive = o.allow_destructive;
-  ro.max_level = *level;
-  ro.repeat = o.repeat;
-  ro.strict = o.strict;
-  ro.seed = o.seed;
-  // §4: no more than one status request a second, and wait for ACK/NAK.
-  ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport->in_process() ? 0 : 1000));
-  ro.stop = [] { return g_stop.load(); };
-  ro.keep_transcripts = false;  // the run document and its journal have them
-  // The stored-data backup (taken before the first destructive vector) is
-  // for a device that outlives the run: the in-process controller is gone
-  // at exit, so there is nothing to back up or restore.
-  ro.backup_stored_data = !transport->in_process();
-  const bool json_file = !paths->json.empty() && paths->json != "-";
-  ro.backup_path = !ro.backup_stored_data ? ""
-                   : !o.report_dir.empty() ? (fs::path(o.report_dir) / "backup.json").string()
-                   : json_file             ? paths->json + ".backup.json"
-                                           : "sabus-backup.json";
+  Transport& transport = *device.transport;
+  set_run_options(ro, o, *level, transport, *paths);
 
   // A report on standard output keeps it to itself: the console goes to
   // standard error then.
   std::ostream& out = paths->to_stdout() ? std::cerr : std::cout;
   Console console(out, paths->to_stdout() ? STDERR_FILENO : STDOUT_FILENO, selection.selected);
 
-  reports::RunDocument doc;
-  doc.generator = "sabus " + full_version();
-  doc.started_at = reports::utc_now();
-  doc.device = transport->describe();
-  doc.profile = profile.name;
-  doc.address = profile.address;
-  doc.faults = o.device.faults;
-  doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
-                 {"level", o.level},               {"seed", o.seed},
-                 {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
-                 {"strict", o.strict},
-                 {"filters", o.selection.filters}, {"excludes", o.selection.excludes},
-                 {"paragraphs", o.selection.paragraphs},
-                 {"known_issues", o.known_issues}, {"vectors", o.vectors}};
-  doc.planned = selection.selected;
+  reports::RunDocument doc = start_document(o, ro, device, selection.selected);
   // §3.1: who answers, asked once before the first vector.
-  doc.identity = reports::query_identity(*transport, profile.address);
+  doc.identity = reports::query_identity(transport, device.profile.address);
   if (!doc.identity.ok) std::cerr << "sabus run: device identity: " << doc.identity.error << "\n";
   else if (!quiet())
     console.line("device: controller " + doc.identity.controller_type + ", firmware " + doc.identity.firmware_version);
-  if (ro.pace.count() > 0) transport->pause(ro.pace);  // §4 pacing before the runner's first command
+  if (ro.pace.count() > 0) transport.pause(ro.pace);  // §4 pacing before the runner's first command
 
-  // The journal takes each vector as it finishes (reports/journal.hpp); the
-  // JSON is written now, saying the run goes on and where its vectors are,
-  // and once more at the end (also after SIGINT or a lost device). For a JSON
-  // on standard output the journal is a private temporary file, and the JSON
-  // is written once, at the end.
-  reports::JournalWriter journal;
-  std::optional<TempFolder> journal_folder;
-  std::string error;
-  if (!paths->json.empty()) {
-    std::string journal_path;
-    if (json_file) {
-      journal_path = reports::journal_path_for(paths->json);
-      doc.journal = fs::path(journal_path).filename().string();
-    } else {
-      journal_folder.emplace();
-      journal_path = (journal_folder->path / "run.journal.jsonl").string();
-    }
-    if (!journal.open(journal_path, doc)) std::cerr << "sabus run: " << journal.error() << "\n";
-    else if (json_file && !reports::write_run_json(paths->json, doc, error)) std::cerr << "sabus run: " << error << "\n";
-  }
-
+  RunJournal journal;
+  journal.open(*paths, doc);
   auto last_result = std::chrono::steady_clock::now();
   ro.on_result = [&](const VectorResult& r) {
     reports::VectorRecord record = reports::vector_record(r);
     // Wall clock since the previous result (the start of the run for the
     // first): the vector and whatever the runner did before it.
     record.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - last_result).count();
-    if (journal.is_open() && !journal.append(record)) std::cerr << "sabus run: " << journal.error() << "\n";
+    if (journal.writer.is_open() && !journal.writer.append(record))
+      std::cerr << "sabus run: " << journal.writer.error() << "\n";
     reports::compact_for_reports(record);  // the journal has the fields; the reports need them for failures only
     doc.vectors.push_back(std::move(record));
     console.vector_done(doc.vectors.back());
@@ -310,45 +384,13 @@ int run_run(RunCliOptions o) {
   };
   std::signal(SIGINT, on_sigint);
 
-  Runner runner(*transport, profile, ro);
+  Runner runner(transport, device.profile, ro);
   last_result = std::chrono::steady_clock::now();
   RunResult run = runner.run(selection.vectors);
   reports::finish(doc, run, reports::utc_now());
-  doc.journal.clear();
-  if (journal.is_open()) {
-    // The end record and fsync, then the JSON from the journal, written once.
-    const std::string journal_path = journal.path();
-    if (!journal.close(doc)) std::cerr << "sabus run: " << journal.error() << "\n";
-    std::error_code ec;
-    if (reports::write_run_json(paths->json, doc, journal_path, error))
-      fs::remove(journal_path, ec);  // the JSON holds every vector now
-    else if (json_file)
-      std::cerr << "sabus run: " << error << "; the journal keeps every vector: sabus report " << journal_path << " --json "
-                << paths->json << "\n";
-    else
-      std::cerr << "sabus run: " << error << "\n";
-  } else if (!paths->json.empty()) {
-    std::cerr << "sabus run: " << paths->json << " not written: the journal could not be written\n";
-  }
-  // Each report is made only when asked for.
-  auto write = [&](const std::string& path, std::string (*make)(const reports::RunDocument&)) {
-    if (!path.empty() && !reports::write_file(path, make(doc), error)) std::cerr << "sabus run: " << error << "\n";
-  };
-  write(paths->junit, reports::junit_xml);
-  write(paths->html, reports::html_report);
-  write(paths->md, reports::markdown_summary);
-  console.end();
-  for (const auto& l : run.liveness)
-    if (!l.alive) console.line(fmt::format("LIVENESS {}: {}", l.when, l.detail));
-  if (run.backup.taken && !ro.backup_path.empty() && !quiet()) console.line("stored data backed up to " + ro.backup_path);
-  for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
-  if (run.aborted) console.line("ABORTED: " + run.abort_reason);
-  console.line(reports::summary_line(*doc.summary));
-  const int status = run.exit_code();
-  if (status == kExitNothingRan)
-    console.line(std::string(console.colour() ? "\033[33mNOTHING RAN\033[0m: " : "NOTHING RAN: ") +
-                 reports::nothing_ran_reason(*doc.summary) + "; a run that checked nothing is not a success (exit 5)");
-  return status;
+  journal.close(*paths, doc);
+  write_reports(*paths, doc);
+  return finish_console(console, run, ro, doc);
 }
 
 static_assert(kExitNothingRan == harness::kNothingRanExitCode);
