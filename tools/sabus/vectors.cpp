@@ -17,6 +17,7 @@
 
 #include "commands.hpp"
 #include "selection.hpp"
+#include "sweep.hpp"
 #include "sabus/harness/coverage.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/expressions.hpp"
@@ -326,7 +327,10 @@ Command add_vectors_command(CLI::App& app) {
   cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
   CLI::App* functions =
       sub->add_subcommand("functions", "List the functions of profile expressions (\"{home(az)}\", vectors/README.md)");
-  return {sub, [opts, lint, cov, errata, functions] {
+  auto sweep = std::make_shared<SweepOptions>();
+  add_sweep_subcommand(*sub, sweep);
+  return {sub, [opts, lint, cov, errata, functions, sweep] {
+            if (sweep->command->parsed()) return run_sweep(*sweep);
             if (functions->parsed()) return run_functions();
             if (lint->parsed()) return run_lint(*opts);
             if (cov->parsed()) return run_coverage(*opts);

@@ -142,7 +142,14 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
   for (const Number* n : {&from, &ms})
     if (n->kind != Expansion::Kind::kValue) return problem(n->kind, m, n->text);
   const AxisProfile& a = motion::profile_of(cx.profile, dir->axis);
-  const motion::Interval end = motion::jog_end(a, from.value, dir->sign, m.speed, static_cast<int>(ms.value));
+  // A fluxgate heading (0.0-359.9, §3.2 NOTE) read where the axis's range
+  // says -180 to 180: the same position, a turn away.
+  double start = from.value;
+  if (m.angular) {
+    while (start > a.max_deg + 1e-9 && start - 360.0 >= a.min_deg - 1e-9) start -= 360.0;
+    while (start < a.min_deg - 1e-9 && start + 360.0 <= a.max_deg + 1e-9) start += 360.0;
+  }
+  const motion::Interval end = motion::jog_end(a, start, dir->sign, m.speed, static_cast<int>(ms.value));
   m.low = end.low;
   m.high = end.high;
   m.expected = std::string("a '") + m.jog + "' jog at " + (m.speed == 'F' ? "fast" : "slow") + " speed (" +
@@ -155,7 +162,12 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
 
 ResolvedMatcher resolve_matcher(const FieldMatcher& in, const ExprContext& cx) {
   FieldMatcher m = in;
-  m.angular = m.field == "azimuth" && cx.profile.az_sensor == AzSensor::kFluxgate;
+  // An azimuth on a fluxgate mount is a heading: compared modulo 360. The
+  // axis is the field's, near's `axis`, or the jog's.
+  std::optional<motion::Axis> axis = !m.near_axis.empty() ? motion::axis_named(m.near_axis) : motion::axis_of_field(m.field);
+  if (m.kind == FieldMatcher::Kind::kJogged)
+    if (const auto dir = motion::jog_direction(m.jog)) axis = dir->axis;
+  m.angular = axis == motion::Axis::kAz && cx.profile.az_sensor == AzSensor::kFluxgate;
   switch (m.kind) {
     case FieldMatcher::Kind::kNear: return resolve_near(std::move(m), cx);
     case FieldMatcher::Kind::kJogged: return resolve_jogged(std::move(m), cx);
@@ -166,6 +178,9 @@ ResolvedMatcher resolve_matcher(const FieldMatcher& in, const ExprContext& cx) {
           if (n->kind != Expansion::Kind::kValue) return problem(n->kind, m, n->text);
         m.low = low.value;
         m.high = high.value;
+        // A heading (0.0-359.9) beside a bound of the axis's range (-180 to
+        // 180): the same window, the low end a turn down.
+        while (m.angular && m.low > m.high + 1e-9) m.low -= 360.0;
       }
       return {Expansion::Kind::kValue, m, {}};
     case FieldMatcher::Kind::kRegex:  // a pattern is never a template: its braces are quantifiers

@@ -127,6 +127,13 @@ std::optional<std::string> missing_capability(const Vector& v, const ExprContext
     }
   return missing;
 }
+// A teardown step that stops the antenna: 33h or 47h 'X' (§3.4, §3.24).
+bool is_stop(const Step& step) {
+  if (!step.command || step.command->form != "X") return false;
+  const CommandInfo* info = find_command(step.command->command);
+  return info && (info->code == 0x33 || info->code == 0x47);
+}
+
 struct Skip {
   SkipCause cause;
   std::string reason;
@@ -167,9 +174,11 @@ std::vector<std::string> attempt(Session& s, const Vector& v, std::vector<Transc
         failures.push_back(*e);
         break;
       }
-  for (const Step& step : v.teardown)
+  for (const Step& step : v.teardown) {
+    if (is_stop(step) && s.track_governs()) continue;  // as the runner's own stop (Session::stop_motion)
     if (auto e = s.run_step(step)) failures.push_back("teardown: " + *e);
-  if (v.has_tag("motion")) s.stop_motion();
+  }
+  if (v.has_tag("motion")) s.stop_motion();  // not while TRACK governs (Session::stop_motion)
   s.transcript = nullptr;
   return failures;
 }

@@ -141,7 +141,28 @@ LivenessResult Session::liveness(std::string when) {
   return l;
 }
 
+// Whether TRACK mode governs the antenna now: §3.2 byte 40 SSSS (data byte
+// 37 of the status reply) is not 0000. Asked only of a controller that
+// powers up in TRACK (the profile's track.active).
+bool Session::track_governs() {
+  if (!profile.track.active) return false;
+  const Bytes poll = encode_request(StatusPoll{}, profile.address);
+  const auto replies = exchange(poll, {}, reply_timeout(poll.size()));
+  if (replies.size() != 1 || replies[0].kind != FrameKind::kAck || replies[0].command != 0x31) return false;
+  constexpr std::size_t kTrackByte = 40 - 3;  // byte 40; data starts at byte 3 (sat name, bytes 3-12)
+  return replies[0].data.size() > kTrackByte && (replies[0].data[kTrackByte] & 0x0F) != 0;
+}
+
+// The stop after a moving vector (33h 'X'), except while TRACK governs the
+// antenna: there the stop would hand control to REMOTE (§3.4) and end the
+// TRACK mode the profile says the controller is in, which later TRACK
+// vectors rest on; TRACK's own motion is not the vector's to stop.
 void Session::stop_motion() {
+  try {
+    if (track_governs()) return;
+  } catch (const TransportLost&) {
+    return;
+  }
   const Bytes x = encode_request(Jog{{'X', 'S', 0}}, profile.address);
   try {
     exchange(x, {}, reply_timeout(x.size()));
@@ -155,7 +176,10 @@ std::optional<SentFrame> frame_acted_on(ByteView chars, const Profile& profile) 
     void on_frame(const FrameView& f) override { frame = SentFrame{f.address, f.command}; }
     void on_discard(const Discard&) override {}
   } sink;
-  ReceiverOptions options = ReceiverOptions::slave_any_address();
+  // The frames a controller on the line acts on: to the device's address or
+  // a bus peer's (§1 State 2: another address sends a slave back to State 1).
+  ReceiverOptions options = ReceiverOptions::slave(profile.address);
+  for (std::uint8_t peer : profile.bus_peers) options.accept_address(peer);
   options.parity = Parity::kNone;  // 7-bit characters: the line adds the parity bit
   options.stx_restarts_in_data = profile.stx_restarts_in_data;  // E-7
   Receiver rx(options);

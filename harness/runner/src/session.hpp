@@ -39,6 +39,7 @@ class Session : public ReceiverSink {
   // that come back within `window`, stopping early once a frame arrived and
   // the line went quiet. Paces commands (RunOptions::pace). Throws TransportLost.
   std::vector<Frame> exchange(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window);
+  bool track_governs();
   // The frames of the last exchange.
   const std::vector<Frame>& last_replies() const { return frames_; }
   // How long to wait for a reply to a command of `request_bytes` bytes, and

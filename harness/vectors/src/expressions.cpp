@@ -77,6 +77,18 @@ Result with_axis(const Call& c, const std::function<Result(motion::Axis, const A
   return f(*axis, motion::profile_of(c.cx.profile, *axis));
 }
 
+// As with_axis, for the functions that place an axis where a vector then
+// reads it: unavailable when the profile's axis has no position reading
+// (ad_error: '*' in every position field, §3.2 bytes 14-31, E-42).
+Result with_read_axis(const Call& c, const std::function<Result(motion::Axis, const AxisProfile&)>& f) {
+  return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+    if (a.ad_error)
+      return unavailable("a position reading of the " + std::string(motion::name_of(axis)) +
+                         " (its A/D converter reports an error, ad_error)");
+    return f(axis, a);
+  });
+}
+
 std::optional<char> speed_arg(const Value& v) {
   if (!v.is_number && (v.text == "F" || v.text == "S")) return v.text[0];
   return std::nullopt;
@@ -176,12 +188,44 @@ struct Function {
 
 const Function kFunctions[] = {
     {{"home", "axis", "where moving vectors start: the middle of the axis's range, in tenths"}, 1,
-     [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(motion::home(a)); }); }},
+     [](const Call& c) { return with_read_axis(c, [](motion::Axis, const AxisProfile& a) { return number(motion::home(a)); }); }},
     {{"at", "axis, fraction", "the position a fraction 0-1 of the way from min_deg to max_deg, in tenths"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({1})) return error(*e);
-       return with_axis(c, [&](motion::Axis, const AxisProfile& a) { return number(motion::at(a, c.args[1].number)); });
+       return with_read_axis(c, [&](motion::Axis, const AxisProfile& a) { return number(motion::at(a, c.args[1].number)); });
      }},
+    {{"reads", "axis", "1 when the axis has a position reading; unavailable with an A/D error (ad_error, E-42)"}, 1,
+     [](const Call& c) { return with_read_axis(c, [](motion::Axis, const AxisProfile&) { return number(1); }); }},
+    {{"stored_pol", "fraction",
+      "a polarization position a fraction 0-1 along the part of the pol range inside -90.0 to 90.0 (a STORE's H/V pol, "
+      "§3.19 bytes 30-39), in tenths; unavailable when that part is under 10 deg"},
+     1,
+     [](const Call& c) {
+       if (auto e = c.numbers({0})) return error(*e);
+       AxisProfile a = c.cx.profile.pol;
+       if (a.ad_error)
+         return unavailable("a position reading of the polarization (its A/D converter reports an error, ad_error)");
+       a.min_deg = std::max(a.min_deg, -90.0);
+       a.max_deg = std::min(a.max_deg, 90.0);
+       if (a.max_deg - a.min_deg < 10.0)
+         return unavailable("a polarization range reaching 10 deg into -90.0 to 90.0 (a STORE's H/V pol positions, §3.19)");
+       return number(motion::at(a, c.args[0].number));
+     }},
+    {{"stop_travel", "axis, F|S",
+      "how far the axis travels after a stop from that speed: down its ramp (accel_dps2, E-71), 0 without one"},
+     2,
+     [](const Call& c) {
+       const auto speed = speed_arg(c.args[1]);
+       if (!speed) return error("stop_travel: argument 2 must be F or S");
+       return with_axis(c, [&](motion::Axis, const AxisProfile& a) {
+         const double v = motion::speed_dps(a, *speed);
+         return number(a.accel_dps2 ? v * v / (2 * *a.accel_dps2) : 0.0);
+       });
+     }},
+    {{"agc", "", "the AGC level the profile states, 0-999 (§3.2 bytes 41-43)"}, 0,
+     [](const Call& c) { return number(c.cx.profile.agc); }},
+    {{"count_step", "", "the position one pulse count stands for: 1 / counts_per_degree (§3.16)"}, 0,
+     [](const Call& c) { return number(1.0 / c.cx.profile.counts_per_degree); }},
     {{"min_deg", "axis", "the axis's lower limit position"}, 1,
      [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.min_deg); }); }},
     {{"max_deg", "axis", "the axis's upper limit position"}, 1,
@@ -207,7 +251,7 @@ const Function kFunctions[] = {
      [](const Call& c) {
        const auto speed = speed_arg(c.args[1]);
        if (!speed) return error("jog_ms: argument 2 must be F or S");
-       return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+       return with_read_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
          return maybe(motion::measurable_jog_ms(a, *speed, motion::name_of(axis)));
        });
      }},
@@ -222,6 +266,9 @@ const Function kFunctions[] = {
        if (!speed) return error("jog_start: argument 2 must be F or S");
        if (auto e = c.numbers({2})) return error(*e);
        const AxisProfile& a = motion::profile_of(c.cx.profile, dir->axis);
+       if (a.ad_error)
+         return unavailable("a position reading of the " + std::string(motion::name_of(dir->axis)) +
+                            " (its A/D converter reports an error, ad_error)");
        return maybe(motion::jog_start(a, dir->sign, *speed, static_cast<int>(c.args[2].number), motion::name_of(dir->axis)));
      }},
     {{"move_target", "axis, from, ms",
@@ -229,7 +276,7 @@ const Function kFunctions[] = {
      3,
      [](const Call& c) {
        if (auto e = c.numbers({1, 2})) return error(*e);
-       return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+       return with_read_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
          return maybe(motion::move_target(a, c.args[1].number, static_cast<int>(c.args[2].number), motion::name_of(axis)));
        });
      }},
@@ -260,6 +307,11 @@ const Function kFunctions[] = {
        if (auto e = c.numbers({1})) return error(*e);
        return slot(c, true, false, static_cast<int>(c.args[1].number));
      }},
+    {{"first_empty_upto", "presets|tles|signposts, max", "the lowest index up to max that the profile leaves empty"}, 2,
+     [](const Call& c) {
+       if (auto e = c.numbers({1})) return error(*e);
+       return slot(c, false, false, static_cast<int>(c.args[1].number));
+     }},
     {{"store_count", "", "the number of entries of the profile's STORE list (§3.6)"}, 0,
      [](const Call& c) { return number(static_cast<double>(c.cx.profile.store.size())); }},
     {{"store_room", "n",
@@ -280,7 +332,7 @@ const Function kFunctions[] = {
      }},
     {{"negative", "axis", "a negative position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
      [](const Call& c) {
-       return with_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+       return with_read_axis(c, [](motion::Axis axis, const AxisProfile& a) {
          const double top = std::min(a.max_deg, 0.0) - a.tolerance_deg - 0.5, bottom = a.min_deg + a.tolerance_deg + 0.5;
          if (top - bottom < 0.1) return unavailable("a negative " + std::string(motion::name_of(axis)) + " inside its range");
          return number(std::floor((top + bottom) / 2 * 10) / 10);

@@ -1,0 +1,195 @@
+// `sabus vectors sweep`: the whole suite against the reference controller on
+// many random legal profiles (random_profile, profile_generator.hpp), each on
+// the virtual clock with motion and destructive vectors allowed. Every vector
+// must pass or be skipped: a failure on a legal profile is a vector that rests
+// on something the spec does not fix and the profile does not say. Each
+// profile prints how many vectors ran and why the others were skipped; a
+// failing profile is written out, with its seed, for reproduction.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "commands.hpp"
+#include "sabus/harness/profile_generator.hpp"
+#include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/runner.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/harness/vector_loader.hpp"
+#include "sweep.hpp"
+
+namespace sabus::cli {
+namespace {
+
+using namespace sabus::harness;
+namespace fs = std::filesystem;
+
+// The seed of the i-th profile of a sweep (splitmix64): distinct, and the same
+// for the same --seed, so that one profile reproduces with --profile-seed.
+std::uint64_t profile_seed(std::uint64_t seed, std::uint64_t i) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (i + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Why a vector was skipped, as a cause: "requires <key>" for a requirement,
+// the capability for a profile expression ("needs a filled TLE slot"), the
+// gate's words otherwise.
+std::string skip_cause(const std::string& reason) {
+  if (reason.rfind("requires: ", 0) == 0) {
+    const auto space = reason.find(' ', 10);
+    return "requires " + reason.substr(10, space == std::string::npos ? std::string::npos : space - 10);
+  }
+  const auto colon = reason.find(':');
+  return colon == std::string::npos ? reason : reason.substr(0, colon);
+}
+
+struct ProfileOutcome {
+  std::uint64_t seed = 0;
+  std::string profile_yaml;
+  std::size_t ran = 0, passed = 0, skipped = 0;
+  std::map<std::string, std::size_t> skips;  // cause -> count
+  std::vector<std::string> failures;         // "id: first failure"
+  std::string aborted;
+};
+
+ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed) {
+  ProfileOutcome o;
+  o.seed = seed;
+  const Profile p = random_profile(seed);
+  o.profile_yaml = to_yaml(p);
+  auto transport = make_in_process_transport(bus_of(p), {});
+  RunOptions options;
+  options.allow_motion = true;
+  options.allow_destructive = true;
+  options.keep_transcripts = false;
+  const RunResult r = Runner(*transport, p, options).run(vectors);
+  if (r.aborted) o.aborted = r.abort_reason;
+  for (const auto& v : r.vectors) {
+    if (v.verdict == Verdict::kSkip) {
+      ++o.skipped;
+      ++o.skips[skip_cause(v.skip_reason)];
+      continue;
+    }
+    ++o.ran;
+    if (v.verdict == Verdict::kPass) ++o.passed;
+    else o.failures.push_back(v.id + ": " + (v.failures.empty() ? std::string(to_string(v.verdict)) : v.failures.front()));
+  }
+  return o;
+}
+
+std::string skip_line(const ProfileOutcome& o) {
+  std::vector<std::pair<std::size_t, std::string>> by_count;
+  for (const auto& [cause, n] : o.skips) by_count.emplace_back(n, cause);
+  std::sort(by_count.begin(), by_count.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string out;
+  for (const auto& [n, cause] : by_count) out += (out.empty() ? "" : "; ") + fmt::format("{} {}", n, cause);
+  return out;
+}
+
+// Writes a profile (a failing one with its failures) with its seed, so that
+// `sabus run --sim --profile FILE --allow-motion --allow-destructive` or
+// `sabus vectors sweep --profile-seed SEED` reproduces it.
+std::string write_failure(const fs::path& dir, const ProfileOutcome& o) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const fs::path file = dir / fmt::format("sweep-{:016x}.yaml", o.seed);
+  std::ofstream out(file);
+  out << fmt::format("# A random legal profile (random_profile seed 0x{:016x}){}\n", o.seed,
+                     o.failures.empty() && o.aborted.empty() ? "" : " on which vectors failed:");
+  for (const auto& f : o.failures) out << "#   " << f << "\n";
+  if (!o.aborted.empty()) out << "#   run aborted: " << o.aborted << "\n";
+  out << "# Reproduce: sabus vectors sweep --profile-seed " << o.seed << "\n";
+  out << o.profile_yaml;
+  return file.string();
+}
+
+std::size_t percentile(std::vector<std::size_t> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+}  // namespace
+
+int run_sweep(const SweepOptions& opts) {
+  LoadResult suite = load_vectors(opts.vectors.empty() ? std::vector<std::string>{default_vectors_dir()} : opts.vectors);
+  if (!suite.ok()) {
+    for (const auto& e : suite.errors) std::cerr << e.text() << "\n";
+    std::cerr << "sabus vectors sweep: " << suite.errors.size() << " vector error(s)\n";
+    return kExitUsage;
+  }
+  std::vector<Vector> vectors;
+  for (auto& f : suite.files)
+    for (auto& v : f.vectors) vectors.push_back(std::move(v));
+
+  std::vector<std::uint64_t> seeds;
+  if (opts.profile_seed) seeds.push_back(*opts.profile_seed);
+  else
+    for (std::uint64_t i = 0; i < opts.profiles; ++i) seeds.push_back(profile_seed(opts.seed, i));
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<ProfileOutcome> outcomes(seeds.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex print;
+  auto worker = [&] {
+    for (std::size_t i = next++; i < seeds.size(); i = next++) {
+      outcomes[i] = sweep_one(vectors, seeds[i]);
+      const ProfileOutcome& o = outcomes[i];
+      const std::lock_guard lock(print);
+      std::cout << fmt::format("profile {} seed {}: {} ran, {} failed, {} skipped ({})\n", i + 1, o.seed, o.ran,
+                               o.ran - o.passed, o.skipped, skip_line(o));
+      for (const auto& f : o.failures) std::cout << "  FAIL " << f << "\n";
+      if (!o.aborted.empty()) std::cout << "  ABORTED " << o.aborted << "\n";
+      if (!o.failures.empty() || !o.aborted.empty())
+        std::cout << "  profile written to " << write_failure(opts.out, o) << "\n";
+      else if (!opts.write_profiles.empty())
+        write_failure(opts.write_profiles, o);
+      std::cout.flush();
+    }
+  };
+  const unsigned jobs = std::max(1u, std::min<unsigned>(opts.jobs, static_cast<unsigned>(seeds.size())));
+  std::vector<std::thread> threads;
+  for (unsigned j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+
+  std::vector<std::size_t> ran, skipped;
+  std::size_t failed_profiles = 0;
+  for (const auto& o : outcomes) {
+    ran.push_back(o.ran);
+    skipped.push_back(o.skipped);
+    failed_profiles += !o.failures.empty() || !o.aborted.empty();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << fmt::format(
+      "sweep: {} profiles, {} failed; vectors run per profile min {} median {} max {}; skipped min {} median {} max {}; "
+      "{} vectors; {:.1f} s\n",
+      outcomes.size(), failed_profiles, percentile(ran, 0), percentile(ran, 0.5), percentile(ran, 1),
+      percentile(skipped, 0), percentile(skipped, 0.5), percentile(skipped, 1), vectors.size(), seconds);
+  return failed_profiles == 0 ? kExitOk : kExitFailed;
+}
+
+void add_sweep_subcommand(CLI::App& vectors, std::shared_ptr<SweepOptions> o) {
+  CLI::App* sub = vectors.add_subcommand(
+      "sweep", "Run the suite against the reference controller on random legal profiles; exit 1 when a vector fails");
+  sub->add_option("--profiles", o->profiles, "How many random profiles (default 50)")->check(CLI::Range(1, 1000000));
+  sub->add_option("--seed", o->seed, "Seed of the sweep: the same seed draws the same profiles");
+  sub->add_option("--profile-seed", o->profile_seed, "Run only the profile of this seed (as a sweep prints it)");
+  sub->add_option("--vectors", o->vectors, "Vector files or folders (default vectors/)")->check(CLI::ExistingPath);
+  sub->add_option("--out", o->out, "Where failing profiles are written (default sweep-failures/)");
+  sub->add_option("--write-profiles", o->write_profiles,
+                  "Write every profile (not only the failing ones) to this folder as sweep-SEED.yaml");
+  sub->add_option("--jobs", o->jobs, "Profiles run at once (default: the machine's cores)")->check(CLI::Range(1, 256));
+  o->command = sub;
+}
+
+}  // namespace sabus::cli

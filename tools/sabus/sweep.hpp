@@ -1,0 +1,29 @@
+// `sabus vectors sweep` (sweep.cpp): the suite on random legal profiles.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace sabus::cli {
+
+struct SweepOptions {
+  std::uint64_t profiles = 50;
+  std::uint64_t seed = 1;
+  std::optional<std::uint64_t> profile_seed;
+  std::vector<std::string> vectors;
+  std::string out = "sweep-failures";
+  std::string write_profiles;  // when set: every profile written there, failing or not
+  unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  CLI::App* command = nullptr;  // the subcommand, to tell whether it was given
+};
+
+// Registers `sweep` under `sabus vectors`.
+void add_sweep_subcommand(CLI::App& vectors, std::shared_ptr<SweepOptions> options);
+int run_sweep(const SweepOptions& options);
+
+}  // namespace sabus::cli
