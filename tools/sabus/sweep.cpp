@@ -98,7 +98,7 @@ std::string skip_line(const ProfileOutcome& o) {
 // Writes a profile (a failing one with its failures) with its seed, so that
 // `sabus run --sim --profile FILE --allow-motion --allow-destructive` or
 // `sabus vectors sweep --profile-seed SEED` reproduces it.
-std::string write_failure(const fs::path& dir, const ProfileOutcome& o) {
+std::string write_profile(const fs::path& dir, const ProfileOutcome& o) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   const fs::path file = dir / fmt::format("sweep-{:016x}.yaml", o.seed);
@@ -150,9 +150,9 @@ int run_sweep(const SweepOptions& opts) {
       for (const auto& f : o.failures) std::cout << "  FAIL " << f << "\n";
       if (!o.aborted.empty()) std::cout << "  ABORTED " << o.aborted << "\n";
       if (!o.failures.empty() || !o.aborted.empty())
-        std::cout << "  profile written to " << write_failure(opts.out, o) << "\n";
+        std::cout << "  profile written to " << write_profile(opts.out, o) << "\n";
       else if (!opts.write_profiles.empty())
-        write_failure(opts.write_profiles, o);
+        write_profile(opts.write_profiles, o);
       std::cout.flush();
     }
   };

@@ -68,13 +68,9 @@ Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
 }
 Outcome Handlers::read_satellite(C& c, const ReadSatellite& r) {
   if (r.index < 1 || r.index > 20) return nak(c, 0x3A, NakRule::kSatelliteIndex, "index " + std::to_string(r.index));
-  SatelliteDataReply reply;
-  if (const auto& p = c.state_.presets[r.index - 1]) {
-    reply.index = p->index;
-    reply.sat = p->data;
-  } else {
-    reply.index = empty_index(c);
-  }
+  const auto& p = c.state_.presets[r.index - 1];
+  SatelliteDataReply reply = satellite_reply(p ? &*p : nullptr);
+  if (!p) reply.index = empty_index(c);
   return ack(c, 0x3A, reply);
 }
 std::optional<std::uint8_t> Handlers::empty_index(const C& c) {
@@ -92,14 +88,9 @@ Outcome Handlers::write_tle(C& c, const WriteTle& w) {
 }
 Outcome Handlers::read_tle(C& c, const ReadTle& r) {
   if (r.index < 1 || r.index > 10) return nak(c, 0x3C, NakRule::kTleIndex, "index " + std::to_string(r.index));
-  TleDataReply reply;
-  if (const auto& t = c.state_.tles[r.index - 1]) {
-    reply.index = t->index;
-    reply.line1 = t->line1;
-    reply.line2 = t->line2;
-  } else {
-    reply.index = empty_index(c);
-  }
+  const auto& t = c.state_.tles[r.index - 1];
+  TleDataReply reply = tle_reply(t ? &*t : nullptr);
+  if (!t) reply.index = empty_index(c);
   return ack(c, 0x3C, reply);
 }
 
@@ -169,13 +160,9 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
 Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
   if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
   if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
-  SignpostDataReply reply;
-  if (const auto& s = c.state_.signposts[r.index - 1]) {
-    reply.index = s->index;
-    reply.signpost = s->data;
-  } else {
-    reply.index = empty_index(c);
-  }
+  const auto& s = c.state_.signposts[r.index - 1];
+  SignpostDataReply reply = signpost_reply(s ? &*s : nullptr);
+  if (!s) reply.index = empty_index(c);
   return ack(c, 0x44, reply);
 }
 

@@ -42,4 +42,35 @@ NavigationDataReply navigation_reply(const Navigation& n) {
   return r;
 }
 
+SatelliteDataReply satellite_reply(const PresetSatellite* slot) {
+  SatelliteDataReply r;
+  r.index = std::nullopt;  // empty, unless the slot holds data
+  if (slot) {
+    r.index = slot->index;
+    r.sat = slot->data;
+  }
+  return r;
+}
+
+TleDataReply tle_reply(const TleSet* slot) {
+  TleDataReply r;
+  r.index = std::nullopt;  // empty, unless the slot holds data
+  if (slot) {
+    r.index = slot->index;
+    r.line1 = slot->line1;
+    r.line2 = slot->line2;
+  }
+  return r;
+}
+
+SignpostDataReply signpost_reply(const Signpost* slot) {
+  SignpostDataReply r;
+  r.index = std::nullopt;  // empty, unless the slot holds data
+  if (slot) {
+    r.index = slot->index;
+    r.signpost = slot->data;
+  }
+  return r;
+}
+
 }  // namespace sabus::harness

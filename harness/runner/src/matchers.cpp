@@ -122,8 +122,16 @@ ResolvedMatcher problem(Expansion::Kind kind, const FieldMatcher& m, std::string
 }
 
 // near: the target within the axis's arrival tolerance (AxisProfile::tolerance_deg).
+// The axis a matcher is about: near's `axis`, the jog's, or the field's.
+std::optional<motion::Axis> matcher_axis(const FieldMatcher& m) {
+  if (!m.near_axis.empty()) return motion::axis_named(m.near_axis);
+  if (m.kind == FieldMatcher::Kind::kJogged)
+    if (const auto dir = motion::jog_direction(m.jog)) return dir->axis;
+  return motion::axis_of_field(m.field);
+}
+
 ResolvedMatcher resolve_near(FieldMatcher m, const ExprContext& cx) {
-  const auto axis = !m.near_axis.empty() ? motion::axis_named(m.near_axis) : motion::axis_of_field(m.field);
+  const auto axis = matcher_axis(m);
   if (!axis) return problem(Expansion::Kind::kError, m, "near needs an axis: the field is not a position of one");
   const Number target = expand_number(m.values.at(0), cx);
   if (target.kind != Expansion::Kind::kValue) return problem(target.kind, m, target.text);
@@ -162,12 +170,8 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
 
 ResolvedMatcher resolve_matcher(const FieldMatcher& in, const ExprContext& cx) {
   FieldMatcher m = in;
-  // An azimuth on a fluxgate mount is a heading: compared modulo 360. The
-  // axis is the field's, near's `axis`, or the jog's.
-  std::optional<motion::Axis> axis = !m.near_axis.empty() ? motion::axis_named(m.near_axis) : motion::axis_of_field(m.field);
-  if (m.kind == FieldMatcher::Kind::kJogged)
-    if (const auto dir = motion::jog_direction(m.jog)) axis = dir->axis;
-  m.angular = axis == motion::Axis::kAz && cx.profile.az_sensor == AzSensor::kFluxgate;
+  // An azimuth on a fluxgate mount is a heading: compared modulo 360.
+  m.angular = matcher_axis(m) == motion::Axis::kAz && cx.profile.az_sensor == AzSensor::kFluxgate;
   switch (m.kind) {
     case FieldMatcher::Kind::kNear: return resolve_near(std::move(m), cx);
     case FieldMatcher::Kind::kJogged: return resolve_jogged(std::move(m), cx);

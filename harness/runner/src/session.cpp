@@ -4,6 +4,7 @@
 // checks, the 'X' stop after motion, the reads of the stored-data backup.
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "session.hpp"
 
@@ -141,16 +142,16 @@ LivenessResult Session::liveness(std::string when) {
   return l;
 }
 
-// Whether TRACK mode governs the antenna now: §3.2 byte 40 SSSS (data byte
-// 37 of the status reply) is not 0000. Asked only of a controller that
-// powers up in TRACK (the profile's track.active).
+// Whether TRACK mode governs the antenna now: §3.2 byte 40 SSSS is not 0000.
+// Asked only of a controller that powers up in TRACK (the profile's
+// track.active).
 bool Session::track_governs() {
   if (!profile.track.active) return false;
-  const Bytes poll = encode_request(StatusPoll{}, profile.address);
-  const auto replies = exchange(poll, {}, reply_timeout(poll.size()));
-  if (replies.size() != 1 || replies[0].kind != FrameKind::kAck || replies[0].command != 0x31) return false;
-  constexpr std::size_t kTrackByte = 40 - 3;  // byte 40; data starts at byte 3 (sat name, bytes 3-12)
-  return replies[0].data.size() > kTrackByte && (replies[0].data[kTrackByte] & 0x0F) != 0;
+  const auto data = ask(StatusPoll{});
+  if (!data) return false;
+  const auto reply = decode_reply(Frame{FrameKind::kAck, profile.address, 0x31, *data});
+  if (!reply || !std::holds_alternative<StatusReply>(reply.value())) return false;
+  return (std::get<StatusReply>(reply.value()).status.track & 0x0F) != 0;
 }
 
 // The stop after a moving vector (33h 'X'), except while TRACK governs the

@@ -77,16 +77,17 @@ Result with_axis(const Call& c, const std::function<Result(motion::Axis, const A
   return f(*axis, motion::profile_of(c.cx.profile, *axis));
 }
 
+// What an axis without a position reading lacks (ad_error: '*' in every
+// position field, §3.2 bytes 14-31, E-42).
+Result no_reading(motion::Axis axis) {
+  return unavailable("a position reading of the " + std::string(motion::name_of(axis)) +
+                     " (its A/D converter reports an error, ad_error)");
+}
+
 // As with_axis, for the functions that place an axis where a vector then
-// reads it: unavailable when the profile's axis has no position reading
-// (ad_error: '*' in every position field, §3.2 bytes 14-31, E-42).
+// reads it: unavailable when the profile's axis has no position reading.
 Result with_read_axis(const Call& c, const std::function<Result(motion::Axis, const AxisProfile&)>& f) {
-  return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
-    if (a.ad_error)
-      return unavailable("a position reading of the " + std::string(motion::name_of(axis)) +
-                         " (its A/D converter reports an error, ad_error)");
-    return f(axis, a);
-  });
+  return with_axis(c, [&](motion::Axis axis, const AxisProfile& a) { return a.ad_error ? no_reading(axis) : f(axis, a); });
 }
 
 std::optional<char> speed_arg(const Value& v) {
@@ -203,8 +204,7 @@ const Function kFunctions[] = {
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
        AxisProfile a = c.cx.profile.pol;
-       if (a.ad_error)
-         return unavailable("a position reading of the polarization (its A/D converter reports an error, ad_error)");
+       if (a.ad_error) return no_reading(motion::Axis::kPol);
        a.min_deg = std::max(a.min_deg, -90.0);
        a.max_deg = std::min(a.max_deg, 90.0);
        if (a.max_deg - a.min_deg < 10.0)
@@ -266,9 +266,7 @@ const Function kFunctions[] = {
        if (!speed) return error("jog_start: argument 2 must be F or S");
        if (auto e = c.numbers({2})) return error(*e);
        const AxisProfile& a = motion::profile_of(c.cx.profile, dir->axis);
-       if (a.ad_error)
-         return unavailable("a position reading of the " + std::string(motion::name_of(dir->axis)) +
-                            " (its A/D converter reports an error, ad_error)");
+       if (a.ad_error) return no_reading(dir->axis);
        return maybe(motion::jog_start(a, dir->sign, *speed, static_cast<int>(c.args[2].number), motion::name_of(dir->axis)));
      }},
     {{"move_target", "axis, from, ms",

@@ -52,34 +52,9 @@ RecordRequest profile_write(const Profile& p, std::uint8_t code, std::uint32_t i
 
 RecordReply profile_read_reply(const Profile& p, std::uint8_t code, std::uint32_t index) {
   switch (code) {
-    case 0x3A: {
-      SatelliteDataReply r;
-      r.index = std::nullopt;  // READING-NOTES 18: an empty slot reads 7Fh 7Fh
-      if (const auto* s = slot_of(p.presets, index)) {
-        r.index = s->index;
-        r.sat = s->data;
-      }
-      return {r, {}};
-    }
-    case 0x3C: {
-      TleDataReply r;
-      r.index = std::nullopt;
-      if (const auto* t = slot_of(p.tles, index)) {
-        r.index = t->index;
-        r.line1 = t->line1;
-        r.line2 = t->line2;
-      }
-      return {r, {}};
-    }
-    case 0x44: {
-      SignpostDataReply r;
-      r.index = std::nullopt;
-      if (const auto* s = slot_of(p.signposts, index)) {
-        r.index = s->index;
-        r.signpost = s->data;
-      }
-      return {r, {}};
-    }
+    case 0x3A: return {satellite_reply(slot_of(p.presets, index)), {}};  // empty: 7Fh 7Fh (READING-NOTES 18)
+    case 0x3C: return {tle_reply(slot_of(p.tles, index)), {}};
+    case 0x44: return {signpost_reply(slot_of(p.signposts, index)), {}};
     case 0x45: return {navigation_reply(p.navigation), {}};
     default: return {std::nullopt, "a command that reads stored data"};
   }

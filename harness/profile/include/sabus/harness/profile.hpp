@@ -195,6 +195,12 @@ struct Profile {
 // ready when it has a value.
 NavigationDataReply navigation_reply(const Navigation& n);
 
+// The 3Ah, 3Ch and 44h replies of a controller holding this slot; for an
+// empty slot (nullptr) the index is empty: 7Fh 7Fh (READING-NOTES 18).
+SatelliteDataReply satellite_reply(const PresetSatellite* slot);
+TleDataReply tle_reply(const TleSet* slot);
+SignpostDataReply signpost_reply(const Signpost* slot);
+
 // Controllers on one RS-422 bus (sabus sim --address 50,51,60): one profile
 // per address, the rest shared.
 std::vector<Profile> multi_drop(const Profile& base, const std::vector<std::uint8_t>& addresses);
