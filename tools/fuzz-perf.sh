@@ -8,7 +8,8 @@
 #    other jobs, where wall-clock exec/s understates the target); then the
 #    floors, and each frame-level target's executions per CPU-second as a
 #    share of its floor's, measured in this run (goals: fuzz_receiver 0.7,
-#    fuzz_controller 0.6);
+#    fuzz_controller 0.6), from the table and again in ROUNDS rounds of
+#    PAIR_SECONDS in which target and floor run one after the other (paired);
 # 2. fuzz_controller runs SECONDS (default 300) from its seed corpus on one
 #    core: its final edge coverage, then fuzz_handler_report replays the
 #    resulting corpus (each input cut to max_len, as libFuzzer runs it) and
@@ -86,20 +87,48 @@ finished() {
 
 cpu_seconds() { awk '{printf "%.1f", $1 + $2}' "$work/$1.time"; }
 
-# row LABEL BINARY SEEDS FLAGS...: one row of the table, EXEC_SECONDS of
-# BINARY: libFuzzer's exec/s and executions per CPU-second (kept in per_cpu).
+# measure LABEL BINARY SECONDS SEEDS FLAGS...: runs BINARY as fuzz_on_core
+# does; sets rate (libFuzzer's exec/s), runs, cpu and per_cpu[LABEL]
+# (executions per CPU-second).
 declare -A per_cpu
-row() {
-  local label=$1 binary=$2 seeds=$3 rate runs cpu status=0
-  shift 3
-  fuzz_on_core "$label" "$binary" "$exec_seconds" "$seeds" "$@"
+measure() {
+  local label=$1 binary=$2 limit=$3 seeds=$4 status=0
+  shift 4
+  fuzz_on_core "$label" "$binary" "$limit" "$seeds" "$@"
   wait "$timer" || status=$?
   finished "$label" "$status"
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$label.log")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$label.log")
   cpu=$(cpu_seconds "$label")
   per_cpu[$label]=$(awk -v r="$runs" -v c="$cpu" 'BEGIN{printf "%d", (c > 0) ? r / c : 0}')
+}
+
+# row LABEL BINARY SEEDS FLAGS...: one row of the table, EXEC_SECONDS of BINARY.
+row() {
+  local label=$1 binary=$2 seeds=$3
+  shift 3
+  measure "$label" "$binary" "$exec_seconds" "$seeds" "$@"
   printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" "${per_cpu[$label]}"
+}
+
+# paired TARGET: the target's share of its floor again, in ROUNDS (default 3)
+# rounds of PAIR_SECONDS (default 10) each, the target and then its floor in
+# every round, each from its seed corpus: a change in the machine's load
+# between two rows of the table (other jobs on a shared host moved a row by
+# up to 10 %) then moves one round, not the figure. Prints every round's
+# share and their median.
+paired() {
+  local t=$1 f=fuzz_floor_${1#fuzz_} r shares=()
+  local -a target_flags floor_flags
+  mapfile -t target_flags < <(flags_of "$t")
+  mapfile -t floor_flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
+  for ((r = 1; r <= ${ROUNDS:-3}; ++r)); do
+    measure "$t.round$r" "$fuzz/$t" "${PAIR_SECONDS:-10}" "$fuzz/seeds/$t" "${target_flags[@]}"
+    measure "$f.round$r" "$fuzz/$f" "${PAIR_SECONDS:-10}" "$fuzz/seeds/$t" "${floor_flags[@]}"
+    shares+=("$(awk -v a="${per_cpu[$t.round$r]}" -v b="${per_cpu[$f.round$r]}" 'BEGIN{printf "%.2f", (b > 0) ? a / b : 0}')")
+  done
+  printf "%s\n" "${shares[@]}" | sort -n | awk -v n="${#shares[@]}" -v list="${shares[*]}" \
+    '{v[NR] = $1} END {printf "rounds %s, median %.2f", list, (n % 2) ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2}'
 }
 
 # The report tool on the other core, so that it does not slow the fuzzer;
@@ -178,10 +207,12 @@ if ((exec_seconds > 0)); then
     mapfile -t flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
     row "$f" "$fuzz/$f" "$fuzz/seeds/$t" "${flags[@]}"
   done
+  echo "share of the floor (executions per CPU-second): in the table; then in ${ROUNDS:-3} rounds of ${PAIR_SECONDS:-10} s, target and floor side by side"
   for goal in receiver:0.7 controller:0.6; do
     t=fuzz_${goal%%:*} f=fuzz_floor_${goal%%:*}
-    awk -v t="$t" -v a="${per_cpu[$t]}" -v b="${per_cpu[$f]}" -v g="${goal#*:}" \
-      'BEGIN{printf "%s: %.2f of its floor (goal %s)\n", t, (b > 0) ? a / b : 0, g}'
+    rounds=$(paired "$t") || { echo "$rounds"; exit 1; }  # a failed fuzzer's log
+    awk -v t="$t" -v a="${per_cpu[$t]}" -v b="${per_cpu[$f]}" -v g="${goal#*:}" -v p="$rounds" \
+      'BEGIN{printf "%s: %.2f of its floor; %s (goal %s)\n", t, (b > 0) ? a / b : 0, p, g}'
   done
 fi
 

@@ -19,9 +19,13 @@ void add_device_options(CLI::App* sub, DeviceOptions& o) {
   sub->add_option("--baud", o.baud, "Baud rate, 300-115200 (default: the profile's)")->check(kBaudRange);
   sub->add_option("--line", o.line, "8N1 (default: parity computed by sabus) or 7E1 (a true 7E1 port)")
       ->check(CLI::IsMember({"8N1", "7E1"}));
-  sub->add_option("--serial-backend", o.serial_backend, "auto, libserialport or termios")
-      ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
+  add_serial_backend_option(sub, o.serial_backend);
   sub->add_option("--fault", o.faults, "With --sim: inject a named fault (sabus sim --list-faults)");
+}
+
+void add_serial_backend_option(CLI::App* sub, std::string& backend) {
+  sub->add_option("--serial-backend", backend, "auto, libserialport or termios")
+      ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
 }
 
 OpenedDevice open_device(const std::string& tool, DeviceOptions o) {

@@ -26,6 +26,9 @@ struct DeviceOptions {
 // Registers --sim, --port, --tcp, --profile, --address, --baud, --line,
 // --serial-backend and --fault on `sub`.
 void add_device_options(CLI::App* sub, DeviceOptions& o);
+// --serial-backend (auto, libserialport or termios), for every command that
+// opens a serial port.
+void add_serial_backend_option(CLI::App* sub, std::string& backend);
 
 // The device, ready to use: the profile (with --address and --baud applied),
 // the faults and the transport. `exit_code` is 0 when it worked, kExitUsage

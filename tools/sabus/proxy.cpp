@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "device.hpp"
 #include "sabus/harness/capture.hpp"
 #include "sabus/harness/line.hpp"
 #include "sabus/protocol/lrc.hpp"
@@ -315,8 +316,7 @@ Command add_proxy_command(CLI::App& app) {
   sub->add_option("--baud", o->baud, "Device side baud rate")->check(kBaudRange);
   sub->add_option("--line", o->line, "8N1 (default: parity in bit 7, forwarded as is) or 7E1 (a true 7E1 port)")
       ->check(CLI::IsMember({"8N1", "7E1"}));
-  sub->add_option("--serial-backend", o->serial_backend, "auto, libserialport or termios")
-      ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
+  add_serial_backend_option(sub, o->serial_backend);
   sub->add_option("--log", o->log, "Write the log (JSON Lines, tools/PROXY-LOG.md) to FILE (default: stdout)");
   return {sub, [o] { return run_proxy(*o); }};
 }

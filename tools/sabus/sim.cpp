@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "device.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/line.hpp"
 #include "sabus/harness/profile_loader.hpp"
@@ -188,8 +189,7 @@ Command add_sim_command(CLI::App& app) {
   sub->add_option("--port", o->port, "Serve a serial port (e.g. /dev/ttyUSB0)");
   sub->add_option("--tcp", o->tcp, "Serve raw TCP at HOST:PORT, as a serial device server (port 0: any free port)");
   sub->add_option("--baud", o->baud, "Baud rate, 300-115200 (default: the profile's)")->check(kBaudRange);
-  sub->add_option("--serial-backend", o->serial_backend, "auto, libserialport or termios")
-      ->check(CLI::IsMember({"auto", "libserialport", "termios"}));
+  add_serial_backend_option(sub, o->serial_backend);
   sub->add_option("--profile", o->profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");
   sub->add_option("--address", o->addresses, "Address, or a list for a multi-drop bus: 50,51,60");
   sub->add_flag("--remote-disabled", o->remote_disabled, "Remote control disabled: valid commands get the offline reply");

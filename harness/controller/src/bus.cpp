@@ -19,13 +19,16 @@ ReceiverOptions receiver_options(const Profile& profile, const FaultSet& faults,
 
 struct Bus::Unit : ReceiverSink {
   Unit(const Profile& p, const Clock& clock, FaultSet faults, Parity parity)
-      : controller(p, clock, faults), receiver(receiver_options(p, faults, parity)) {}
+      : controller(p, clock, faults),
+        receiver(receiver_options(p, faults, parity)),
+        keeps_recent(faults.has(Fault::kNakBadCheckByte)) {}
   Controller controller;
   Receiver receiver;
   std::vector<Frame> frames;
   std::vector<Discard> discards;
   // The recent bytes of the stream, to read back a discarded frame (fault
-  // nak-bad-check-byte answers one).
+  // nak-bad-check-byte answers one); kept only under that fault.
+  bool keeps_recent;
   Bytes recent;
   std::uint64_t recent_base = 0;
 
@@ -81,7 +84,7 @@ void Bus::watch_parity(ByteView wire) {
 void Bus::receive(ByteView wire, Bytes& out) {
   constexpr std::size_t kRecent = 512;
   for (auto& u : units_) {
-    u->recent.insert(u->recent.end(), wire.begin(), wire.end());
+    if (u->keeps_recent) u->recent.insert(u->recent.end(), wire.begin(), wire.end());
     u->receiver.feed(wire, *u);
     for (const Discard& d : u->discards) {
       if (transcript_) log_ += "ignored " + d.message() + "\n";
@@ -89,8 +92,7 @@ void Bus::receive(ByteView wire, Bytes& out) {
         const Bytes b = u->discarded_bytes(d);
         if (b.size() >= 3 && b[1] == u->controller.profile().address) {
           Bytes nak = encode_frame(nak_reply(b[1], b[2]));
-          Bytes w = parity_ == Parity::kNone ? nak : add_even_parity(nak);
-          out.insert(out.end(), w.begin(), w.end());
+          append_to_line(out, nak);
           if (transcript_) log_ += "reply " + to_hex(nak) + " (NAK for a bad check byte)\n";
         }
       }
@@ -102,10 +104,9 @@ void Bus::receive(ByteView wire, Bytes& out) {
         log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";
       }
       Outcome o = u->controller.execute(f);
-      if (o.nak && nak_rules_.size() < 64) nak_rules_.emplace_back(name(*o.nak));
+      if (o.nak && nak_rules_.size() < 64) nak_rules_.push_back(*o.nak);
       if (o.reply) {
-        Bytes w = parity_ == Parity::kNone ? *o.reply : add_even_parity(*o.reply);
-        out.insert(out.end(), w.begin(), w.end());
+        append_to_line(out, *o.reply);
         if (transcript_) log_ += "reply " + to_hex(*o.reply) + "  " + o.note + "\n";
       } else {
         if (transcript_) log_ += "no reply: " + o.note + "\n";
@@ -136,8 +137,18 @@ void Bus::tick() {
 
 std::vector<std::string> Bus::take_nak_rules() {
   std::vector<std::string> r;
-  r.swap(nak_rules_);
+  r.reserve(nak_rules_.size());
+  for (NakRule rule : nak_rules_) r.emplace_back(name(rule));
+  nak_rules_.clear();
   return r;
+}
+
+void Bus::append_to_line(Bytes& out, ByteView reply) const {
+  if (parity_ == Parity::kNone) {
+    out.insert(out.end(), reply.begin(), reply.end());
+    return;
+  }
+  for (std::uint8_t c : reply) out.push_back(with_even_parity(c));  // §1 Data Format: 7E1
 }
 
 std::string Bus::take_log() {

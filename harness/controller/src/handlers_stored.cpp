@@ -23,6 +23,16 @@ bool tle_checksum_ok(const std::string& line) {
 
 double wrap_pol(double deg) { return deg > 90 ? deg - 180 : deg < -90 ? deg + 180 : deg; }
 
+// The reply to a read of one slot (3Ah, 3Ch, 44h): the slot's data by
+// `make` (satellite_reply, tle_reply, signpost_reply), or the empty slot's
+// index when it holds none (READING-NOTES 18).
+template <class Slot, class Make>
+auto reply_to_read(const Controller& c, const std::optional<Slot>& slot, Make make) {
+  auto reply = make(slot ? &*slot : nullptr);
+  if (!slot) reply.index = Handlers::empty_index(c);
+  return reply;
+}
+
 }  // namespace
 
 // ---- §3.6 Query Name --------------------------------------------------------------
@@ -68,10 +78,7 @@ Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
 }
 Outcome Handlers::read_satellite(C& c, const ReadSatellite& r) {
   if (r.index < 1 || r.index > 20) return nak(c, 0x3A, NakRule::kSatelliteIndex, "index " + std::to_string(r.index));
-  const auto& p = c.state_.presets[r.index - 1];
-  SatelliteDataReply reply = satellite_reply(p ? &*p : nullptr);
-  if (!p) reply.index = empty_index(c);
-  return ack(c, 0x3A, reply);
+  return ack(c, 0x3A, reply_to_read(c, c.state_.presets[r.index - 1], satellite_reply));
 }
 std::optional<std::uint8_t> Handlers::empty_index(const C& c) {
   // READING-NOTES 18: 7Fh in both index bytes.
@@ -88,10 +95,7 @@ Outcome Handlers::write_tle(C& c, const WriteTle& w) {
 }
 Outcome Handlers::read_tle(C& c, const ReadTle& r) {
   if (r.index < 1 || r.index > 10) return nak(c, 0x3C, NakRule::kTleIndex, "index " + std::to_string(r.index));
-  const auto& t = c.state_.tles[r.index - 1];
-  TleDataReply reply = tle_reply(t ? &*t : nullptr);
-  if (!t) reply.index = empty_index(c);
-  return ack(c, 0x3C, reply);
+  return ack(c, 0x3C, reply_to_read(c, c.state_.tles[r.index - 1], tle_reply));
 }
 
 // ---- §3.19 Remote Store ----------------------------------------------------------------
@@ -160,10 +164,7 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
 Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
   if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
   if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
-  const auto& s = c.state_.signposts[r.index - 1];
-  SignpostDataReply reply = signpost_reply(s ? &*s : nullptr);
-  if (!s) reply.index = empty_index(c);
-  return ack(c, 0x44, reply);
+  return ack(c, 0x44, reply_to_read(c, c.state_.signposts[r.index - 1], signpost_reply));
 }
 
 // ---- §3.22 / §3.23 Navigation data ---------------------------------------------------

@@ -42,35 +42,36 @@ NavigationDataReply navigation_reply(const Navigation& n) {
   return r;
 }
 
-SatelliteDataReply satellite_reply(const PresetSatellite* slot) {
-  SatelliteDataReply r;
-  r.index = std::nullopt;  // empty, unless the slot holds data
+namespace {
+
+// A slot's reply: empty (no index) unless the slot holds data, then its
+// index and what `fill` copies of its data.
+template <class Reply, class Slot, class Fill>
+Reply slot_reply(const Slot* slot, Fill fill) {
+  Reply r;
+  r.index = std::nullopt;
   if (slot) {
     r.index = slot->index;
-    r.sat = slot->data;
+    fill(r, *slot);
   }
   return r;
+}
+
+}  // namespace
+
+SatelliteDataReply satellite_reply(const PresetSatellite* slot) {
+  return slot_reply<SatelliteDataReply>(slot, [](auto& r, const PresetSatellite& s) { r.sat = s.data; });
 }
 
 TleDataReply tle_reply(const TleSet* slot) {
-  TleDataReply r;
-  r.index = std::nullopt;  // empty, unless the slot holds data
-  if (slot) {
-    r.index = slot->index;
-    r.line1 = slot->line1;
-    r.line2 = slot->line2;
-  }
-  return r;
+  return slot_reply<TleDataReply>(slot, [](auto& r, const TleSet& s) {
+    r.line1 = s.line1;
+    r.line2 = s.line2;
+  });
 }
 
 SignpostDataReply signpost_reply(const Signpost* slot) {
-  SignpostDataReply r;
-  r.index = std::nullopt;  // empty, unless the slot holds data
-  if (slot) {
-    r.index = slot->index;
-    r.signpost = slot->data;
-  }
-  return r;
+  return slot_reply<SignpostDataReply>(slot, [](auto& r, const Signpost& s) { r.signpost = s.data; });
 }
 
 }  // namespace sabus::harness

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "sabus/harness/controller.hpp"
+#include "controller_internal.hpp"  // the submode table, checked row by row
 
 namespace sabus::harness {
 namespace {
@@ -388,27 +389,26 @@ TEST(Controller, TrackByteCarriesEveryBand) {
 // §3.2 byte 40 SSSS and byte 35 'Y', §3.17 byte 46, and the TRACK rules of
 // §3.4 for each submode (ERRATA E-69).
 TEST(Controller, EachTrackSubmodeHasItsByteStateAndRules) {
-  struct Row {
-    TrackActivity activity;
-    std::uint8_t ssss;
-    const char* state;
-    bool peaking_or_search;
+  // The controller's one table of submodes (controller_internal.hpp), pinned
+  // to the spec where its rows differ in kind: a setup code, the two codes
+  // 0011 shares, a search and the first and last error codes.
+  auto pin = [](TrackActivity a, std::uint8_t ssss, std::string_view state, bool peaking_or_search) {
+    const TrackSubmode& row = track_submode(a);
+    EXPECT_EQ(row.ssss, ssss) << state;
+    EXPECT_EQ(row.state, state);
+    EXPECT_EQ(row.peaking_or_search, peaking_or_search) << state;
   };
-  const Row rows[] = {{TrackActivity::kSetup, 0b0001, "TRACK_INITIALIZING_PARAMETERS", false},
-                      {TrackActivity::kAutoEntry, 0b0010, "TRACK_ENTERING_MODE", false},
-                      {TrackActivity::kIdle, 0b0011, "TRACK_STEP_IDLE", false},
-                      {TrackActivity::kPeaking, 0b0011, "TRACK_STEP_PEAKING", true},
-                      {TrackActivity::kSearching, 0b0100, "TRACK_SEARCH_PERFORMING_SEARCH_PATTERN", true},
-                      {TrackActivity::kProgramTrack, 0b0101, "TRACK_TLE_IDLE", false},
-                      {TrackActivity::kManualSearch, 0b0110, "TRACK_MANUAL_SEARCH_ACTIVE", false},
-                      {TrackActivity::kJammedError, 0b1000, "TRACK_ERROR_CREEP_JAMMED", false},
-                      {TrackActivity::kLimitError, 0b1001, "TRACK_ERROR_CREEP_LIMIT", false},
-                      {TrackActivity::kDriveError, 0b1010, "TRACK_ERROR_CREEP_DRIVE", false},
-                      {TrackActivity::kPeakLimitError, 0b1011, "TRACK_ERROR_PEAK_LIMIT", false},
-                      {TrackActivity::kGeoPositionError, 0b1100, "TRACK_ERROR_TRACK_GEO", false},
-                      {TrackActivity::kError, 0b1101, "TRACK_ERROR_TRACK_SYSTEM", false},
-                      {TrackActivity::kChecksumError, 0b1110, "TRACK_ERROR_TRACK_CHECKSUM", false}};
-  for (const Row& row : rows) {
+  pin(TrackActivity::kSetup, 0b0001, "TRACK_INITIALIZING_PARAMETERS", false);
+  pin(TrackActivity::kIdle, 0b0011, "TRACK_STEP_IDLE", false);
+  pin(TrackActivity::kPeaking, 0b0011, "TRACK_STEP_PEAKING", true);
+  pin(TrackActivity::kSearching, 0b0100, "TRACK_SEARCH_PERFORMING_SEARCH_PATTERN", true);
+  pin(TrackActivity::kJammedError, 0b1000, "TRACK_ERROR_CREEP_JAMMED", false);
+  pin(TrackActivity::kChecksumError, 0b1110, "TRACK_ERROR_TRACK_CHECKSUM", false);
+  // One row per submode, kSetup through kChecksumError in order.
+  ASSERT_EQ(std::size(kTrackSubmodes), static_cast<std::size_t>(TrackActivity::kChecksumError) + 1);
+  for (std::size_t i = 0; i < std::size(kTrackSubmodes); ++i)
+    EXPECT_EQ(kTrackSubmodes[i].activity, static_cast<TrackActivity>(i)) << kTrackSubmodes[i].state;
+  for (const TrackSubmode& row : kTrackSubmodes) {
     SCOPED_TRACE(row.state);
     Profile p = test_profile();
     p.track = {true, row.activity, TrackBand::kKu, true};
@@ -1016,6 +1016,23 @@ TEST(Controller, InvariantsHoldAfterTheTests) {
   r.send(Jog{{'W', 'F', 9999}});
   r.wait(1000s);
   EXPECT_EQ(r.c.check_invariants(), "");
+}
+
+// The fuzz target's oracle: check_invariants must see a name twice however
+// far apart the two entries are in a full list.
+TEST(Controller, InvariantsSeeANameTwiceAnywhereInTheStoreList) {
+  Rig r;
+  auto& store = r.c.mutable_state().store;
+  store.clear();
+  for (int i = 0; i < 50; ++i) store.push_back({"SAT" + std::to_string(i)});
+  EXPECT_EQ(r.c.check_invariants(), "");
+  store[49].name = store[0].name;
+  EXPECT_EQ(r.c.check_invariants(), "a name twice in the STORE list; ");
+  store[49].name = "SAT49";
+  store[31].name = store[17].name;
+  EXPECT_EQ(r.c.check_invariants(), "a name twice in the STORE list; ");
+  store.push_back({"SAT50"});
+  EXPECT_EQ(r.c.check_invariants(), "STORE list over 50; a name twice in the STORE list; ");
 }
 
 }  // namespace

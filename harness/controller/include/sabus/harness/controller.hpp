@@ -182,6 +182,9 @@ class Bus : public LineDevice {
   struct Unit;
   void trim_log();
   void watch_parity(ByteView wire);
+  // Appends a reply's bytes as the line carries them (even parity in bit 7
+  // unless the line has none).
+  void append_to_line(Bytes& out, ByteView reply) const;
   std::vector<std::unique_ptr<Unit>> units_;
   Parity parity_;
   bool transcript_ = true;
@@ -189,7 +192,7 @@ class Bus : public LineDevice {
   std::size_t window_bytes_ = 0, window_bad_ = 0;
   bool parity_hint_given_ = false;
   std::string log_;
-  std::vector<std::string> nak_rules_;
+  std::vector<NakRule> nak_rules_;  // names made only when taken
   std::function<void(const Controller&)> on_change_;
 };
 
