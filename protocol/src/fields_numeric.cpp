@@ -1,6 +1,7 @@
 // The field codecs of numbers and positions (fields.hpp): signed digits,
 // zero-padded and justified decimals, positions with their '*' error fields,
 // the azimuth or heading of §3.2, navigation angles.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -69,6 +70,18 @@ std::string quantity_text(std::int32_t v, int decimals, Quantity q) {
   return s;
 }
 
+// Writes an optional number's field all blanks when it has no value (§3.2,
+// §3.22: a field without data is spaces); returns whether it did.
+bool blank_when_empty(const std::optional<std::int32_t>& v, Out out) {
+  if (v) return false;
+  std::fill(out.begin(), out.end(), std::uint8_t{' '});
+  return true;
+}
+
+std::string decimal_meaning(const std::optional<std::int32_t>& v, int decimals) {
+  return v ? format_scaled(*v, decimals) : "(blank)";
+}
+
 }  // namespace
 
 std::string format_scaled(std::int64_t value, int decimals) {
@@ -120,10 +133,7 @@ std::string SignedDigits::meaning(const value_type& v) const { return quantity_t
 
 // ---- ZeroPaddedDecimal ------------------------------------------------------
 void ZeroPaddedDecimal::encode(const value_type& v, Out out) const {
-  if (!v) {
-    for (auto& b : out) b = ' ';
-    return;
-  }
+  if (blank_when_empty(v, out)) return;
   std::string s = format_scaled(*v, decimals);
   while (s.size() < out.size()) s.insert(s.begin(), '0');
   put_justified(s, out, true, '0');
@@ -234,10 +244,7 @@ std::string Azimuth::meaning(const value_type& v) const {
 
 // ---- RightDecimal ---------------------------------------------------------
 void RightDecimal::encode(const value_type& v, Out out) const {
-  if (!v) {
-    for (auto& b : out) b = ' ';
-    return;
-  }
+  if (blank_when_empty(v, out)) return;
   put_justified(format_scaled(*v, decimals), out, true, ' ');
 }
 FieldStatus RightDecimal::decode(ByteView in, value_type& v) const {
@@ -257,15 +264,12 @@ FieldStatus RightDecimal::decode(ByteView in, value_type& v) const {
   return std::nullopt;
 }
 std::string RightDecimal::meaning(const value_type& v) const {
-  return v ? format_scaled(*v, decimals) : "(blank)";
+  return decimal_meaning(v, decimals);
 }
 
 // ---- LeftDecimal ----------------------------------------------------------
 void LeftDecimal::encode(const value_type& v, Out out) const {
-  if (!v) {
-    for (auto& b : out) b = ' ';
-    return;
-  }
+  if (blank_when_empty(v, out)) return;
   std::string text = format_scaled(*v, decimals);
   // E-41: a whole value read without its decimal digit ("7655" in 5 bytes)
   // is written back the same way when "7655.0" would not fit.
@@ -292,15 +296,12 @@ FieldStatus LeftDecimal::decode(ByteView in, value_type& v) const {
   return std::nullopt;
 }
 std::string LeftDecimal::meaning(const value_type& v) const {
-  return v ? format_scaled(*v, decimals) : "(blank)";
+  return decimal_meaning(v, decimals);
 }
 
 // ---- NavAngle -------------------------------------------------------------
 void NavAngle::encode(const value_type& v, Out out) const {
-  if (!v) {
-    for (auto& b : out) b = ' ';
-    return;
-  }
+  if (blank_when_empty(v, out)) return;
   const std::int32_t a = std::abs(*v);
   const bool lat = width == 6;
   char buf[16];
