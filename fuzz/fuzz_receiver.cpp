@@ -162,32 +162,6 @@ struct Check : sabus::ReceiverSink {
   static inline const std::size_t kLongest = sabus::max_request_length();
 };
 
-// The sizes of the pieces, drawn from the input (so a finding replays):
-// 1-4 bytes seven times in eight, else 1-64. A few bits a size from a 64-bit
-// xorshift: a division a piece (minstd_rand) cost more than feeding it.
-class ChunkSizes {
- public:
-  explicit ChunkSizes(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ULL | 1) {}
-  std::size_t next() { return take(3) == 0 ? 1 + take(6) : 1 + take(2); }
-
- private:
-  std::size_t take(unsigned count) {
-    if (left_ < count) {
-      state_ ^= state_ >> 12;
-      state_ ^= state_ << 25;
-      state_ ^= state_ >> 27;
-      bits_ = state_ * 0x2545F4914F6CDD1DULL;
-      left_ = 64;
-    }
-    const auto r = static_cast<std::size_t>(bits_ & ((1u << count) - 1));
-    bits_ >>= count;
-    left_ -= count;
-    return r;
-  }
-  std::uint64_t state_, bits_ = 0;
-  unsigned left_ = 0;
-};
-
 std::uint8_t knobs_of(const std::uint8_t* h) { return h[0]; }
 bool wire(const std::uint8_t* h) { return (knobs_of(h) & 1) || (knobs_of(h) & 64); }
 sabus::LrcRule rule(const std::uint8_t* h) {
@@ -232,7 +206,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   a.finish(whole);
   whole.end();
   pieces.begin(b.offset(), &whole.events);
-  ChunkSizes sizes(data[1] * 131u + size);
+  sabus::fuzz::ChunkSizes sizes(data[1] * 131u + size);
   for (std::size_t i = 0; i < stream.wire.size();) {
     const std::size_t n = std::min(sizes.next(), stream.wire.size() - i);
     b.feed(stream.wire.subspan(i, n), pieces);

@@ -80,6 +80,33 @@ inline bool same_bytes(const std::uint8_t* a, const std::uint8_t* b, std::size_t
   return true;
 }
 
+// The sizes of the pieces fuzz_receiver feeds a second time (and its floor
+// fuzz_floor_receiver_twice), drawn from the input (so a finding replays):
+// 1-4 bytes seven times in eight, else 1-64. A few bits a size from a 64-bit
+// xorshift: a division a piece (minstd_rand) cost more than feeding it.
+class ChunkSizes {
+ public:
+  explicit ChunkSizes(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ULL | 1) {}
+  std::size_t next() { return take(3) == 0 ? 1 + take(6) : 1 + take(2); }
+
+ private:
+  std::size_t take(unsigned count) {
+    if (left_ < count) {
+      state_ ^= state_ >> 12;
+      state_ ^= state_ << 25;
+      state_ ^= state_ >> 27;
+      bits_ = state_ * 0x2545F4914F6CDD1DULL;
+      left_ = 64;
+    }
+    const auto r = static_cast<std::size_t>(bits_ & ((1u << count) - 1));
+    bits_ >>= count;
+    left_ -= count;
+    return r;
+  }
+  std::uint64_t state_, bits_ = 0;
+  unsigned left_ = 0;
+};
+
 // The whole-controller target's input: byte 0 picks the profile, byte 1 the
 // virtual time between chunks (20 ms units), the rest are wire bytes (even
 // parity in bit 7) fed in chunks that each end before a byte whose 7 bits are

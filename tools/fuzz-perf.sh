@@ -21,8 +21,9 @@
 #    rule fired, the fuzzer's CPU seconds so far are the time to all handlers
 #    and NAK rules (an upper bound: the corpus had them by then at the latest).
 # Step 1 also runs the floors (fuzz/perf_floor.cpp): libFuzzer with a target
-# that does nothing, the receiver fed once and the controller executing
-# frames, both without an oracle -- what the targets' speeds compare with.
+# that does nothing, the receiver fed once, the receiver fed twice as the
+# receiver target feeds it, and the controller executing frames, all without
+# an oracle -- what the targets' speeds compare with.
 # BUILD (default build-fuzz-perf): the build tree of the targets. Made here
 # when missing: libFuzzer without sanitizers (-fsanitize=fuzzer through
 # SABUS_FUZZ_ENGINE), the engine's own speed. BUILD=build-fuzz measures the
@@ -108,7 +109,7 @@ row() {
   local label=$1 binary=$2 seeds=$3
   shift 3
   measure "$label" "$binary" "$exec_seconds" "$seeds" "$@"
-  printf "%-22s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" "${per_cpu[$label]}"
+  printf "%-26s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" "${per_cpu[$label]}"
 }
 
 # paired TARGET: the target's share of its floor again, in ROUNDS (default 3)
@@ -194,7 +195,7 @@ time_to_all() {
 echo "build: $build ($(grep -E '^CMAKE_CXX_FLAGS:' "$build/CMakeCache.txt" | cut -d= -f2-)); $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg); corpora in $tmp"
 if ((exec_seconds > 0)); then
   echo
-  printf "%-22s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
+  printf "%-26s %12s %14s %10s %16s\n" target "exec/s" executions "CPU s" "exec/CPU-second"
   for t in $(cat "$fuzz/fuzz_targets.txt"); do
     mapfile -t flags < <(flags_of "$t")
     row "$t" "$fuzz/$t" "$fuzz/seeds/$t" "${flags[@]}"
@@ -202,7 +203,7 @@ if ((exec_seconds > 0)); then
   # The floors (fuzz/perf_floor.cpp), with the max_len and entropic setting
   # of the matching target and libFuzzer's own mutator.
   echo "floors: libFuzzer with no oracle, its own mutator, the same instrumentation:"
-  for floor in empty:fuzz_receiver receiver:fuzz_receiver controller:fuzz_controller; do
+  for floor in empty:fuzz_receiver receiver:fuzz_receiver receiver_twice:fuzz_receiver controller:fuzz_controller; do
     f=fuzz_floor_${floor%%:*} t=${floor#*:}
     mapfile -t flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
     row "$f" "$fuzz/$f" "$fuzz/seeds/$t" "${flags[@]}"
@@ -214,6 +215,11 @@ if ((exec_seconds > 0)); then
     awk -v t="$t" -v a="${per_cpu[$t]}" -v b="${per_cpu[$f]}" -v g="${goal#*:}" -v p="$rounds" \
       'BEGIN{printf "%s: %.2f of its floor; %s (goal %s)\n", t, (b > 0) ? a / b : 0, p, g}'
   done
+  # The receiver target feeds every input twice (whole, then in pieces) and
+  # compares; against a floor that feeds twice too, what is left is the
+  # oracles' and the custom mutator's cost.
+  awk -v a="${per_cpu[fuzz_receiver]}" -v b="${per_cpu[fuzz_floor_receiver_twice]}" \
+    'BEGIN{printf "fuzz_receiver: %.2f of fuzz_floor_receiver_twice (its two feeds without their oracles)\n", (b > 0) ? a / b : 0}'
 fi
 
 ((seconds > 0)) || exit 0
