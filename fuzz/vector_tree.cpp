@@ -206,36 +206,35 @@ void write_plain(const std::string& s, std::string& out) {
   out += '\'';
 }
 
+void write_tree(const YAML::Node& n, std::string& out);
+
+// A sequence's or a map's entries between `open` and `close`, ", " apart.
+template <class WriteEntry>
+void write_collection(const YAML::Node& n, char open, char close, std::string& out, WriteEntry write_entry) {
+  out += open;
+  const char* separator = "";
+  for (const auto& e : n) {
+    out += separator;
+    separator = ", ";
+    write_entry(e);
+  }
+  out += close;
+}
+
 void write_tree(const YAML::Node& n, std::string& out) {
   switch (n.Type()) {
     case YAML::NodeType::Scalar:
       if (n.Tag() == "!") write_quoted(n.Scalar(), out);
       else write_plain(n.Scalar(), out);
       return;
-    case YAML::NodeType::Sequence: {
-      out += '[';
-      bool first = true;
-      for (const auto& e : n) {
-        if (!first) out += ", ";
-        first = false;
-        write_tree(e, out);
-      }
-      out += ']';
-      return;
-    }
-    case YAML::NodeType::Map: {
-      out += '{';
-      bool first = true;
-      for (const auto& e : n) {
-        if (!first) out += ", ";
-        first = false;
+    case YAML::NodeType::Sequence:
+      return write_collection(n, '[', ']', out, [&](const auto& e) { write_tree(e, out); });
+    case YAML::NodeType::Map:
+      return write_collection(n, '{', '}', out, [&](const auto& e) {
         write_tree(e.first, out);
         out += ": ";
         write_tree(e.second, out);
-      }
-      out += '}';
-      return;
-    }
+      });
     default:
       out += '~';
       return;

@@ -89,35 +89,35 @@ def digit_separator(text, i):
     return j < i and text[j].isdigit()
 
 
+def top_level_closes(h, opening, closing):
+    """The indices at which a top-level `opening` is closed, in order, and the
+    depth left open at the end."""
+    depth, closes = 0, []
+    for k, ch in enumerate(h):
+        if ch == opening:
+            depth += 1
+        elif ch == closing:
+            depth -= 1
+            if depth == 0:
+                closes.append(k)
+    return closes, depth
+
+
 def paren_depth_zero_close(h):
     """The index of the last ')' that closes a top-level '(' (-1: none), and
     whether every '(' is closed."""
-    depth, last_close = 0, -1
-    for k, ch in enumerate(h):
-        if ch == "(":
-            depth += 1
-        elif ch == ")":
-            depth -= 1
-            if depth == 0:
-                last_close = k
-    return last_close, depth == 0
+    closes, depth = top_level_closes(h, "(", ")")
+    return (closes[-1] if closes else -1), depth == 0
 
 
 def without_template_prefix(h):
     """The header without its leading template<...> clauses."""
     h = h.strip()
     while re.match(r"template\s*<", h):
-        depth = 0
-        for k, ch in enumerate(h):
-            if ch == "<":
-                depth += 1
-            elif ch == ">":
-                depth -= 1
-                if depth == 0:
-                    h = h[k + 1:].strip()
-                    break
-        else:
+        closes, _ = top_level_closes(h, "<", ">")
+        if not closes:
             return h
+        h = h[closes[0] + 1:].strip()
     return h
 
 

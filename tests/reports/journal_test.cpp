@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "sample_run.hpp"
 #include "temp_dir.hpp"
 
 namespace sabus::reports {
@@ -42,12 +43,8 @@ VectorRecord vector(std::string id, std::string outcome) {
 }
 
 RunDocument header() {
-  RunDocument d;
+  RunDocument d = test_documents::sample_header();
   d.generator = "sabus 1.2.3";
-  d.started_at = "2024-01-01T00:00:00Z";
-  d.device = "in-process";
-  d.profile = "rc3000-1.59";
-  d.identity = {true, "3K", "1.59", "06 32 30 33 4b 31 2e 35 39 03 6c", ""};
   d.options = {{"seed", 7}};
   d.planned = 3;
   d.journal = "run.journal.jsonl";

@@ -10,6 +10,7 @@
 #include "sabus/reports/diff.hpp"
 #include "sabus/reports/journal.hpp"
 #include "sabus/reports/writers.hpp"
+#include "sample_run.hpp"
 
 namespace sabus::reports {
 namespace {
@@ -39,17 +40,13 @@ FrameRecord status_exchange(bool tx, const std::string& hex) {
 }
 
 RunDocument sample() {
-  RunDocument d;
+  RunDocument d = test_documents::sample_header();
   d.status = "complete";
-  d.started_at = "2024-01-01T00:00:00Z";
-  d.device = "in-process";
-  d.identity = {true, "3K", "1.59", "06 32 30 33 4b 31 2e 35 39 03 6c", ""};
   d.vectors = {vector("a-pass", "pass"), vector("b-fail", "fail"), vector("c-skip", "skip", "3.10"),
                vector("d-known", "known failure", "1", "should")};
   d.vectors[0].transcript = {status_exchange(true, "02 32 31 03 02"), status_exchange(false, "06 32 31 30 03 00")};
   d.summary = Summary{1, 1, 1, 1, 0, 1};
   d.generator = "sabus 9.8.7-test";
-  d.profile = "rc3000-1.59";
   d.options = {{"level", "informative"}, {"seed", 42}, {"filters", {"3.*"}}, {"allow_motion", false}};
   return d;
 }

@@ -504,20 +504,16 @@ class Parser {
     }
   }
 
-  Result sum() {
-    Result r = product();
+  // sum = product {('+' | '-') product}; product = unary {('*' | '/') unary}:
+  // left-associative, products first.
+  Result sum() { return operations('+', '-', &Parser::product); }
+  Result product() { return operations('*', '/', &Parser::unary); }
+  Result operations(char op1, char op2, Result (Parser::*operand)()) {
+    Result r = (this->*operand)();
     while (true) {
-      if (eat('+')) r = arithmetic('+', r, product());
-      else if (eat('-')) r = arithmetic('-', r, product());
-      else return r;
-    }
-  }
-  Result product() {
-    Result r = unary();
-    while (true) {
-      if (eat('*')) r = arithmetic('*', r, unary());
-      else if (eat('/')) r = arithmetic('/', r, unary());
-      else return r;
+      const char op = eat(op1) ? op1 : eat(op2) ? op2 : '\0';
+      if (op == '\0') return r;
+      r = arithmetic(op, r, (this->*operand)());
     }
   }
   Result unary() {
