@@ -19,6 +19,7 @@ packages=(
   dpkg-dev file                         # cpack -G DEB: dpkg-shlibdeps computes the package's Depends
   chromium                              # headless: the HTML report's test renders it (tests/reports)
   time                                  # /usr/bin/time: peak memory in tools/journal-bench.sh
+  bc                                    # arithmetic of tools/journal-bench.sh and tools/perf-run.sh
 )
 
 missing=()

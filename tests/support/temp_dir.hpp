@@ -12,6 +12,14 @@
 
 namespace sabus::test {
 
+// "<tmp>/sabus-<program>-test-<pid>-<name>": a path no other test program
+// (nor another run of this one) uses.
+inline std::string temp_path(const std::string& program, const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("sabus-" + program + "-test-" + std::to_string(getpid()) + "-" + name))
+      .string();
+}
+
 inline std::string slurp(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "process.hpp"
+#include "temp_dir.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -17,9 +18,7 @@ using test::Process;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-std::string temp_path(const std::string& name) {
-  return (fs::temp_directory_path() / ("sabus-run-test-" + std::to_string(getpid()) + "-" + name)).string();
-}
+std::string temp_path(const std::string& name) { return test::temp_path("run", name); }
 
 nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);

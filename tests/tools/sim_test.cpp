@@ -14,6 +14,7 @@
 
 #include "sabus/harness/line.hpp"
 #include "process.hpp"
+#include "temp_dir.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/receiver.hpp"
 
@@ -47,9 +48,7 @@ std::vector<Frame> talk(Line& line, ByteView command_chars, std::chrono::millise
   return replies.frames;
 }
 
-std::string temp_path(const std::string& name) {
-  return (fs::temp_directory_path() / ("sabus-sim-test-" + std::to_string(getpid()) + "-" + name)).string();
-}
+std::string temp_path(const std::string& name) { return test::temp_path("sim", name); }
 
 TEST(Sim, PtyStatusPollWriteReadRoundTripAndIgnoredBadLrc) {
   const std::string link = temp_path("pty");

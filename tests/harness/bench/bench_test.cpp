@@ -19,6 +19,7 @@
 #include "sabus/protocol/receiver.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "process.hpp"
+#include "temp_dir.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -27,9 +28,7 @@ using test::Process;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-std::string temp_path(const std::string& name) {
-  return (fs::temp_directory_path() / ("sabus-bench-test-" + std::to_string(getpid()) + "-" + name)).string();
-}
+std::string temp_path(const std::string& name) { return test::temp_path("bench", name); }
 
 // Writes a request (parity in bit 7) and returns the wire bytes that came
 // back until a reply frame is complete and the line is quiet.
