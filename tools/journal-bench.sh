@@ -2,18 +2,19 @@
 # Cost of the reports (printed, not asserted):
 #  1. the main job (the whole suite in-process, motion and destructive
 #     vectors allowed) with --report-dir against the same run without
-#     reports: median wall time of RUNS runs each, and the ratio
-#     (target <= 1.3);
+#     reports: median wall and CPU time of RUNS runs each (alternating),
+#     and the ratios (target: wall <= 1.3); with valgrind installed, also the
+#     instructions each executes;
 #  2. synthetic runs of 1,000, 5,000 and 20,000 vector results (a generated
 #     suite of status polls, each reply decoded field by field) without
 #     reports and with --report-dir: wall time and peak resident memory
 #     (/usr/bin/time), which should grow linearly with the count, and the
 #     size of what was written. (Most of the memory is the loaded suite:
 #     the difference between the two runs is what the reports cost.)
-# Usage: tools/journal-bench.sh [RUNS]   (default 5)
+# Usage: tools/journal-bench.sh [RUNS]   (default 9)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-runs=${1:-5}
+runs=${1:-9}
 sabus=build/tools/sabus
 [[ -x $sabus ]] || bash tools/build.sh release >/dev/null
 if [[ ! -x /usr/bin/time ]]; then
@@ -23,16 +24,20 @@ fi
 work=$(mktemp -d /tmp/sabus-journal-bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
-# Seconds of wall time of one command, its output thrown away.
+# "wall cpu" seconds of one command (bash's time: milliseconds; cpu is user
+# plus system), its output thrown away.
 seconds() {
-  local start end
-  start=$(date +%s.%N)
-  "$@" >/dev/null 2>&1 || true
-  end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+  local TIMEFORMAT='%3R %3U %3S' t
+  t=$({ time "$@" >/dev/null 2>&1; } 2>&1) || true
+  awk '{printf "%.3f %.3f\n", $1, $2 + $3}' <<<"$t"
 }
-median() { sort -g | awk '{a[NR] = $1} END {print (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2)}'; }
+# The median of column COLUMN of the lines on standard input.
+median() { awk -v c="$1" '{print $c}' | sort -g | awk '{a[NR] = $1} END {print (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2)}'; }
 
+# Runs with and without reports alternate, so that a change in the machine's
+# load moves both; wall time is the target's measure, CPU time (the same work
+# without the other jobs' share of the machine, and without waiting for the
+# disk) is printed beside it.
 main_job=("$sabus" run --sim --allow-motion --allow-destructive)
 with=() without=()
 for ((i = 0; i < runs; i++)); do
@@ -40,12 +45,30 @@ for ((i = 0; i < runs; i++)); do
   rm -rf "$work/report"
   with+=("$(seconds "${main_job[@]}" --report-dir "$work/report")")
 done
-t_without=$(printf '%s\n' "${without[@]}" | median)
-t_with=$(printf '%s\n' "${with[@]}" | median)
-printf 'main job, median of %d runs: %.3f s without reports, %.3f s with --report-dir (%s), ratio %.2f (target <= 1.3)\n' \
-  "$runs" "$t_without" "$t_with" \
-  "$(ls -l "$work/report" | awk 'NR > 1 {printf "%s%s %d B", sep, $9, $5; sep = ", "}')" \
-  "$(echo "$t_with / $t_without" | bc -l)"
+for column in 1 2; do
+  a=$(printf '%s\n' "${without[@]}" | median "$column")
+  b=$(printf '%s\n' "${with[@]}" | median "$column")
+  printf 'main job, median of %d runs, %s: %.3f s without reports, %.3f s with --report-dir, ratio %.2f%s\n' \
+    "$runs" "$( ((column == 1)) && echo wall || echo CPU)" "$a" "$b" "$(awk -v a="$a" -v b="$b" 'BEGIN{print b / a}')" \
+    "$( ((column == 1)) && echo " (target <= 1.3)")"
+done
+# Each run with reports against the run without them just before it: a
+# change in the machine's speed between rounds moves one pair, not the median.
+printf '%s\n' "${without[@]}" | paste -d' ' - <(printf '%s\n' "${with[@]}") |
+  awk '{print $3 / $1}' | sort -g | awk -v n="$runs" '{r[NR] = $1} END {printf "main job, wall, the median of the %d pairs'"'"' ratios: %.2f (lowest %.2f, highest %.2f)\n", n, (NR % 2 ? r[(NR + 1) / 2] : (r[NR / 2] + r[NR / 2 + 1]) / 2), r[1], r[NR]}'
+echo "  reports: $(ls -l "$work/report" | awk 'NR > 1 {printf "%s%s %d B", sep, $9, $5; sep = ", "}')"
+# Instructions executed (valgrind's callgrind, where valgrind is installed):
+# the same count for the same binary and inputs whatever else the machine
+# does, so the ratio of the work itself, without the noise of a shared host.
+if command -v valgrind >/dev/null; then
+  instructions() {
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : *//p'
+  }
+  rm -rf "$work/report"
+  i0=$(instructions "${main_job[@]}")
+  i1=$(instructions "${main_job[@]}" --report-dir "$work/report")
+  awk -v a="$i0" -v b="$i1" 'BEGIN {printf "main job, instructions (callgrind): %.0f M without reports, %.0f M with --report-dir, ratio %.2f\n", a / 1e6, b / 1e6, b / a}'
+fi
 
 # A suite of N status polls (§3.2): every result has a transcript with a
 # 52-byte reply decoded field by field, as the heaviest common vector. The
@@ -88,10 +111,8 @@ for n in 1000 5000 20000; do
   measure "$work/time-$n" "$sabus" run --sim --vectors "$work/suite-$n" --report-dir "$work/out-$n"
   read -r wall0 kib0 <"$work/plain-$n"
   read -r wall kib <"$work/time-$n"
-  printf '  %6d  %9.2f  %9.1f  %9.2f  %10.1f  %12.1f  %7.1f MiB  %11.0f\n' "$n" "$wall0" "$(echo "$kib0 / 1024" | bc -l)" \
-    "$wall" "$(echo "$kib / 1024" | bc -l)" \
-    "$(echo "$(stat -c %s "$work/out-$n/run.json") / 1048576" | bc -l)" \
-    "$(echo "$(stat -c %s "$work/out-$n/report.html") / 1048576" | bc -l)" \
-    "$(echo "$wall * 1000000 / $n" | bc -l)"
+  awk -v n="$n" -v w0="$wall0" -v k0="$kib0" -v w="$wall" -v k="$kib" -v j="$(stat -c %s "$work/out-$n/run.json")" \
+    -v h="$(stat -c %s "$work/out-$n/report.html")" \
+    'BEGIN {printf "  %6d  %9.2f  %9.1f  %9.2f  %10.1f  %12.1f  %7.1f MiB  %11.0f\n", n, w0, k0 / 1024, w, k / 1024, j / 1048576, h / 1048576, w * 1000000 / n}'
   rm -rf "$work/out-$n" "$work/suite-$n"
 done

@@ -65,8 +65,13 @@ FrameRecord frame_record(const harness::TranscriptEntry& e) {
   f.note = e.note;
   f.expect = e.expect;
   if (!e.bytes.empty()) {
-    const FrameDescription d = describe_frame(e.bytes);
-    for (const auto& fd : d.fields) f.fields.push_back({fd.first, fd.last, fd.name, fd.raw, fd.meaning, fd.ok});
+    // The runner's description of the frame, made when it was sent or
+    // received; described here only for an entry that came without it.
+    const std::vector<FieldDescription> described = e.fields.empty() ? describe_frame(e.bytes).fields
+                                                                      : std::vector<FieldDescription>{};
+    f.fields.reserve(e.fields.empty() ? described.size() : e.fields.size());
+    for (const auto& fd : e.fields.empty() ? described : e.fields)
+      f.fields.push_back({fd.first, fd.last, fd.name, fd.raw, fd.meaning, fd.ok});
     if (e.sent) {
       // The command frame the device answers, and its form (one classifier
       // for reports and `sabus vectors coverage`).
@@ -142,74 +147,6 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
 }
 
 // ---- JSON ------------------------------------------------------------------------
-
-namespace {
-
-// An object of `n` members, added in order with member(): nlohmann builds an
-// object from a braced list by way of a temporary array per member, which a
-// run pays for every field of every frame.
-ordered_json object(std::size_t n) {
-  ordered_json j(ordered_json::value_t::object);
-  j.get_ref<ordered_json::object_t&>().reserve(n);
-  return j;
-}
-template <class T>
-void member(ordered_json& j, const char* key, T&& value) {
-  j.get_ref<ordered_json::object_t&>().emplace(key, std::forward<T>(value));
-}
-
-}  // namespace
-
-ordered_json to_json(const FrameRecord& f) {
-  ordered_json fields = ordered_json::array();
-  fields.get_ref<ordered_json::array_t&>().reserve(f.fields.size());
-  for (const auto& x : f.fields) {
-    ordered_json field = object(6);
-    member(field, "first", x.first);
-    member(field, "last", x.last);
-    member(field, "name", x.name);
-    member(field, "raw", x.raw);
-    member(field, "meaning", x.meaning);
-    member(field, "ok", x.ok);
-    fields.push_back(std::move(field));
-  }
-  const bool tx = f.dir == "tx";
-  ordered_json j = object(tx ? 9 : 6);
-  member(j, "t_ms", f.t_ms);
-  member(j, "dir", f.dir);
-  member(j, "hex", f.hex);
-  member(j, "note", f.note);
-  member(j, "command", f.command);
-  member(j, "fields", std::move(fields));
-  if (tx) {
-    member(j, "form", f.form);
-    member(j, "expect", f.expect);
-    member(j, "path", f.path);
-  }
-  return j;
-}
-
-ordered_json to_json(const VectorRecord& v) {
-  ordered_json transcript = ordered_json::array();
-  for (const auto& f : v.transcript) transcript.push_back(to_json(f));
-  ordered_json j = {{"id", v.id},
-                    {"paragraph", v.paragraph},
-                    {"file", v.file},
-                    {"level", v.level},
-                    {"outcome", v.outcome},
-                    {"failures", v.failures},
-                    {"skip_reason", v.skip_reason},
-                    {"skip_cause", v.skip_cause},
-                    {"known_issue", v.known_issue},
-                    {"quote", v.quote},
-                    {"comment", v.comment},
-                    {"duration_ms", v.duration_ms}};
-  if (v.wall_ms) j["wall_ms"] = *v.wall_ms;
-  j["repeats"] = v.repeats;
-  j["repeat_failures"] = v.repeat_failures;
-  j["transcript"] = std::move(transcript);
-  return j;
-}
 
 ordered_json header_json(const RunDocument& d) {
   ordered_json j = {{"schema", kSchemaName},

@@ -38,7 +38,7 @@ bool JournalWriter::open(const std::string& path, const RunDocument& header) {
   return write_line({{"record", "header"}, {"run", header_json(header)}});
 }
 
-bool JournalWriter::append(const VectorRecord& v) { return write_line(to_json(v)); }
+bool JournalWriter::append(const VectorRecord& v) { return write_text(vector_json(v, &fields_)); }
 
 bool JournalWriter::close(const RunDocument& finished) {
   if (fd_ < 0) return false;
@@ -53,10 +53,14 @@ bool JournalWriter::close(const RunDocument& finished) {
 }
 
 bool JournalWriter::write_line(const ordered_json& record) {
+  return write_text(record.dump(-1, ' ', false, ordered_json::error_handler_t::replace));
+}
+
+bool JournalWriter::write_text(std::string line) {
   if (fd_ < 0) return false;
   // One write(2) a record: a process killed after it leaves the whole line
   // in the file, one killed during it at worst a last line cut short.
-  const std::string line = record.dump(-1, ' ', false, ordered_json::error_handler_t::replace) + "\n";
+  line += '\n';
   for (std::size_t done = 0; done < line.size();) {
     const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
     if (n < 0 && errno == EINTR) continue;  // SIGINT stops the run, not the record

@@ -6,6 +6,7 @@
 
 #include <ext/stdio_filebuf.h>  // an ostream on the descriptor mkstemp opened (libstdc++, used with g++ and clang here)
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -22,17 +23,27 @@ namespace sabus::reports {
 
 using nlohmann::ordered_json;
 
-namespace {
-
-// Strings from a device are 7-bit, but a damaged file may hold anything: a
-// byte that is not UTF-8 becomes U+FFFD instead of ending the write.
-std::string dump_line(const ordered_json& v) { return v.dump(-1, ' ', false, ordered_json::error_handler_t::replace); }
-
-}  // namespace
 
 // ---- JsonStreamWriter ----------------------------------------------------------
 
-void JsonStreamWriter::newline(std::size_t depth) { out_ << '\n' << std::string(2 * depth, ' '); }
+// The serializer replaces a byte that is not UTF-8 with U+FFFD instead of
+// ending the write: strings from a device are 7-bit, but a damaged file may
+// hold anything.
+JsonStreamWriter::JsonStreamWriter(std::ostream& out, Layout layout)
+    : out_(out),
+      layout_(layout),
+      serializer_(nlohmann::detail::output_adapter<char>(buf_), ' ', ordered_json::error_handler_t::replace) {}
+
+JsonStreamWriter::~JsonStreamWriter() { flush(); }
+
+void JsonStreamWriter::flush() {
+  out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+  buf_.clear();
+}
+
+void JsonStreamWriter::newline(std::size_t depth) {
+  if (layout_ == Layout::kLines) buf_.append(1, '\n').append(2 * depth, ' ');
+}
 
 void JsonStreamWriter::before_value() {
   if (stack_.empty()) {
@@ -46,20 +57,20 @@ void JsonStreamWriter::before_value() {
     top.has_key = false;  // the value follows its key on the same line
     return;
   }
-  if (!top.empty) out_ << ',';
+  if (!top.empty) buf_ += ',';
   top.empty = false;
   newline(stack_.size());
 }
 
 void JsonStreamWriter::begin_object() {
   before_value();
-  out_ << '{';
+  buf_ += '{';
   stack_.push_back({true});
 }
 
 void JsonStreamWriter::begin_array() {
   before_value();
-  out_ << '[';
+  buf_ += '[';
   stack_.push_back({false});
 }
 
@@ -67,21 +78,35 @@ void JsonStreamWriter::key(std::string_view name) {
   if (stack_.empty() || !stack_.back().object || stack_.back().has_key)
     throw std::logic_error("JsonStreamWriter: a key outside an object");
   Level& top = stack_.back();
-  if (!top.empty) out_ << ',';
+  if (!top.empty) buf_ += ',';
   top.empty = false;
   top.has_key = true;
   newline(stack_.size());
-  out_ << dump_line(ordered_json(name)) << ": ";
+  // A name of letters, digits and '_' (every name of the schema) is its own
+  // JSON text between quotes; any other goes through the library.
+  const bool plain = std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+  if (plain) buf_.append(1, '"').append(name).append(1, '"');
+  else serializer_.dump(ordered_json(name), false, false, 0);
+  buf_ += layout_ == Layout::kLines ? ": " : ":";
 }
 
 void JsonStreamWriter::value(const ordered_json& v) {
   before_value();
-  out_ << dump_line(v);
+  serializer_.dump(v, false, false, 0);
+  if (buf_.size() >= (1u << 16)) flush();
+}
+
+void JsonStreamWriter::string_value(std::string_view s) {
+  string_.get_ref<std::string&>().assign(s);
+  value(string_);
 }
 
 void JsonStreamWriter::serialized_value(std::string_view json_text) {
   before_value();
-  out_ << json_text;
+  buf_ += json_text;
+  if (buf_.size() >= (1u << 16)) flush();
 }
 
 void JsonStreamWriter::end() {
@@ -89,8 +114,94 @@ void JsonStreamWriter::end() {
   const Level closed = stack_.back();
   stack_.pop_back();
   if (!closed.empty) newline(stack_.size());
-  out_ << (closed.object ? '}' : ']');
-  if (stack_.empty()) out_ << '\n';
+  buf_ += closed.object ? '}' : ']';
+  if (stack_.empty()) {
+    if (layout_ == Layout::kLines) buf_ += '\n';
+    flush();
+  }
+}
+
+// ---- a vector's JSON -------------------------------------------------------------
+
+namespace {
+
+void member(JsonStreamWriter& w, std::string_view key, const ordered_json& value) {
+  w.key(key);
+  w.value(value);
+}
+// String members, in order.
+void members(JsonStreamWriter& w, std::initializer_list<std::pair<std::string_view, const std::string*>> list) {
+  for (const auto& [key, value] : list) {
+    w.key(key);
+    w.string_value(*value);
+  }
+}
+
+// A frame's "fields" array.
+void write_fields(JsonStreamWriter& w, const std::vector<Field>& fields) {
+  w.begin_array();
+  for (const auto& x : fields) {
+    w.begin_object();
+    member(w, "first", x.first);
+    member(w, "last", x.last);
+    members(w, {{"name", &x.name}, {"raw", &x.raw}, {"meaning", &x.meaning}});
+    member(w, "ok", x.ok);
+    w.end();
+  }
+  w.end();
+}
+
+void write_frame(JsonStreamWriter& w, const FrameRecord& f, FieldsJsonCache* cache) {
+  w.begin_object();
+  member(w, "t_ms", f.t_ms);
+  members(w, {{"dir", &f.dir}, {"hex", &f.hex}, {"note", &f.note}, {"command", &f.command}});
+  w.key("fields");
+  if (cache) w.serialized_value(cache->text(f));
+  else write_fields(w, f.fields);
+  if (f.dir == "tx") members(w, {{"form", &f.form}, {"expect", &f.expect}, {"path", &f.path}});
+  w.end();
+}
+
+void write_vector(JsonStreamWriter& w, const VectorRecord& v, FieldsJsonCache* cache) {
+  w.begin_object();
+  members(w, {{"id", &v.id}, {"paragraph", &v.paragraph}, {"file", &v.file}, {"level", &v.level}, {"outcome", &v.outcome}});
+  member(w, "failures", v.failures);
+  members(w, {{"skip_reason", &v.skip_reason},
+              {"skip_cause", &v.skip_cause},
+              {"known_issue", &v.known_issue},
+              {"quote", &v.quote},
+              {"comment", &v.comment}});
+  member(w, "duration_ms", v.duration_ms);
+  if (v.wall_ms) member(w, "wall_ms", *v.wall_ms);
+  member(w, "repeats", v.repeats);
+  member(w, "repeat_failures", v.repeat_failures);
+  w.key("transcript");
+  w.begin_array();
+  for (const auto& f : v.transcript) write_frame(w, f, cache);
+  w.end();
+  w.end();
+}
+
+}  // namespace
+
+const std::string& FieldsJsonCache::text(const FrameRecord& f) {
+  Slot& slot = slots_[std::hash<std::string>{}(f.hex) % slots_.size()];
+  if (slot.hex != f.hex || slot.fields != f.fields) {
+    slot.hex = f.hex;
+    slot.fields = f.fields;
+    std::ostringstream out;
+    JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
+    write_fields(w, f.fields);  // its last end() writes the text out
+    slot.text = std::move(out).str();
+  }
+  return slot.text;
+}
+
+std::string vector_json(const VectorRecord& v, FieldsJsonCache* cache) {
+  std::ostringstream out;
+  JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
+  write_vector(w, v, cache);  // its last end() writes the text out
+  return std::move(out).str();
 }
 
 // ---- the run JSON ----------------------------------------------------------------
@@ -202,8 +313,9 @@ ordered_json header_without_journal(const RunDocument& doc) {
 
 std::string json_text(const RunDocument& doc) {
   std::ostringstream out;
+  FieldsJsonCache cache;
   write_run(out, header_json(doc), [&](JsonStreamWriter& w) {
-    for (const auto& v : doc.vectors) w.value(to_json(v));
+    for (const auto& v : doc.vectors) w.serialized_value(vector_json(v, &cache));
     return true;
   });
   return out.str();

@@ -109,6 +109,44 @@ TEST(JsonStreamWriter, RefusesWhatWouldNotBeJson) {
   EXPECT_THROW(w.value(2), std::logic_error) << "a second document";
 }
 
+TEST(JsonStreamWriter, OneLineIsWhatTheLibraryDumpsWithoutIndent) {
+  const ordered_json tree = {{"id", "a \"b\""}, {"n", 2.5}, {"list", {1, "x", nullptr}}, {"empty", ordered_json::object()}};
+  std::ostringstream out;
+  {
+    JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
+    w.begin_object();
+    w.key("id");
+    w.string_value("a \"b\"");
+    w.key("n");
+    w.value(2.5);
+    w.key("list");
+    w.begin_array();
+    w.value(1);
+    w.serialized_value("\"x\"");
+    w.value(nullptr);
+    w.end();
+    w.key("empty");
+    w.begin_object();
+    w.end();
+    w.end();
+  }
+  EXPECT_EQ(out.str(), tree.dump());
+}
+
+// The frames' fields text is kept by frame and used again only for the same
+// fields: two documents' frames with one hex and different fields (one of
+// them read from a file) are each written with their own.
+TEST(VectorJson, TheFieldsCacheNeverGivesAFrameAnotherFramesFields) {
+  VectorRecord a = vector("a", "pass");
+  VectorRecord b = a;
+  b.transcript[1].fields[0].meaning = "another meaning";
+  FieldsJsonCache cache;
+  for (int round = 0; round < 2; ++round)
+    for (const VectorRecord* v : {&a, &b, &a}) EXPECT_EQ(vector_json(*v, &cache), vector_json(*v)) << round;
+  EXPECT_NE(vector_json(a, &cache), vector_json(b, &cache));
+  EXPECT_EQ(json::parse(vector_json(b, &cache))["transcript"][1]["fields"][0]["meaning"], "another meaning");
+}
+
 TEST(JsonText, HeaderInSchemaOrderAndVectorsLastOneALine) {
   RunDocument d = header();
   d.vectors = {vector("a", "pass"), vector("b", "fail")};

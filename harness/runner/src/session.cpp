@@ -18,8 +18,9 @@ Session::Session(Transport& t, const Profile& p, const RunOptions& o)
 
 double Session::t_ms() const { return std::chrono::duration<double, std::milli>(transport.now() - start_).count(); }
 
-void Session::record(bool sent, const Bytes& bytes, std::string note) {
-  if (transcript) transcript->push_back({t_ms(), sent, bytes, std::move(note), sent ? expect : std::string()});
+void Session::record(bool sent, const Bytes& bytes, std::string note, std::vector<FieldDescription> fields) {
+  if (transcript)
+    transcript->push_back({t_ms(), sent, bytes, std::move(note), std::move(fields), sent ? expect : std::string()});
 }
 
 // The turnaround the device's profile states (turnaround_ms): a slow
@@ -77,7 +78,7 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
   send_in_chunks(chars, m);
   last_send_ = t.now();
   bytes_sent += chars.size();
-  record(true, chars, describe_frame(chars).summary);
+  record(true, chars, describe_frame(chars));
   const TimePoint sent_at = t.now();
   // send() does not drain: the request leaves the port over its wire time.
   const TimePoint request_end = sent_at + wire_time(chars.size(), t.baud());
@@ -101,7 +102,7 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
   rx.finish(*this);
   for (const auto& f : frames_) {
     const Bytes b = encode_frame(f);
-    record(false, b, describe_frame(b).summary);
+    record(false, b, describe_frame(b));
   }
   for (const auto& s : ignored_) record(false, {}, "ignored " + s);
   return frames_;

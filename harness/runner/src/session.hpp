@@ -68,7 +68,10 @@ class Session : public ReceiverSink {
  private:
   void on_frame(const FrameView& f) override { frames_.push_back(f.to_frame()); }
   void on_discard(const Discard& d) override { ignored_.push_back(d.message()); }
-  void record(bool sent, const Bytes& bytes, std::string note);
+  void record(bool sent, const Bytes& bytes, std::string note, std::vector<FieldDescription> fields = {});
+  void record(bool sent, const Bytes& bytes, FrameDescription d) {
+    record(sent, bytes, std::move(d.summary), std::move(d.fields));
+  }
   void pace();
   void send_in_chunks(const Bytes& chars, const Modifiers& m);
   std::optional<std::string> check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers);

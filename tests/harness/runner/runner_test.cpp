@@ -185,6 +185,28 @@ TEST(Runner, PassFailSkipAndLiveness) {
   EXPECT_FALSE(r.vectors[0].transcript.empty());
 }
 
+// Each frame of a transcript carries its description as the runner made it
+// when it sent or received the frame: the reports show those fields.
+TEST(Runner, TranscriptFramesCarryTheirFieldsAsDescribed) {
+  auto status = send_command("status", "", {}, Expectation::Kind::kAck);
+  RunResult r = run_in_process({vector_with("a-status", {status})});
+  ASSERT_EQ(r.vectors.size(), 1u);
+  std::size_t described = 0;
+  for (const auto& t : r.vectors[0].transcript) {
+    if (t.bytes.empty()) continue;
+    const FrameDescription d = describe_frame(t.bytes);
+    ASSERT_EQ(t.fields.size(), d.fields.size()) << t.note;
+    for (std::size_t i = 0; i < d.fields.size(); ++i) {
+      EXPECT_EQ(t.fields[i].name, d.fields[i].name);
+      EXPECT_EQ(t.fields[i].raw, d.fields[i].raw);
+      EXPECT_EQ(t.fields[i].meaning, d.fields[i].meaning);
+    }
+    EXPECT_EQ(t.note, d.summary);
+    ++described;
+  }
+  EXPECT_GE(described, 2u) << "the status poll and its reply";
+}
+
 TEST(Runner, AShouldFailureFailsTheRunOnlyWhenStrict) {
   Vector v = vector_with("should-wrong", {send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak)});
   v.level = Level::kShould;

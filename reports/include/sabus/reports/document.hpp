@@ -25,6 +25,7 @@ struct Field {
   std::size_t first = 0, last = 0;  // byte offsets in the frame, inclusive
   std::string name, raw, meaning;
   bool ok = true;
+  bool operator==(const Field&) const = default;
 };
 
 // One frame sent or received (or a discard note) in a vector's transcript.
@@ -124,9 +125,8 @@ void compact_for_reports(VectorRecord& v);
 
 // ---- JSON ------------------------------------------------------------------------
 
-// Members in the order of reports/SCHEMA.md.
-nlohmann::ordered_json to_json(const FrameRecord& f);
-nlohmann::ordered_json to_json(const VectorRecord& v);
+// Members in the order of reports/SCHEMA.md; a vector's JSON is vector_json
+// (journal.hpp), written without a tree.
 nlohmann::ordered_json header_json(const RunDocument& doc);  // everything except "vectors"
 
 // Reads a run document; on a bad document sets `error` (what and where) and

@@ -25,17 +25,23 @@ namespace sabus::reports {
 
 // Writes one JSON text token by token to a stream: nlohmann serializes every
 // key and value, this class places the brackets, commas and line breaks (one
-// member or element a line, indented by depth). nlohmann has no writer that
+// member or element a line, indented by depth; or, kOneLine, none at all, as
+// nlohmann's dump() without indent writes). nlohmann has no writer that
 // streams a document it does not hold whole; a run JSON of thousands of
 // vectors is written without holding it.
 class JsonStreamWriter {
  public:
-  explicit JsonStreamWriter(std::ostream& out) : out_(out) {}
+  enum class Layout { kLines, kOneLine };
+  explicit JsonStreamWriter(std::ostream& out, Layout layout = Layout::kLines);
+  JsonStreamWriter(const JsonStreamWriter&) = delete;
+  JsonStreamWriter& operator=(const JsonStreamWriter&) = delete;
+  ~JsonStreamWriter();                           // writes out what is buffered
   void begin_object();
   void begin_array();
   void end();                                    // closes the innermost object or array
   void key(std::string_view name);               // in an object, before its value
   void value(const nlohmann::ordered_json& v);   // one value, on one line
+  void string_value(std::string_view s);         // the same for a string, without a json value made for it
   // One value nlohmann serialized earlier on one line (a journal's vector
   // line), copied as it is.
   void serialized_value(std::string_view json_text);
@@ -47,10 +53,45 @@ class JsonStreamWriter {
   struct Level {
     bool object = false, empty = true, has_key = false;
   };
+  void flush();
   std::ostream& out_;
+  Layout layout_;
   std::vector<Level> stack_;
   bool started_ = false;
+  // What is written goes to buf_ and from it to out_ in large pieces; the
+  // library's serializer (the one dump() uses, made once) writes into buf_,
+  // and one string value is reused for string_value.
+  std::string buf_;
+  nlohmann::detail::serializer<nlohmann::ordered_json> serializer_;
+  nlohmann::ordered_json string_ = nlohmann::ordered_json::value_t::string;
 };
+
+// ---- a vector's JSON ------------------------------------------------------------
+
+// The JSON text of transcript frames' "fields" arrays, serialized once a
+// distinct frame: the frames of a run repeat (the same poll, the same reply),
+// and their fields are most of a run JSON (4.3 of 4.9 MB for the suite), so
+// building, writing and freeing a tree of them for every frame was most of
+// what the reports cost a run. Found by the frame's hex and used only when
+// the fields are equal too, so a document whose fields differ (one read from
+// a file) is never written with another frame's. A table of 4096 slots, a
+// newer frame taking an older one's: bounded in a run of any length.
+class FieldsJsonCache {
+ public:
+  const std::string& text(const FrameRecord& f);
+
+ private:
+  struct Slot {
+    std::string hex, text;
+    std::vector<Field> fields;
+  };
+  std::vector<Slot> slots_ = std::vector<Slot>(4096);
+};
+
+// One member of the run JSON's "vectors" (a journal's vector record), on one
+// line, members in the order of reports/SCHEMA.md. `cache`: where the
+// frames' fields text is kept between calls (none: each serialized anew).
+std::string vector_json(const VectorRecord& v, FieldsJsonCache* cache = nullptr);
 
 // ---- the run JSON ----------------------------------------------------------------
 
@@ -96,8 +137,10 @@ class JournalWriter {
 
  private:
   bool write_line(const nlohmann::ordered_json& record);
+  bool write_text(std::string line);  // a record's JSON, without its newline
   int fd_ = -1;
   std::string path_, error_;
+  FieldsJsonCache fields_;
 };
 
 // What reading a journal found besides its records.
