@@ -36,22 +36,6 @@ std::uint64_t bytes_equal(std::uint64_t chars, std::uint8_t c) {
   const std::uint64_t t = chars ^ (c * kLow);
   return ~(t + kChars) & kHigh;
 }
-std::uint64_t starts_in(std::uint64_t w) {
-  const std::uint64_t c = w & kChars;
-  return bytes_equal(c, STX) | bytes_equal(c, ACK) | bytes_equal(c, NAK);
-}
-std::uint64_t starts_or_etx_in(std::uint64_t w) { return starts_in(w) | bytes_equal(w & kChars, ETX); }
-
-// The first byte at or after `i` that `marks` (one of the above) marks, or b.size().
-template <std::uint64_t (*marks)(std::uint64_t)>
-std::size_t find(const Bytes& b, std::size_t i) {
-  const std::size_t n = b.size();
-  for (; i + 8 <= n; i += 8)
-    if (const std::uint64_t m = marks(word_at(b.data() + i))) return i + static_cast<std::size_t>(std::countr_zero(m)) / 8;
-  for (; i < n; ++i)
-    if (marks(b[i])) return i;
-  return n;
-}
 
 // Even parity in bit 7 of every 7-bit character (with_even_parity, a table).
 constexpr std::array<std::uint8_t, 128> kWithParity = [] {
@@ -68,26 +52,55 @@ struct Segment {
 };
 constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-// The first start byte at or after `i` (or b.size()).
-std::size_t next_start(const Bytes& b, std::size_t i) { return find<starts_in>(b, i); }
-
-// The segment that begins with the start byte at `i`.
-Segment segment_at(const Bytes& b, std::size_t i) {
+// Calls visit(segment) for every segment of the stream in order, until it
+// returns false. One pass over the stream, eight bytes a step: each word's
+// start bytes and ETX found at once, then taken in order (a segment is
+// visited when the next start byte, or the end, closes it). visit may change
+// the bytes of the segment it is given up to its check byte (seal), not the
+// bytes after them; a visit that inserts or erases bytes must stop the walk.
+template <class Visit>
+void walk_segments(const Bytes& b, Visit&& visit) {
   const std::size_t n = b.size();
-  Segment s{i, npos, n};
-  std::size_t j = find<starts_or_etx_in>(b, i + 1);
-  if (j < n && (b[j] & 0x7F) == ETX) {
-    s.etx = j;
-    j += 2;  // ETX and the check byte
+  Segment s{npos, npos, n};
+  std::size_t skip = 0;  // a mark before this is the check byte after an ETX
+  // A start byte or an ETX at p: false when the walk stops.
+  auto mark = [&](std::size_t p, bool start) {
+    if (p < skip) return true;
+    if (start) {
+      if (s.begin != npos) {
+        s.end = p;
+        if (!visit(static_cast<const Segment&>(s))) return false;
+      }
+      s = {p, npos, n};
+    } else if (s.begin != npos && s.etx == npos) {
+      s.etx = p;
+      skip = p + 2;
+    }
+    return true;
+  };
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    const std::uint64_t c = word_at(b.data() + i) & kChars;
+    const std::uint64_t starts = bytes_equal(c, STX) | bytes_equal(c, ACK) | bytes_equal(c, NAK);
+    for (std::uint64_t marks = starts | bytes_equal(c, ETX); marks != 0; marks &= marks - 1) {
+      const auto bit = static_cast<unsigned>(std::countr_zero(marks));
+      if (!mark(i + bit / 8, (starts >> bit) & 1)) return;
+    }
   }
-  s.end = j < n ? next_start(b, j) : n;
-  return s;
+  for (; i < n; ++i) {
+    const std::uint8_t c = b[i] & 0x7F;
+    if ((c == STX || c == ACK || c == NAK || c == ETX) && !mark(i, c != ETX)) return;
+  }
+  if (s.begin != npos) visit(static_cast<const Segment&>(s));
 }
 
 // Fills `out` (reused between calls: the mutator runs once per execution).
 void segments(const Bytes& b, std::vector<Segment>& out) {
   out.clear();
-  for (std::size_t i = next_start(b, 0); i < b.size(); i = out.back().end) out.push_back(segment_at(b, i));
+  walk_segments(b, [&](const Segment& s) {
+    out.push_back(s);
+    return true;
+  });
 }
 
 // Makes b[begin .. etx + 1] a frame that passes the checks: 7-bit characters
@@ -190,12 +203,6 @@ struct Mutation {
       if (s.begin + 1 < b.size()) return b[s.begin + 1] & 0x7F;
     return '2';
   }
-  Bytes some_template() {
-    Bytes t = tmpl[pick(tmpl.size())];
-    if (pick(8) != 0) t[1] = address();
-    else t[1] = tokens[pick(tokens.size())];
-    return t;
-  }
 };
 
 // Each mutation below returns false when it does not apply to the stream;
@@ -221,22 +228,25 @@ bool set_field_byte(Mutation& m) {
 
 // A digit one up or down.
 bool step_digit(Mutation& m) {
-  std::vector<std::size_t> digits;
-  for (std::size_t i = 0; i < m.b.size(); ++i)
-    if ((m.b[i] & 0x7F) >= '0' && (m.b[i] & 0x7F) <= '9') digits.push_back(i);
-  if (digits.empty()) return false;
-  std::uint8_t& d = m.b[digits[m.pick(digits.size())]];
+  auto is_digit = [](std::uint8_t b) { return (b & 0x7F) >= '0' && (b & 0x7F) <= '9'; };
+  const auto digits = static_cast<std::size_t>(std::count_if(m.b.begin(), m.b.end(), is_digit));
+  if (digits == 0) return false;
+  std::size_t k = m.pick(digits);  // the k-th digit
+  std::uint8_t& d = *std::find_if(m.b.begin(), m.b.end(), [&](std::uint8_t b) { return is_digit(b) && k-- == 0; });
   const std::uint8_t c = d & 0x7F;
   d = static_cast<std::uint8_t>(m.pick(2) ? (c == '9' ? '0' : c + 1) : (c == '0' ? '9' : c - 1));
   return true;
 }
 
-// A whole request of any command and form, before a frame or at the end.
+// A whole request of any command and form, to the stream's address (one
+// time in eight a field value), before a frame or at the end.
 void insert_request(Mutation& m) {
-  const Bytes t = m.some_template();
+  const Bytes& t = m.tmpl[m.pick(m.tmpl.size())];
+  const std::uint8_t address = m.pick(8) != 0 ? m.address() : m.tokens[m.pick(m.tokens.size())];
   std::size_t at = m.b.size();
   if (!m.segs().empty() && m.pick(2)) at = m.some_segment().begin;
   m.b.insert(m.b.begin() + static_cast<std::ptrdiff_t>(at), t.begin(), t.end());
+  m.b[at + 1] = address;
 }
 
 bool delete_frame(Mutation& m) {
@@ -290,7 +300,7 @@ bool change_length(Mutation& m) {
 bool splice_template(Mutation& m) {
   if (m.segs().empty()) return false;
   const Segment& s = m.some_segment();
-  const Bytes t = m.tmpl[m.pick(m.tmpl.size())];
+  const Bytes& t = m.tmpl[m.pick(m.tmpl.size())];
   const std::size_t last = s.etx != npos ? s.etx : s.end;
   if (last <= s.begin + 3 || t.size() <= 5) return false;
   const std::size_t from = 3 + m.pick(t.size() - 5);
@@ -315,21 +325,19 @@ void repair_frames(Mutation& m, const StreamFormat& format) {
   Bytes& b = m.b;
   const bool wire = format.wire && format.wire(m.head.data());
   const LrcRule rule = format.lrc_rule ? format.lrc_rule(m.head.data()) : LrcRule::kFromByte0;
-  for (std::size_t i = next_start(b, 0); i < b.size();) {
-    const Segment s = segment_at(b, i);
-    i = s.end;
+  walk_segments(b, [&](const Segment& s) {
     if (s.etx == npos) {
-      if (m.pick(2)) continue;
+      if (m.pick(2)) return true;
       // The frames after this one move: repair only this one and stop.
       b.insert(b.begin() + static_cast<std::ptrdiff_t>(s.end), {ETX, 0});
       seal(b, s.begin, s.end, rule, wire);
-      break;
+      return false;
     }
     const bool last = s.etx + 1 >= b.size();
     if (last) b.push_back(0);  // its check byte
     seal(b, s.begin, s.etx, rule, wire);
-    if (last) break;
-  }
+    return !last;
+  });
 }
 
 }  // namespace
@@ -369,6 +377,7 @@ std::size_t mutate_stream(std::uint8_t* data, std::size_t size, std::size_t max_
   }
   if (!applied) insert_request(m);
   if (repair) repair_frames(m, format);
+  if (format.draw) format.draw(head.data(), static_cast<std::uint32_t>(rng()));
 
   const std::size_t n = std::min(h + b.size(), max_size);
   std::copy(head.begin(), head.end(), data);

@@ -41,7 +41,19 @@ struct StreamFormat {
   bool (*wire)(const std::uint8_t* header) = nullptr;
   // The LRC rule the target checks (§1 Check Character), given the header.
   LrcRule (*lrc_rule)(const std::uint8_t* header) = nullptr;
+  // Draws the header's per-execution choices afresh after every mutation,
+  // from `random` (nullptr: none): a check the target makes on some inputs
+  // only is then made on a share of the executions whatever the parents in
+  // the corpus had, and a finding's header still says whether it was made.
+  void (*draw)(std::uint8_t* header, std::uint32_t random) = nullptr;
 };
+
+// fuzz_receiver's byte 1, bit 7: the input is fed to the receiver a second
+// time, in pieces (ChunkSizes), and the events of both feeds are compared.
+// The mutator sets it on one mutation in kReceiverInPiecesOneIn; every seed
+// has it.
+inline constexpr std::uint8_t kReceiverInPieces = 0x80;
+inline constexpr std::uint32_t kReceiverInPiecesOneIn = 8;
 
 // The custom mutator of the frame-level targets (LLVMFuzzerCustomMutator):
 // mutates whole frames (insert an encoded request of any catalog command and
@@ -80,8 +92,8 @@ inline bool same_bytes(const std::uint8_t* a, const std::uint8_t* b, std::size_t
   return true;
 }
 
-// The sizes of the pieces fuzz_receiver feeds a second time (and its floor
-// fuzz_floor_receiver_twice), drawn from the input (so a finding replays):
+// The sizes of the pieces fuzz_receiver feeds a second time, drawn from the
+// input (so a finding replays):
 // 1-4 bytes seven times in eight, else 1-64. A few bits a size from a 64-bit
 // xorshift: a division a piece (minstd_rand) cost more than feeding it.
 class ChunkSizes {

@@ -21,9 +21,8 @@
 #    rule fired, the fuzzer's CPU seconds so far are the time to all handlers
 #    and NAK rules (an upper bound: the corpus had them by then at the latest).
 # Step 1 also runs the floors (fuzz/perf_floor.cpp): libFuzzer with a target
-# that does nothing, the receiver fed once, the receiver fed twice as the
-# receiver target feeds it, and the controller executing frames, all without
-# an oracle -- what the targets' speeds compare with.
+# that does nothing, the receiver fed once, and the controller executing
+# frames, all without an oracle -- what the targets' speeds compare with.
 # BUILD (default build-fuzz-perf): the build tree of the targets. Made here
 # when missing: libFuzzer without sanitizers (-fsanitize=fuzzer through
 # SABUS_FUZZ_ENGINE), the engine's own speed. BUILD=build-fuzz measures the
@@ -112,20 +111,23 @@ row() {
   printf "%-26s %12s %14s %10s %16s\n" "$label" "$rate" "$runs" "$cpu" "${per_cpu[$label]}"
 }
 
-# paired TARGET: the target's share of its floor again, in ROUNDS (default 3)
+# paired TARGET: the target's share of its floor again, in ROUNDS (default 5)
 # rounds of PAIR_SECONDS (default 10) each, the target and then its floor in
 # every round, each from its seed corpus: a change in the machine's load
 # between two rows of the table (other jobs on a shared host moved a row by
-# up to 10 %) then moves one round, not the figure. Prints every round's
-# share and their median.
+# up to 10 %) then moves one round, not the figure. Round r runs both with
+# libFuzzer's -seed=r, so that a round draws the same mutations from one run
+# of the script to the next (three 10 s runs of fuzz_controller here: 41-45 k
+# exec/s with -seed=1, 38-45 k with libFuzzer's time-based seed). Prints
+# every round's share and their median.
 paired() {
   local t=$1 f=fuzz_floor_${1#fuzz_} r shares=()
   local -a target_flags floor_flags
   mapfile -t target_flags < <(flags_of "$t")
   mapfile -t floor_flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
-  for ((r = 1; r <= ${ROUNDS:-3}; ++r)); do
-    measure "$t.round$r" "$fuzz/$t" "${PAIR_SECONDS:-10}" "$fuzz/seeds/$t" "${target_flags[@]}"
-    measure "$f.round$r" "$fuzz/$f" "${PAIR_SECONDS:-10}" "$fuzz/seeds/$t" "${floor_flags[@]}"
+  for ((r = 1; r <= ${ROUNDS:-5}; ++r)); do
+    measure "$t.round$r" "$fuzz/$t" "${PAIR_SECONDS:-10}" "$fuzz/seeds/$t" "${target_flags[@]}" -seed="$r"
+    measure "$f.round$r" "$fuzz/$f" "${PAIR_SECONDS:-10}" "$fuzz/seeds/$t" "${floor_flags[@]}" -seed="$r"
     shares+=("$(awk -v a="${per_cpu[$t.round$r]}" -v b="${per_cpu[$f.round$r]}" 'BEGIN{printf "%.2f", (b > 0) ? a / b : 0}')")
   done
   printf "%s\n" "${shares[@]}" | sort -n | awk -v n="${#shares[@]}" -v list="${shares[*]}" \
@@ -203,23 +205,18 @@ if ((exec_seconds > 0)); then
   # The floors (fuzz/perf_floor.cpp), with the max_len and entropic setting
   # of the matching target and libFuzzer's own mutator.
   echo "floors: libFuzzer with no oracle, its own mutator, the same instrumentation:"
-  for floor in empty:fuzz_receiver receiver:fuzz_receiver receiver_twice:fuzz_receiver controller:fuzz_controller; do
+  for floor in empty:fuzz_receiver receiver:fuzz_receiver controller:fuzz_controller; do
     f=fuzz_floor_${floor%%:*} t=${floor#*:}
     mapfile -t flags < <(flags_of "$t" | grep -E '^-(max_len|entropic)=')
     row "$f" "$fuzz/$f" "$fuzz/seeds/$t" "${flags[@]}"
   done
-  echo "share of the floor (executions per CPU-second): in the table; then in ${ROUNDS:-3} rounds of ${PAIR_SECONDS:-10} s, target and floor side by side"
+  echo "share of the floor (executions per CPU-second): in the table; then in ${ROUNDS:-5} rounds of ${PAIR_SECONDS:-10} s, target and floor side by side"
   for goal in receiver:0.7 controller:0.6; do
     t=fuzz_${goal%%:*} f=fuzz_floor_${goal%%:*}
     rounds=$(paired "$t") || { echo "$rounds"; exit 1; }  # a failed fuzzer's log
     awk -v t="$t" -v a="${per_cpu[$t]}" -v b="${per_cpu[$f]}" -v g="${goal#*:}" -v p="$rounds" \
       'BEGIN{printf "%s: %.2f of its floor; %s (goal %s)\n", t, (b > 0) ? a / b : 0, p, g}'
   done
-  # The receiver target feeds every input twice (whole, then in pieces) and
-  # compares; against a floor that feeds twice too, what is left is the
-  # oracles' and the custom mutator's cost.
-  awk -v a="${per_cpu[fuzz_receiver]}" -v b="${per_cpu[fuzz_floor_receiver_twice]}" \
-    'BEGIN{printf "fuzz_receiver: %.2f of fuzz_floor_receiver_twice (its two feeds without their oracles)\n", (b > 0) ? a / b : 0}'
 fi
 
 ((seconds > 0)) || exit 0
