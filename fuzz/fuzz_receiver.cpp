@@ -32,6 +32,33 @@ namespace {
 
 constexpr std::uint8_t kAddresses[] = {'2', 0x31, 0x6F, 'P'};
 
+// The sizes of the pieces the input is fed in a second time, drawn from the
+// input (so a finding replays):
+// 1-4 bytes seven times in eight, else 1-64. A few bits a size from a 64-bit
+// xorshift: a division a piece (minstd_rand) cost more than feeding it.
+class ChunkSizes {
+ public:
+  explicit ChunkSizes(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ULL | 1) {}
+  std::size_t next() { return take(3) == 0 ? 1 + take(6) : 1 + take(2); }
+
+ private:
+  std::size_t take(unsigned count) {
+    if (left_ < count) {
+      state_ ^= state_ >> 12;
+      state_ ^= state_ << 25;
+      state_ ^= state_ >> 27;
+      bits_ = state_ * 0x2545F4914F6CDD1DULL;
+      left_ = 64;
+    }
+    const auto r = static_cast<std::size_t>(bits_ & ((1u << count) - 1));
+    bits_ >>= count;
+    left_ -= count;
+    return r;
+  }
+  std::uint64_t state_, bits_ = 0;
+  unsigned left_ = 0;
+};
+
 struct Event {
   bool frame;
   std::uint64_t offset, length;
@@ -221,7 +248,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!in_pieces) return 0;
   b.reset();
   pieces.begin(b.offset(), &whole.events, false);
-  sabus::fuzz::ChunkSizes sizes(data[1] * 131u + size);
+  ChunkSizes sizes(data[1] * 131u + size);
   for (std::size_t i = 0; i < stream.wire.size();) {
     const std::size_t n = std::min(sizes.next(), stream.wire.size() - i);
     b.feed(stream.wire.subspan(i, n), pieces);

@@ -49,7 +49,7 @@ struct StreamFormat {
 };
 
 // fuzz_receiver's byte 1, bit 7: the input is fed to the receiver a second
-// time, in pieces (ChunkSizes), and the events of both feeds are compared.
+// time, in pieces (fuzz_receiver.cpp, ChunkSizes), and the events of both feeds are compared.
 // The mutator sets it on one mutation in kReceiverInPiecesOneIn; every seed
 // has it.
 inline constexpr std::uint8_t kReceiverInPieces = 0x80;
@@ -91,33 +91,6 @@ inline bool same_bytes(const std::uint8_t* a, const std::uint8_t* b, std::size_t
     if (a[i] != b[i]) return false;
   return true;
 }
-
-// The sizes of the pieces fuzz_receiver feeds a second time, drawn from the
-// input (so a finding replays):
-// 1-4 bytes seven times in eight, else 1-64. A few bits a size from a 64-bit
-// xorshift: a division a piece (minstd_rand) cost more than feeding it.
-class ChunkSizes {
- public:
-  explicit ChunkSizes(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ULL | 1) {}
-  std::size_t next() { return take(3) == 0 ? 1 + take(6) : 1 + take(2); }
-
- private:
-  std::size_t take(unsigned count) {
-    if (left_ < count) {
-      state_ ^= state_ >> 12;
-      state_ ^= state_ << 25;
-      state_ ^= state_ >> 27;
-      bits_ = state_ * 0x2545F4914F6CDD1DULL;
-      left_ = 64;
-    }
-    const auto r = static_cast<std::size_t>(bits_ & ((1u << count) - 1));
-    bits_ >>= count;
-    left_ -= count;
-    return r;
-  }
-  std::uint64_t state_, bits_ = 0;
-  unsigned left_ = 0;
-};
 
 // The whole-controller target's input: byte 0 picks the profile, byte 1 the
 // virtual time between chunks (20 ms units), the rest are wire bytes (even

@@ -54,8 +54,9 @@ for column in 1 2; do
 done
 # Each run with reports against the run without them just before it: a
 # change in the machine's speed between rounds moves one pair, not the median.
-printf '%s\n' "${without[@]}" | paste -d' ' - <(printf '%s\n' "${with[@]}") |
-  awk '{print $3 / $1}' | sort -g | awk -v n="$runs" '{r[NR] = $1} END {printf "main job, wall, the median of the %d pairs'"'"' ratios: %.2f (lowest %.2f, highest %.2f)\n", n, (NR % 2 ? r[(NR + 1) / 2] : (r[NR / 2] + r[NR / 2 + 1]) / 2), r[1], r[NR]}'
+ratios=$(printf '%s\n' "${without[@]}" | paste -d' ' - <(printf '%s\n' "${with[@]}") | awk '{print $3 / $1}' | sort -g)
+printf "main job, wall, the median of the %d pairs' ratios: %.2f (lowest %.2f, highest %.2f)\n" \
+  "$runs" "$(median 1 <<<"$ratios")" "$(head -1 <<<"$ratios")" "$(tail -1 <<<"$ratios")"
 echo "  reports: $(ls -l "$work/report" | awk 'NR > 1 {printf "%s%s %d B", sep, $9, $5; sep = ", "}')"
 # Instructions executed (valgrind's callgrind, where valgrind is installed):
 # the same count for the same binary and inputs whatever else the machine

@@ -69,9 +69,9 @@ FrameRecord frame_record(const harness::TranscriptEntry& e) {
     // received; described here only for an entry that came without it.
     const std::vector<FieldDescription> described = e.fields.empty() ? describe_frame(e.bytes).fields
                                                                       : std::vector<FieldDescription>{};
-    f.fields.reserve(e.fields.empty() ? described.size() : e.fields.size());
-    for (const auto& fd : e.fields.empty() ? described : e.fields)
-      f.fields.push_back({fd.first, fd.last, fd.name, fd.raw, fd.meaning, fd.ok});
+    const std::vector<FieldDescription>& fields = e.fields.empty() ? described : e.fields;
+    f.fields.reserve(fields.size());
+    for (const auto& fd : fields) f.fields.push_back({fd.first, fd.last, fd.name, fd.raw, fd.meaning, fd.ok});
     if (e.sent) {
       // The command frame the device answers, and its form (one classifier
       // for reports and `sabus vectors coverage`).

@@ -23,7 +23,6 @@ namespace sabus::reports {
 
 using nlohmann::ordered_json;
 
-
 // ---- JsonStreamWriter ----------------------------------------------------------
 
 // The serializer replaces a byte that is not UTF-8 with U+FFFD instead of
@@ -39,6 +38,10 @@ JsonStreamWriter::~JsonStreamWriter() { flush(); }
 void JsonStreamWriter::flush() {
   out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
   buf_.clear();
+}
+
+void JsonStreamWriter::flush_when_large() {
+  if (buf_.size() >= (1u << 16)) flush();
 }
 
 void JsonStreamWriter::newline(std::size_t depth) {
@@ -95,7 +98,7 @@ void JsonStreamWriter::key(std::string_view name) {
 void JsonStreamWriter::value(const ordered_json& v) {
   before_value();
   serializer_.dump(v, false, false, 0);
-  if (buf_.size() >= (1u << 16)) flush();
+  flush_when_large();
 }
 
 void JsonStreamWriter::string_value(std::string_view s) {
@@ -106,7 +109,7 @@ void JsonStreamWriter::string_value(std::string_view s) {
 void JsonStreamWriter::serialized_value(std::string_view json_text) {
   before_value();
   buf_ += json_text;
-  if (buf_.size() >= (1u << 16)) flush();
+  flush_when_large();
 }
 
 void JsonStreamWriter::end() {
@@ -182,6 +185,15 @@ void write_vector(JsonStreamWriter& w, const VectorRecord& v, FieldsJsonCache* c
   w.end();
 }
 
+// The text `write` writes with a one-line writer.
+template <class Write>
+std::string one_line(Write&& write) {
+  std::ostringstream out;
+  JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
+  write(w);  // its last end() writes the text out
+  return std::move(out).str();
+}
+
 }  // namespace
 
 const std::string& FieldsJsonCache::text(const FrameRecord& f) {
@@ -189,19 +201,13 @@ const std::string& FieldsJsonCache::text(const FrameRecord& f) {
   if (slot.hex != f.hex || slot.fields != f.fields) {
     slot.hex = f.hex;
     slot.fields = f.fields;
-    std::ostringstream out;
-    JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
-    write_fields(w, f.fields);  // its last end() writes the text out
-    slot.text = std::move(out).str();
+    slot.text = one_line([&](JsonStreamWriter& w) { write_fields(w, f.fields); });
   }
   return slot.text;
 }
 
 std::string vector_json(const VectorRecord& v, FieldsJsonCache* cache) {
-  std::ostringstream out;
-  JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
-  write_vector(w, v, cache);  // its last end() writes the text out
-  return std::move(out).str();
+  return one_line([&](JsonStreamWriter& w) { write_vector(w, v, cache); });
 }
 
 // ---- the run JSON ----------------------------------------------------------------

@@ -54,6 +54,7 @@ class JsonStreamWriter {
     bool object = false, empty = true, has_key = false;
   };
   void flush();
+  void flush_when_large();
   std::ostream& out_;
   Layout layout_;
   std::vector<Level> stack_;
