@@ -31,77 +31,9 @@ namespace sabus::enums {
 namespace {
 
 // ---------------------------------------------------------------------------
-// The lists, in the order the spec prints them.
+// The lists, in the order the spec prints them (the mode list, kModeNames,
+// is in the header).
 // ---------------------------------------------------------------------------
-
-// Values for byte 45 (current mode) and byte 47 (last exited mode).
-constexpr std::string_view kModeNames[] = {
-    "MANUAL_MODE",          // 0x20
-    "AUTO_MODE",            // 0x21
-    "POSITION_MODE",
-    "TRUCK_POS_MODE",
-    "TRUCK_HDG_MODE",
-    "LOCATE_MODE",          // printed "LOCATE MODE"
-    // Printed "SPIRAL REMOTE MODE": one name (READING-NOTES 27). REMOTE_MODE
-    // appears again below and a C enum cannot hold a name twice.
-    "SPIRAL_REMOTE_MODE",   // 0x26
-    "STORE_SAT_MODE",       // 0x27
-    "TRACK_MODE",
-    "AUX_MODE",             // printed "AUX MODE"
-    "FAIRING_MODE",
-    "POS_CONFIRM_MODE",
-    "DEPLOY_REQUEST_MODE",
-    "HEADING_FIX_MODE",
-    "SETTINGS_MODE",
-    "STOW_MODE",
-    "DEPLOY_MODE",
-    "RECALL_MODE",          // printed "RECALL MODE"
-    "REMOTE_MODE",          // 0x32
-    "DEFINE_MODE",
-    "INIT_MODE",
-    "SETUP_MODE",
-    "PACK_MODE",
-    "RESET_MODE",
-    "DELETE_MODE",          // printed "DELETE MODE"
-    /* START OF PROGRAMMING MODES */
-    "CONFIG_MENU_MODE",
-    "ANTENNA_CONFIG_MODE",
-    "AUTOPOL_CONFIG_MODE",
-    "SAT_PRESET_CONFIG_MODE",
-    "TRUCK_PRESET_CONFIG_MODE",
-    "EXPERT_CONFIG_MODE",
-    "RESET_DEFAULTS_CONFIG_MODE",
-    "AZIM_CAL_CONFIG_MODE",
-    "SYS_COMP_CONFIG_MODE",
-    "AZIM_POT_DRIVE_CONFIG_MODE",
-    "ELEV_POT_DRIVE_CONFIG_MODE",
-    "AZIM_PULSE_CAL_CONFIG_MODE",
-    "ELEV_PULSE_CAL_CONFIG_MODE",
-    "POL_POT_DRIVE_CONFIG_MODE",
-    "PULSE_LIMITS_MODE",
-    "TRACK_CONFIG_MODE",
-    "AGC_CONFIG_MODE",
-    "LIMITS_CONFIG_MODE",
-    "TLE_1_CONFIG_MODE",
-    "TLE_2_CONFIG_MODE",
-    // Maintenance / diagnostic modes.
-    "DUMP_FLUXGATE_DATA_MODE",
-    "DUMP_GPS1_NMEA_DATA_MODE",
-    "DUMP_GPS1_RAW_DATA_MODE",
-    "DUMP_GPS2_RAW_DATA_MODE",
-    "DUMP_GPS3_RAW_DATA_MODE",
-    "COMPASS_CAL",
-    "GPS_DIAG_MODE",
-    "AD_DIAG_MODE",
-    "LIMITS_DIAG_MODE",
-    "AGC_OFFSET_MODE",
-    "DIAG_MENU_MODE",
-    "TIMEDATE_DIAG_MODE",
-    "SHAKE_MODE",
-    "AZEL_MODE",
-    "GPSHDG_MODE",
-    "UNDEFINED_MODE",
-};
 
 constexpr std::string_view kSimpleModeStates[] = {
     "INITIALIZING_MODE",

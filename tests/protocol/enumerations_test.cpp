@@ -20,6 +20,7 @@ using sabus::enums::EnumList;
 using sabus::enums::EnumReading;
 using sabus::enums::all_lists;
 using sabus::enums::exit_list_for_mode;
+using sabus::enums::Mode;
 using sabus::enums::mode_names;
 using sabus::enums::state_list_for_mode;
 
@@ -50,6 +51,18 @@ int value(std::string_view list, std::string_view name, const EnumReading& readi
     return -1;
   }
   return *v;
+}
+
+// enums::Mode: the value of a mode named in code, found at compile time, is
+// the list's value for that name (a name not in the list does not compile).
+TEST(Enumerations, ModeNamedInCodeHasTheListsValue) {
+  static_assert(Mode("MANUAL_MODE").value == 0x20);
+  static_assert(Mode("SPIRAL_REMOTE_MODE").value == 0x26);
+  static_assert(Mode("REMOTE_MODE") != Mode("SPIRAL_REMOTE_MODE"));
+  EXPECT_EQ(Mode("LOCATE_MODE").value, mode("LOCATE_MODE"));
+  EXPECT_EQ(Mode("TRACK_MODE").value, mode("TRACK_MODE"));
+  EXPECT_EQ(Mode("INIT_MODE").value, mode("INIT_MODE"));
+  EXPECT_EQ(mode_names().name_of(Mode("RECALL_MODE").value), "RECALL_MODE");
 }
 
 TEST(Enumerations, ModeValues) {

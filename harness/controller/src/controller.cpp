@@ -144,8 +144,6 @@ std::uint8_t enum_value(const enums::EnumList* list, std::string_view name) {
   return enums::kFirstValue;
 }
 
-std::uint8_t mode_value(std::string_view name) { return enum_value(&enums::mode_names(), name); }
-
 Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faults)
     : profile_(profile), clock_(clock), faults_(faults), last_update_(clock.now()) {
   state_.az.position = profile_.az.initial_deg;
@@ -199,20 +197,19 @@ void Controller::set_state(std::string_view state) {
   state_.mode.state = enum_value(enums::state_list_for_mode(state_.mode.mode, enum_reading()), state);
 }
 
-void Controller::enter_mode(std::string_view mode, std::string_view state, std::string_view exit_of_old) {
-  const std::uint8_t next = mode_value(mode);
-  if (next != state_.mode.mode) {
+void Controller::enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old) {
+  if (mode.value != state_.mode.mode) {
     state_.mode.last_mode = state_.mode.mode;
     const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
     state_.mode.exit_status = exits ? enum_value(exits, exit_of_old.empty() ? normal_exit_name(*exits) : exit_of_old)
                                     : enums::kFirstValue;
-    state_.mode.mode = next;
-    if (mode != "TRACK_MODE") state_.track.active = false;
+    state_.mode.mode = mode.value;
+    if (mode != enums::Mode("TRACK_MODE")) state_.track.active = false;
   }
   set_state(state);
 }
 
-bool Controller::in_mode(std::string_view mode) const { return state_.mode.mode == mode_value(mode); }
+bool Controller::in_mode(enums::Mode mode) const { return state_.mode.mode == mode.value; }
 
 // ---- motion ------------------------------------------------------------------
 

@@ -9,9 +9,10 @@
 
 namespace sabus::harness {
 
-// Values of the §3.17 enumerations by name, so no value is written twice.
+// Values of the §3.17 enumerations by name, so no value is written twice;
+// a mode's at compile time (enums::Mode).
 std::uint8_t enum_value(const enums::EnumList* list, std::string_view name);
-std::uint8_t mode_value(std::string_view name);
+consteval std::uint8_t mode_value(std::string_view name) { return enums::Mode(name).value; }
 
 // One row per TRACK submode of the profile: §3.2 byte 40 SSSS, the §3.17
 // track_states entry that stands for it, and whether it is "a peaking or

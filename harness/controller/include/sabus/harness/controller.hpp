@@ -112,9 +112,9 @@ class Controller {
   enums::EnumReading enum_reading() const;
   // §3.17: enter `mode` in `state`; the old mode becomes the last exited mode
   // with `exit_of_old` (default: its normal exit) as its exit status.
-  void enter_mode(std::string_view mode, std::string_view state, std::string_view exit_of_old = {});
+  void enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old = {});
   void set_state(std::string_view state);
-  bool in_mode(std::string_view mode) const;
+  bool in_mode(enums::Mode mode) const;
 
   bool stow_limit(AxisId a) const;
   bool moving() const;
