@@ -528,16 +528,6 @@ static_assert(std::size(kAllRestored) == std::size(kAllPrinted));
 // Compile-time checks of the values the rest of the project relies on.
 // ---------------------------------------------------------------------------
 
-constexpr std::size_t index_in(std::span<const std::string_view> names, std::string_view name) {
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return i;
-  throw "name not in list";  // not a constant expression: a typo fails to compile
-}
-
-constexpr std::size_t value_in(std::span<const std::string_view> names, std::string_view name) {
-  return kFirstValue + index_in(names, name);
-}
-
 static_assert(value_in(kModeNames, "MANUAL_MODE") == 0x20);
 static_assert(value_in(kModeNames, "AUTO_MODE") == 0x21);
 static_assert(value_in(kModeNames, "SPIRAL_REMOTE_MODE") == 0x26);

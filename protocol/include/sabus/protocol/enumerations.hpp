@@ -7,7 +7,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <iterator>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -87,21 +86,26 @@ inline constexpr std::string_view kModeNames[] = {
     "UNDEFINED_MODE",
 };
 
+// The index and the value of `name` in a list of names, for names written in
+// code: a name not in the list is not a constant expression, so in a constant
+// context (static_assert, consteval) a typo fails to compile.
+constexpr std::size_t index_in(std::span<const std::string_view> names, std::string_view name) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return i;
+  throw "name not in list";
+}
+constexpr std::size_t value_in(std::span<const std::string_view> names, std::string_view name) {
+  return kFirstValue + index_in(names, name);
+}
+
 // A mode named in code, e.g. Mode("LOCATE_MODE"): its value found at compile
 // time, so that a name not in kModeNames fails to compile (it used to read as
 // 0x20, MANUAL_MODE).
 struct Mode {
   std::uint8_t value;
-  consteval Mode(std::string_view name) : value(value_of(name)) {}
+  consteval Mode(std::string_view name) : value(static_cast<std::uint8_t>(value_in(kModeNames, name))) {}
   consteval Mode(const char* name) : Mode(std::string_view(name)) {}
   friend constexpr bool operator==(Mode, Mode) = default;
-
- private:
-  static consteval std::uint8_t value_of(std::string_view name) {
-    for (std::size_t i = 0; i < std::size(kModeNames); ++i)
-      if (kModeNames[i] == name) return static_cast<std::uint8_t>(kFirstValue + i);
-    throw "not a mode of §3.17";  // not a constant expression: a typo fails to compile
-  }
 };
 
 struct EnumList {
