@@ -29,7 +29,8 @@ bool parse_int(std::string_view s, long long& out) {
     base = 16;
     s.remove_prefix(2);
   }
-  if (s.empty()) return false;
+  // from_chars takes a sign of its own: "--5" and "0x-5" are not numbers.
+  if (s.empty() || s[0] == '-' || s[0] == '+') return false;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out, base);
   if (ec != std::errc{} || p != s.data() + s.size()) return false;
   if (negative) out = -out;
@@ -49,8 +50,12 @@ bool parse_scaled(std::string_view s, int decimals, std::int32_t& out) {
   }
   long long v = 0;
   if (!parse_int(digits, v)) return false;
-  for (; frac < decimals; ++frac) v *= 10;
-  if (v < INT32_MIN || v > INT32_MAX) return false;
+  // In range before each step, so a long digit string cannot overflow.
+  for (;; ++frac) {
+    if (v < INT32_MIN || v > INT32_MAX) return false;
+    if (frac == decimals) break;
+    v *= 10;
+  }
   out = static_cast<std::int32_t>(v);
   return true;
 }

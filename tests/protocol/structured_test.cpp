@@ -59,6 +59,23 @@ TEST(BuildRequest, ErrorsNameTheField) {
   EXPECT_FALSE(build_request(cmd("query_name"), "", {{"index", "100"}}).ok());
 }
 
+TEST(BuildRequest, NumbersOutOfRangeOrWithTwoSignsAreErrors) {
+  // A digit string too long for any field (found by fuzz_differential: scaling
+  // it to the field's decimals overflowed).
+  for (const char* target : {"777777777777777777777777770", "-99999999999999999999", "9223372036854775807",
+                             "922337203685477580.7", "2147483648", "--5", "-+5", "+-5", "0x-5", "-0x-5"}) {
+    auto r = build_request(cmd("auto_move"), "2C", {{"axis", "A"}, {"target", target}});
+    EXPECT_FALSE(r.ok()) << target;
+    if (!r.ok()) {
+      EXPECT_NE(r.error().message().find("target"), std::string::npos) << target;
+    }
+  }
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2C", {{"axis", "A"}, {"target", "-5"}})), "A-00500    ");
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2C", {{"axis", "A"}, {"target", "+5"}})), "A000500    ");
+  EXPECT_FALSE(build_request(cmd("jog"), "E", {{"duration", "--5"}}).ok());
+  EXPECT_FALSE(build_request(cmd("misc"), "K", {{"parameter", "0x-3A"}}).ok());
+}
+
 TEST(FieldNames, RequestsAndReplies) {
   EXPECT_EQ(request_field_names(cmd("auto_move"), "2A"),
             (std::vector<std::string>{"polarization", "azimuth", "elevation"}));

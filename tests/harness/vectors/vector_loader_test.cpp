@@ -619,6 +619,8 @@ TEST(vectors, ModifiersAreCheckedAgainstTheFrame) {
                {"chunks", 1, "3.2-x", "steps[0].modify.chunks", "add up to 6 bytes; the frame has 5"});
   expect_error(one_vector("      - send: {command: status}\n        modify: {lrc_xor: 0x80}\n        expect: silence\n"),
                {"lrc_xor", 1, "3.2-x", "steps[0].modify.lrc_xor", "out of range 1 to 127"});
+  expect_error(one_vector("      - send: {command: status}\n        modify: {replace: [[1, 0x-0]]}\n        expect: silence\n"),
+               {"[1, 0x-0", 1, "3.2-x", "steps[0].modify.replace[0]", "expected 0xNN, got \"0x-0\""});
   expect_error(one_vector("      - send: {command: status}\n        modify: {}\n        expect: ack\n"),
                {"modify", 1, "3.2-x", "steps[0].modify", "no change given"});
   expect_error(one_vector("      - wait_ms: 1\n        modify: {truncate: 1}\n"),

@@ -148,8 +148,9 @@ inline long long to_integer_or_hex_in(const YAML::Node& v, const At& at, long lo
   const std::string& s = plain(v, at, "a whole number or 0xNN");
   if (s.size() < 3 || s[0] != '0' || (s[1] != 'x' && s[1] != 'X')) return to_integer_in(v, at, lo, hi);
   long long n = 0;
+  // from_chars takes a sign of its own: 0x-1 is not a hex number.
   auto r = std::from_chars(s.data() + 2, s.data() + s.size(), n, 16);
-  if (r.ec != std::errc{} || r.ptr != s.data() + s.size()) fail(at, "expected 0xNN, got " + quoted_clip(s));
+  if (s[2] == '-' || r.ec != std::errc{} || r.ptr != s.data() + s.size()) fail(at, "expected 0xNN, got " + quoted_clip(s));
   if (n < lo || n > hi) fail(at, s + " is out of range " + std::to_string(lo) + " to " + std::to_string(hi));
   return n;
 }
