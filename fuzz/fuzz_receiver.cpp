@@ -30,8 +30,6 @@
 
 namespace {
 
-constexpr std::uint8_t kAddresses[] = {'2', 0x31, 0x6F, 'P'};
-
 // The sizes of the pieces the input is fed in a second time, drawn from the
 // input (so a finding replays):
 // 1-4 bytes seven times in eight, else 1-64. A few bits a size from a 64-bit
@@ -213,7 +211,7 @@ sabus::LrcRule rule(const std::uint8_t* h) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2) return 0;
   const std::uint8_t knobs = data[0];
-  sabus::ReceiverOptions o = sabus::ReceiverOptions::slave(kAddresses[data[1] & 3]);
+  sabus::ReceiverOptions o = sabus::ReceiverOptions::slave(sabus::fuzz::kReceiverAddresses[data[1] & 3]);
   o.parity = (knobs & 1) ? sabus::Parity::kEvenBit7 : (knobs & 64) ? sabus::Parity::kUnchecked : sabus::Parity::kNone;
   o.stx_restarts_in_address = !(knobs & 128);
   o.stx_restarts_in_data = knobs & 2;
@@ -229,7 +227,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (Check* c : {&whole, &pieces}) {
     c->stream = &stream;
     c->o = &o;
-    c->address = kAddresses[data[1] & 3];
+    c->address = sabus::fuzz::kReceiverAddresses[data[1] & 3];
   }
   // One receiver pair per option set, made once: building the byte-class
   // table costs more than feeding a short input. reset() keeps the stream

@@ -55,6 +55,18 @@ struct StreamFormat {
 inline constexpr std::uint8_t kReceiverInPieces = 0x80;
 inline constexpr std::uint32_t kReceiverInPiecesOneIn = 8;
 
+// fuzz_receiver's byte 1, bits 0-1: the address its receiver answers to
+// (§3.2; ERRATA E-4: the default '2', the lowest and highest settings 31h
+// and 6Fh, and one between).
+inline constexpr std::uint8_t kReceiverAddresses[4] = {'2', 0x31, 0x6F, 'P'};
+// Those bits for `address`; an address not in the list gets the last entry's
+// (the seed's frames are then for another address than the receiver's).
+constexpr std::uint8_t receiver_address_knob(std::uint8_t address) {
+  std::uint8_t knob = 0;
+  while (knob < 3 && kReceiverAddresses[knob] != address) ++knob;
+  return knob;
+}
+
 // The custom mutator of the frame-level targets (LLVMFuzzerCustomMutator):
 // mutates whole frames (insert an encoded request of any catalog command and
 // form, delete, duplicate, swap) and fields (command code, address, form

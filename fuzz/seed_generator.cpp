@@ -73,10 +73,10 @@ void reply_seeds(const fs::path& dir, std::index_sequence<I...>) {
   (one(std::type_identity<std::variant_alternative_t<I, sabus::Reply>>{}), ...);
 }
 
-// fuzz_receiver's header: its options byte and byte 1 with the address
-// knob, every seed also fed in pieces (kReceiverInPieces).
-Bytes receiver_header(std::uint8_t options, std::uint8_t address_knob) {
-  return {options, static_cast<std::uint8_t>(sabus::fuzz::kReceiverInPieces | address_knob)};
+// fuzz_receiver's header: its options byte and byte 1 with the receiver's
+// address, every seed also fed in pieces (kReceiverInPieces).
+Bytes receiver_header(std::uint8_t options, std::uint8_t address) {
+  return {options, static_cast<std::uint8_t>(sabus::fuzz::kReceiverInPieces | sabus::fuzz::receiver_address_knob(address))};
 }
 
 // One of each request, for the receiver (as 7-bit characters and on the wire).
@@ -86,8 +86,8 @@ void request_seeds(const fs::path& dir, std::index_sequence<I...>) {
     const Bytes frame = sabus::encode_request(sabus::Request{T{}}, '2');
     char name[32];
     std::snprintf(name, sizeof name, "request-%02x", T::kCode);
-    write(dir, std::string(name) + "-chars", cat({receiver_header(0x06, 0), frame}));
-    write(dir, std::string(name) + "-wire", cat({receiver_header(0x07, 0), sabus::add_even_parity(frame)}));
+    write(dir, std::string(name) + "-chars", cat({receiver_header(0x06, '2'), frame}));
+    write(dir, std::string(name) + "-wire", cat({receiver_header(0x07, '2'), sabus::add_even_parity(frame)}));
   };
   (one(std::type_identity<std::variant_alternative_t<I, sabus::Request>>{}), ...);
 }
@@ -259,9 +259,9 @@ int main(int argc, char** argv) {
   const Bytes poll = sabus::encode_request(sabus::StatusPoll{}, '2');
   Bytes bad = poll;
   bad.back() ^= 1;
-  write(out / "fuzz_receiver", "framing-bad-lrc", cat({receiver_header(0x06, 0), bad, poll}));
-  write(out / "fuzz_receiver", "framing-stx-stx", cat({receiver_header(0x06, 0), {sabus::STX}, poll}));
-  write(out / "fuzz_receiver", "framing-noise", cat({receiver_header(0x06, 2), {0x41, 0x42, 0x03, 0x7f}, poll}));
+  write(out / "fuzz_receiver", "framing-bad-lrc", cat({receiver_header(0x06, '2'), bad, poll}));
+  write(out / "fuzz_receiver", "framing-stx-stx", cat({receiver_header(0x06, '2'), {sabus::STX}, poll}));
+  write(out / "fuzz_receiver", "framing-noise", cat({receiver_header(0x06, 0x6F), {0x41, 0x42, 0x03, 0x7f}, poll}));
 
   // One seed per vector of the suite, whatever it holds now. A file that
   // does not load is reported and left out; the rest still give seeds.
@@ -286,8 +286,7 @@ int main(int argc, char** argv) {
       const std::string name = file_name(v.id);
       if (!s.wire.empty()) {
         write(out / "fuzz_controller", name, cat({{static_cast<std::uint8_t>(p), 5}, s.wire}));
-        const std::uint8_t addr_knob = address == '2' ? 0 : address == 0x31 ? 1 : address == 0x6F ? 2 : 3;
-        write(out / "fuzz_receiver", "vector-" + name, cat({receiver_header(0x07, addr_knob), s.wire}));
+        write(out / "fuzz_receiver", "vector-" + name, cat({receiver_header(0x07, address), s.wire}));
       }
       if (!s.structured.empty()) write(out / "fuzz_differential", name, cat({{static_cast<std::uint8_t>(p)}, s.structured}));
       for (std::size_t i = 0; i < s.replies.size(); ++i) {
