@@ -157,7 +157,9 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
     while (start > a.max_deg + 1e-9 && start - 360.0 >= a.min_deg - 1e-9) start -= 360.0;
     while (start < a.min_deg - 1e-9 && start + 360.0 <= a.max_deg + 1e-9) start += 360.0;
   }
-  const motion::Interval end = motion::jog_end(a, start, dir->sign, m.speed, static_cast<int>(ms.value));
+  const Count jog_ms = count_in(ms.value, 0, kMaxMs);
+  if (jog_ms.error) return problem(Expansion::Kind::kError, m, "jogged: ms " + *jog_ms.error);
+  const motion::Interval end = motion::jog_end(a, start, dir->sign, m.speed, static_cast<int>(jog_ms.value));
   m.low = end.low;
   m.high = end.high;
   m.expected = std::string("a '") + m.jog + "' jog at " + (m.speed == 'F' ? "fast" : "slow") + " speed (" +

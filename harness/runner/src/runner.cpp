@@ -84,8 +84,9 @@ std::optional<std::string> missing_record(const StructuredCommand& c, const Expr
   std::uint32_t index = 0;
   if (c.from_profile != "navigation") {
     const Number n = expand_number(c.from_profile, cx);
-    if (n.kind != Expansion::Kind::kValue) return std::nullopt;
-    index = static_cast<std::uint32_t>(n.value);
+    const Count slot = count_in(n.value, 1, kMaxRecordIndex);
+    if (n.kind != Expansion::Kind::kValue || slot.error) return std::nullopt;  // the step reports it
+    index = static_cast<std::uint32_t>(slot.value);
   }
   const RecordRequest r = profile_write(cx.profile, info->code, index);
   return r.request ? std::nullopt : std::optional<std::string>(r.unavailable);

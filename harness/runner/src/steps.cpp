@@ -123,7 +123,9 @@ std::optional<std::string> record_index(const std::string& from_profile, const E
   if (from_profile == "navigation") return std::nullopt;
   const Number n = expand_number(from_profile, cx);
   if (n.kind != Expansion::Kind::kValue) return "from_profile: " + n.text;
-  index = static_cast<std::uint32_t>(n.value);
+  const Count slot = count_in(n.value, 1, kMaxRecordIndex);
+  if (slot.error) return "from_profile: " + *slot.error;
+  index = static_cast<std::uint32_t>(slot.value);
   return std::nullopt;
 }
 
@@ -195,7 +197,9 @@ std::optional<std::string> Session::run_send(const Step& step) {
   if (!s.modifiers.address_text.empty()) {
     const Number a = expand_number(s.modifiers.address_text, expr_context());
     if (a.kind != Expansion::Kind::kValue) return "modify.address: " + a.text;
-    s.modifiers.address = static_cast<std::uint8_t>(a.value);
+    const Count byte = count_in(a.value, 0, 0x7F);  // any 7-bit byte, control characters too: on purpose
+    if (byte.error) return "modify.address: " + *byte.error;
+    s.modifiers.address = static_cast<std::uint8_t>(byte.value);
   }
   auto bytes = s.command && !s.command->from_profile.empty() ? record_bytes(*s.command, expr_context(), profile.address)
                                                              : step_bytes(s, profile.address, captures);
@@ -280,7 +284,9 @@ std::optional<std::string> Session::run_poll(const Step& s) {
   if (!s.timeout_text.empty()) {
     const Number n = expand_number(s.timeout_text, expr_context());
     if (n.kind != Expansion::Kind::kValue) return "poll: timeout_ms: " + n.text;
-    timeout = std::chrono::milliseconds(static_cast<std::int64_t>(n.value));
+    const Count ms = count_in(n.value, 1, kMaxMs);  // as a literal time (vector_steps.cpp)
+    if (ms.error) return "poll: timeout_ms: " + *ms.error;
+    timeout = std::chrono::milliseconds(ms.value);
   }
   Step probe = s;
   probe.kind = Step::Kind::kSend;
@@ -313,7 +319,9 @@ std::optional<std::string> Session::run_step(const Step& s) {
       if (!s.timeout_text.empty()) {
         const Number n = expand_number(s.timeout_text, expr_context());
         if (n.kind != Expansion::Kind::kValue) return "wait: " + n.text;
-        wait = std::chrono::milliseconds(static_cast<std::int64_t>(n.value));
+        const Count ms = count_in(n.value, 1, kMaxMs);
+        if (ms.error) return "wait: " + *ms.error;
+        wait = std::chrono::milliseconds(ms.value);
       }
       transport.pause(wait);
       return std::nullopt;

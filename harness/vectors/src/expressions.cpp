@@ -43,19 +43,34 @@ Result text(std::string t) { return {Kind::kValue, {false, 0, std::move(t)}, {}}
 Result error(std::string m) { return {Kind::kError, {}, std::move(m)}; }
 Result unavailable(std::string m) { return {Kind::kUnavailable, {}, std::move(m)}; }
 
+// A finite decimal number filling the text but for spaces around it (strtod
+// read "12abc" as 12, "1-2" as 1, and took "nan" and "inf").
 std::optional<double> parse_double(std::string_view s) {
   while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-  if (s.empty()) return std::nullopt;
-  std::string copy(s);
-  char* end = nullptr;
-  const double v = std::strtod(copy.c_str(), &end);
-  if (end == copy.c_str()) return std::nullopt;
+  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
+  if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);  // from_chars takes no '+'
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc{} || end != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
   return v;
+}
+
+// A captured value is read as a number when it holds one. An azimuth from a
+// fluxgate compass holds its heading followed by the reference, 'M' or 'T'
+// (§3.2, ERRATA E-12: "180.0T").
+std::optional<double> captured_number(std::string_view s) {
+  if (auto v = parse_double(s)) return v;
+  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
+  if (s.size() < 2 || (s.back() != 'M' && s.back() != 'T')) return std::nullopt;
+  return parse_double(s.substr(0, s.size() - 1));
 }
 
 // ---- arguments ----------------------------------------------------------------
 
 using Args = std::vector<Value>;
+
+// bitxor and bitand take whole numbers 0 to this (bytes and masks, with room).
+constexpr long long kMaxBits = 0xFFFFFFFF;
 
 struct Call {
   const ExprContext& cx;
@@ -64,9 +79,16 @@ struct Call {
 
   std::optional<std::string> numbers(std::initializer_list<std::size_t> at) const {
     for (std::size_t i : at)
-      if (!args[i].is_number) return std::string(name) + ": argument " + std::to_string(i + 1) + " must be a number";
+      if (!args[i].is_number || !std::isfinite(args[i].number))
+        return std::string(name) + ": argument " + std::to_string(i + 1) + " must be a number";
     return std::nullopt;
   }
+  // Argument i (checked by numbers()) as an int, for an index, a count of ms
+  // or an address step: its fraction dropped and held within +-1e9, because
+  // converting a double beyond int's range is undefined behaviour. Every such
+  // function's own range is far narrower, so a held value fails its check as
+  // the number itself would.
+  int integer(std::size_t i) const { return static_cast<int>(std::clamp(std::trunc(args[i].number), -1e9, 1e9)); }
 };
 
 std::optional<motion::Axis> axis_arg(const Value& v) { return v.is_number ? std::nullopt : motion::axis_named(v.text); }
@@ -137,9 +159,10 @@ Result filled_slot(const Call& c) {
   for (const auto& l : kSlotLists)
     if (!v.is_number && v.text == l.name) list = &l;
   if (!list) return error("filled: argument 1 must be presets, tles or signposts");
-  if (!c.args[1].is_number) return error("filled: argument 2 must be an index");
-  const int i = static_cast<int>(c.args[1].number);
-  if (i < 1 || i > list->slots) return error("filled: " + std::to_string(i) + " is not an index of " + std::string(list->name));
+  if (c.numbers({1})) return error("filled: argument 2 must be an index");
+  const int i = c.integer(1);
+  if (i < 1 || i > list->slots || i != c.args[1].number)
+    return error("filled: " + format_number(c.args[1].number) + " is not an index of " + std::string(list->name));
   if (list->filled(c.cx.profile, i)) return number(i);
   return unavailable(std::string(list->what) + " " + std::to_string(i) +
                      " filled in the profile (a write there could not be undone: a slot cannot be emptied)");
@@ -267,7 +290,7 @@ const Function kFunctions[] = {
        if (auto e = c.numbers({2})) return error(*e);
        const AxisProfile& a = motion::profile_of(c.cx.profile, dir->axis);
        if (a.ad_error) return no_reading(dir->axis);
-       return maybe(motion::jog_start(a, dir->sign, *speed, static_cast<int>(c.args[2].number), motion::name_of(dir->axis)));
+       return maybe(motion::jog_start(a, dir->sign, *speed, c.integer(2), motion::name_of(dir->axis)));
      }},
     {{"move_target", "axis, from, ms",
       "a target toward the farther end of the range whose auto move from `from` lasts at least ms at fast speed"},
@@ -275,7 +298,7 @@ const Function kFunctions[] = {
      [](const Call& c) {
        if (auto e = c.numbers({1, 2})) return error(*e);
        return with_read_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
-         return maybe(motion::move_target(a, c.args[1].number, static_cast<int>(c.args[2].number), motion::name_of(axis)));
+         return maybe(motion::move_target(a, c.args[1].number, c.integer(2), motion::name_of(axis)));
        });
      }},
     {{"pace_ms", "", "the run's pace between commands (--pace), ms"}, 0,
@@ -303,12 +326,12 @@ const Function kFunctions[] = {
     {{"first_filled_upto", "presets|tles|signposts, max", "the lowest index up to max that the profile fills"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({1})) return error(*e);
-       return slot(c, true, false, static_cast<int>(c.args[1].number));
+       return slot(c, true, false, c.integer(1));
      }},
     {{"first_empty_upto", "presets|tles|signposts, max", "the lowest index up to max that the profile leaves empty"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({1})) return error(*e);
-       return slot(c, false, false, static_cast<int>(c.args[1].number));
+       return slot(c, false, false, c.integer(1));
      }},
     {{"store_count", "", "the number of entries of the profile's STORE list (§3.6)"}, 0,
      [](const Call& c) { return number(static_cast<double>(c.cx.profile.store.size())); }},
@@ -361,8 +384,9 @@ const Function kFunctions[] = {
      1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
-       const int i = static_cast<int>(c.args[0].number);
-       if (i < 0 || i > 29) return error("preset_flag: index " + std::to_string(i) + " does not fit a tens digit 0-2");
+       const int i = c.integer(0);
+       if (i < 0 || i > 29 || i != c.args[0].number)
+         return error("preset_flag: index " + format_number(c.args[0].number) + " does not fit a tens digit 0-2");
        return text(std::string{static_cast<char>(0x40 | 0x10 | i / 10), static_cast<char>('0' + i % 10)});
      }},
     {{"address", "", "the device's address byte (49-111, §1)"}, 0,
@@ -373,7 +397,7 @@ const Function kFunctions[] = {
      1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
-       const int a = c.cx.profile.address + static_cast<int>(c.args[0].number);
+       const int a = c.cx.profile.address + c.integer(0);
        if (a < 0x31 || a > 0x6F) return unavailable("a valid address " + format_number(c.args[0].number) + " away from the device's");
        if (on_the_line(c.cx.profile, a)) return unavailable("address " + std::to_string(a) + " free on the line: a controller there answers");
        return number(a);
@@ -381,10 +405,11 @@ const Function kFunctions[] = {
     {{"peer", "n", "the address of the profile's n-th bus peer (§1 multi-drop), from 1"}, 1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
-       const auto n = static_cast<std::size_t>(c.args[0].number);
+       const int n = c.integer(0);
        const auto& peers = c.cx.profile.bus_peers;
-       if (n < 1 || n > peers.size()) return unavailable(std::to_string(n) + " peer(s) on the line (bus_peers)");
-       return number(peers[n - 1]);
+       if (n < 1 || static_cast<std::size_t>(n) > peers.size())
+         return unavailable(format_number(c.args[0].number) + " peer(s) on the line (bus_peers)");
+       return number(peers[static_cast<std::size_t>(n) - 1]);
      }},
     {{"unused_address", "", "the lowest valid address (31h-6Fh) no controller on the line has"}, 0,
      [](const Call& c) {
@@ -395,19 +420,24 @@ const Function kFunctions[] = {
     {{"foreign", "address", "the address when no controller on the line has it (a vector sends to it to be ignored)"}, 1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
-       const int a = static_cast<int>(c.args[0].number);
+       const int a = c.integer(0);
+       if (a < 0 || a > 0x7F || a != c.args[0].number) return error("foreign: " + format_number(c.args[0].number) + " is not a 7-bit address");
        if (on_the_line(c.cx.profile, a)) return unavailable("address " + std::to_string(a) + " free on the line: a controller there answers");
        return number(a);
      }},
-    {{"bitxor", "a, b", "a XOR b, of whole numbers"}, 2,
+    {{"bitxor", "a, b", "a XOR b, of whole numbers 0 to FFFFFFFFh"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({0, 1})) return error(*e);
-       return number(static_cast<double>(static_cast<long long>(c.args[0].number) ^ static_cast<long long>(c.args[1].number)));
+       const Count a = count_in(c.args[0].number, 0, kMaxBits), b = count_in(c.args[1].number, 0, kMaxBits);
+       if (a.error || b.error) return error("bitxor: " + *(a.error ? a.error : b.error));
+       return number(static_cast<double>(a.value ^ b.value));
      }},
-    {{"bitand", "a, b", "a AND b, of whole numbers"}, 2,
+    {{"bitand", "a, b", "a AND b, of whole numbers 0 to FFFFFFFFh"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({0, 1})) return error(*e);
-       return number(static_cast<double>(static_cast<long long>(c.args[0].number) & static_cast<long long>(c.args[1].number)));
+       const Count a = count_in(c.args[0].number, 0, kMaxBits), b = count_in(c.args[1].number, 0, kMaxBits);
+       if (a.error || b.error) return error("bitand: " + *(a.error ? a.error : b.error));
+       return number(static_cast<double>(a.value & b.value));
      }},
     {{"char", "n", "the character with this code, as text (for raw templates)"}, 1,
      [](const Call& c) {
@@ -422,7 +452,9 @@ const Function kFunctions[] = {
      1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
-       const auto f = frame_with_check(c.cx.profile.address, static_cast<std::uint8_t>(c.args[0].number));
+       const Count check = count_in(c.args[0].number, 0, 0x7F);
+       if (check.error) return error("frame_with_check: " + *check.error + " (a 7-bit check byte)");
+       const auto f = frame_with_check(c.cx.profile.address, static_cast<std::uint8_t>(check.value));
        if (!f) return unavailable("a frame to address " + std::to_string(c.cx.profile.address) + " with that check byte");
        return text(std::string(f->begin(), f->end()));
      }},
@@ -495,14 +527,15 @@ class Parser {
     if (!a.value.is_number || !b.value.is_number)
       return error(std::string("'") + op + "' needs numbers, got " + (a.value.is_number ? b : a).value.text);
     switch (op) {
-      case '+': return number(a.value.number + b.value.number);
-      case '-': return number(a.value.number - b.value.number);
-      case '*': return number(a.value.number * b.value.number);
+      case '+': return finite(a.value.number + b.value.number);
+      case '-': return finite(a.value.number - b.value.number);
+      case '*': return finite(a.value.number * b.value.number);
       default:
         if (b.value.number == 0) return error("division by zero");
-        return number(a.value.number / b.value.number);
+        return finite(a.value.number / b.value.number);
     }
   }
+  static Result finite(double x) { return std::isfinite(x) ? number(x) : error("a number too large (overflow)"); }
 
   // sum = product {('+' | '-') product}; product = unary {('*' | '/') unary}:
   // left-associative, products first.
@@ -528,7 +561,7 @@ class Parser {
     if (!cx_.captures) return number(0);  // static check: the value is known at run time only
     const auto it = cx_.captures->find(n);
     if (it == cx_.captures->end()) return error("no value captured as " + n);
-    if (auto v = parse_double(it->second)) return number(*v);
+    if (auto v = captured_number(it->second)) return number(*v);
     return text(it->second);
   }
 
@@ -634,8 +667,14 @@ Profile& static_profile() {
 }  // namespace
 
 std::string format_number(double x) {
-  if (std::abs(x - std::round(x)) < 1e-9) return std::to_string(static_cast<long long>(std::llround(x)));
   char buf[64];
+  // Beyond any field's digits (or not finite): exponent notation, which no
+  // field reads, rather than llround's unspecified result.
+  if (!(std::abs(x) < 1e15)) {
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+  }
+  if (std::abs(x - std::round(x)) < 1e-9) return std::to_string(std::llround(x));
   std::snprintf(buf, sizeof buf, "%.6f", x);
   std::string s = buf;
   while (s.back() == '0') s.pop_back();
@@ -677,6 +716,13 @@ Number expand_number(std::string_view text, const ExprContext& cx) {
   if (auto v = parse_double(e.text); v && e.text.find_first_not_of(" +-.0123456789eE") == std::string::npos)
     return {Kind::kValue, *v, {}};
   return {Kind::kError, 0, "\"" + std::string(text) + "\" gives \"" + e.text + "\", not a number"};
+}
+
+Count count_in(double value, long long lo, long long hi) {
+  const double whole = std::trunc(value);
+  if (std::isfinite(whole) && whole >= static_cast<double>(lo) && whole <= static_cast<double>(hi))
+    return {static_cast<long long>(whole), std::nullopt};
+  return {0, format_number(value) + " is out of range " + std::to_string(lo) + " to " + std::to_string(hi)};
 }
 
 // A bare name ("{adr}") is a symbol, which only a function takes: as a whole

@@ -55,7 +55,6 @@ inline constexpr std::size_t kWorkBudget = 100000;
 inline constexpr std::size_t kCostBuild = 2;         // build_request and encode_request
 inline constexpr std::size_t kCostRegex = 10;        // compiling a std::regex
 inline constexpr std::size_t kCostRequirement = 10;  // loading and writing a profile
-inline constexpr long long kMaxMs = 3'600'000;          // a 360 degree move at 0.25 deg/s takes 24 minutes
 inline constexpr long long kMinPollIntervalMs = 1000;   // §4 / ERRATA E-3: at most one request a second
 inline constexpr std::uint8_t kSketchAddress = 0x32;    // the default profile's address, for length checks
 

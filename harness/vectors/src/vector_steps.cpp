@@ -300,7 +300,7 @@ std::string to_record(const YAML::Node& v, const At& at, const CommandInfo& comm
     return s;
   }
   if (has_placeholder(s)) check_expressions(s, at, cx);
-  else (void)to_integer_in(v, at, 1, 20);
+  else (void)to_integer_in(v, at, 1, kMaxRecordIndex);
   return s;
 }
 

@@ -455,6 +455,46 @@ TEST(Runner, FromProfileWritesTheProfilesRecordBackAndChecksAReadAgainstIt) {
   EXPECT_EQ(c.state().presets[0]->data, p.presets[0].data);
 }
 
+// A count computed from an expression (a wait, a timeout, an address byte, a
+// slot, a jog's duration) outside its range fails the step and names the
+// value; it is never converted to an integer it does not fit.
+TEST(Runner, ExpandedCountsOutOfRangeFailTheStepNamingTheValue) {
+  Step wait;
+  wait.kind = Step::Kind::kWait;
+  wait.timeout_text = "{2 * 1e12}";
+  Step poll = send_command("status", "", {}, Expectation::Kind::kAck);
+  poll.kind = Step::Kind::kPoll;
+  poll.timeout_text = "{-5}";
+  poll.until = {matcher("azimuth", FieldMatcher::Kind::kAny, {})};
+  Step address = send_command("status", "", {}, Expectation::Kind::kSilence);
+  address.modifiers.address_text = "{0x80}";
+  Step slot = send_command("write_satellite", "", {}, Expectation::Kind::kAck);
+  slot.command->from_profile = "{first_filled(presets) + 20}";
+  Step jogged = send_command("status", "", {}, Expectation::Kind::kAck);
+  FieldMatcher m = matcher("azimuth", FieldMatcher::Kind::kJogged, {"0", "{1e12}"});
+  m.jog = 'E';
+  m.speed = 'F';
+  jogged.expect.fields = {m};
+  RunOptions o;
+  o.allow_destructive = true;
+  const RunResult r = run_in_process({vector_with("wait", {wait}), vector_with("poll", {poll}),
+                                      vector_with("address", {address}), vector_with("slot", {slot}, {"destructive"}),
+                                      vector_with("jogged", {jogged})},
+                                     {}, o);
+  ASSERT_EQ(r.vectors.size(), 5u);
+  const char* reasons[] = {"wait: 2000000000000 is out of range 1 to 3600000",
+                           "poll: timeout_ms: -5 is out of range 1 to 3600000",
+                           "modify.address: 128 is out of range 0 to 127",
+                           "from_profile: 21 is out of range 1 to 20",
+                           "jogged: ms 1000000000000 is out of range 0 to 3600000"};
+  for (std::size_t i = 0; i < 5; ++i) {
+    const VectorResult& v = r.vectors[i];
+    EXPECT_NE(v.verdict, Verdict::kPass) << v.id;
+    ASSERT_FALSE(v.failures.empty()) << v.id;
+    EXPECT_NE(v.failures[0].find(reasons[i]), std::string::npos) << v.id << ": " << v.failures[0];
+  }
+}
+
 TEST(Runner, AnsweredIsAnAckOrANakToTheFrameSentNeverSilence) {
   const auto nak = send_raw("02 {addr} 5a 03 {lrc}", Expectation::Kind::kAnswered);      // unknown code: NAK
   const auto ack = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAnswered);      // status: ACK

@@ -2,6 +2,8 @@
 // the profile, capabilities a profile lacks, errors a vector makes.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "sabus/harness/expressions.hpp"
 #include "sabus/harness/motion.hpp"
 
@@ -48,6 +50,63 @@ TEST(Expressions, CapturesAreNumbersWhenTheyReadAsNumbers) {
   EXPECT_EQ(expand("{$name}", p, &captures).text, "SBS 6");
   EXPECT_EQ(expand("{$name + 1}", p, &captures).kind, Kind::kError);
   EXPECT_EQ(expand("{$other}", p, &captures).kind, Kind::kError);
+}
+
+TEST(Expressions, ACaptureIsANumberOnlyWhenAllOfItIsOne) {
+  const Profile p;
+  const std::map<std::string, std::string> captures{
+      {"$heading", "180.0T"}, {"$magnetic", " 90.5M"}, {"$prefix", "12abc"}, {"$nan", "nan"},
+      {"$inf", "inf"},        {"$letter", "T"},        {"$sum", "1-2"},      {"$plus", "+7"}};
+  // A fluxgate heading keeps its reference letter (§3.2, E-12).
+  EXPECT_EQ(expand("{$heading + 0.1}", p, &captures).text, "180.1");
+  EXPECT_EQ(expand("{$magnetic}", p, &captures).text, "90.5");
+  EXPECT_EQ(expand("{$plus + 1}", p, &captures).text, "8");
+  for (const std::string name : {"$prefix", "$nan", "$inf", "$letter", "$sum"}) {
+    EXPECT_EQ(expand(std::string(1, '{').append(name).append("}"), p, &captures).text, captures.at(name)) << name;
+    EXPECT_EQ(expand(std::string(1, '{').append(name).append(" + 1}"), p, &captures).kind, Kind::kError) << name;
+  }
+  EXPECT_EQ(expand_number("{$prefix}", ExprContext{p, &captures}).kind, Kind::kError);
+}
+
+// Any number a vector writes is handled: out-of-range arguments and results
+// are errors or unavailable, never a conversion out of an integer's range.
+TEST(Expressions, HugeNumbersAreErrorsNotConversions) {
+  Profile p;
+  for (int i = 1; i <= 5; ++i) p.presets.push_back({static_cast<std::uint8_t>(i), {}, false});
+  EXPECT_NE(expand("{1e300 * 1e300}", p).text.find("overflow"), std::string::npos);
+  EXPECT_NE(expand("{-1e308 - 1e308}", p).text.find("overflow"), std::string::npos);
+  EXPECT_NE(expand("{1e300 / 1e-300}", p).text.find("overflow"), std::string::npos);
+  EXPECT_EQ(expand("{filled(presets, 1e20)}", p).text, "{filled(presets, 1e20)}: filled: 1e+20 is not an index of presets");
+  EXPECT_EQ(expand("{filled(presets, 2.5)}", p).text, "{filled(presets, 2.5)}: filled: 2.5 is not an index of presets");
+  EXPECT_EQ(expand("{filled(presets, 2)}", p).text, "2");
+  EXPECT_EQ(expand("{preset_flag(-1e12)}", p).kind, Kind::kError);
+  EXPECT_EQ(expand("{peer(-1)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{peer(1e30)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{other_address(1e15)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{foreign(1e15)}", p).text, "{foreign(1e15)}: foreign: 1e+15 is not a 7-bit address");
+  EXPECT_EQ(expand("{foreign(0x12)}", p).text, "18");
+  EXPECT_EQ(expand("{first_empty_upto(presets, 1e20)}", p).text, "6");
+  EXPECT_EQ(expand("{first_filled_upto(presets, -1e20)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{jog_start(E, F, 1e20)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{move_target(az, 0, 1e20)}", p).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{bitxor(1e20, 1)}", p).text, "{bitxor(1e20, 1)}: bitxor: 1e+20 is out of range 0 to 4294967295");
+  EXPECT_EQ(expand("{bitand(-1, 1)}", p).text, "{bitand(-1, 1)}: bitand: -1 is out of range 0 to 4294967295");
+  EXPECT_EQ(expand("{bitxor(0x32, 0x20)}", p).text, "18");
+  EXPECT_EQ(expand("{frame_with_check(300)}", p).text, "{frame_with_check(300)}: frame_with_check: 300 is out of range 0 to 127 (a 7-bit check byte)");
+  EXPECT_EQ(format_number(1e20), "1e+20");
+  EXPECT_EQ(format_number(-1e15), "-1e+15");
+  EXPECT_EQ(format_number(999999999999999.0), "999999999999999");
+}
+
+TEST(Expressions, ACountIsWholeAndInRange) {
+  EXPECT_EQ(count_in(12.9, 1, 20).value, 12);
+  EXPECT_EQ(count_in(12.9, 1, 20).error, std::nullopt);
+  EXPECT_EQ(count_in(20, 1, 20).value, 20);
+  EXPECT_EQ(count_in(21, 1, 20).error, "21 is out of range 1 to 20");
+  EXPECT_EQ(count_in(0.5, 1, 20).error, "0.5 is out of range 1 to 20");
+  EXPECT_EQ(count_in(1e19, 0, 3600000).error, "1e+19 is out of range 0 to 3600000");
+  EXPECT_TRUE(count_in(std::numeric_limits<double>::quiet_NaN(), 0, 1).error.has_value());
+  EXPECT_TRUE(count_in(-std::numeric_limits<double>::infinity(), 0, 1).error.has_value());
 }
 
 TEST(Expressions, AMissingCapabilityIsUnavailableWithItsReason) {

@@ -55,6 +55,16 @@ struct Number {
 };
 Number expand_number(std::string_view text, const ExprContext& cx);
 
+// A number a step uses as a count (milliseconds, a slot index, an address
+// byte), its fraction dropped: `value` when it is finite and within lo..hi,
+// else `error` says why. An expression can give any number, and converting a
+// double outside an integer's range is undefined behaviour.
+struct Count {
+  long long value = 0;
+  std::optional<std::string> error;
+};
+Count count_in(double value, long long lo, long long hi);
+
 // Load-time check of a text with placeholders: the syntax, the functions and
 // their argument counts, and the captures it reads, each of which must be in
 // `captured` (values captured by earlier steps). The error, or nullopt.

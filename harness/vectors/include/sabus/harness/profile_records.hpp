@@ -20,6 +20,9 @@ namespace sabus::harness {
 // word "navigation".
 bool takes_profile_record(std::uint8_t command_code);
 bool record_is_indexed(std::uint8_t command_code);
+// The highest slot index `from_profile` may name: the last of the longest
+// lists, presets and signposts (01-20, §3.10, §3.20).
+inline constexpr long long kMaxRecordIndex = 20;
 
 struct RecordRequest {
   std::optional<Request> request;

@@ -120,6 +120,10 @@ struct Expectation {
 // The reply kinds as vector files spell them: ack, nak, offline, silence, any.
 std::string_view to_string(Expectation::Kind kind);
 
+// The longest wait, poll timeout or jog a step may name, in milliseconds: a
+// 360 degree move at 0.25 deg/s takes 24 minutes.
+inline constexpr long long kMaxMs = 3'600'000;
+
 struct Step {
   enum class Kind : std::uint8_t { kSend, kPoll, kWait };
   Kind kind = Kind::kSend;
