@@ -48,6 +48,10 @@ constexpr double kPositionMin = -180.0, kPositionMax = 360.0;
 constexpr double kMinAxisSpan = 10.0;
 constexpr double kMaxSpeed = 1000.0;      // deg/s
 constexpr double kMaxAccel = 10000.0;     // deg/s^2
+// Slower is no mount's; and the times derived from a speed or a ramp (a
+// full-range move at the slow speed, motion::longest_move) must stay finite
+// and fit in milliseconds.
+constexpr double kMinSpeed = 0.001, kMinAccel = 0.001;
 // How close an auto move stops to its target, the display's 0.1 deg included.
 constexpr double kToleranceMin = 0.1, kToleranceMax = 5.0;
 constexpr std::size_t kDisplayRows = 4, kDisplayColumns = 40;  // §3.8 the 4x40 LCD
@@ -62,9 +66,11 @@ double to_number_in(const YAML::Node& v, const At& at, double lo, double hi) {
   return d;
 }
 
-double to_positive(const YAML::Node& v, const At& at, double hi) {
+// Greater than 0, and at least `least` when that is given.
+double to_positive(const YAML::Node& v, const At& at, double hi, double least = 0) {
   double d = to_number(v, at);
   if (d <= 0) fail(at, "must be greater than 0, got " + number_text(d));
+  if (d < least) fail(at, "must be at least " + number_text(least) + ", got " + number_text(d));
   if (d > hi) fail(at, number_text(d) + " is out of range: at most " + number_text(hi));
   return d;
 }
@@ -216,7 +222,7 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::option
               {"fast_dps", "slow_dps", "min_deg", "max_deg", "initial_deg", "has_stow_limit", "stow_deg", "tolerance_deg",
                "accel_dps2", "power_on_speed", "ad_error"});
   auto position = [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kPositionMin, kPositionMax); };
-  auto speed = [](const YAML::Node& n, const At& a) { return to_positive(n, a, kMaxSpeed); };
+  auto speed = [](const YAML::Node& n, const At& a) { return to_positive(n, a, kMaxSpeed, kMinSpeed); };
   r.read("fast_dps", axis.fast_dps, speed);
   r.read("slow_dps", axis.slow_dps, speed);
   r.read("min_deg", axis.min_deg, position);
@@ -228,7 +234,7 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::option
          [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kToleranceMin, kToleranceMax); });
   r.read("accel_dps2", axis.accel_dps2, [](const YAML::Node& n, const At& a) -> std::optional<double> {
     if (n.IsNull()) return std::nullopt;  // none: the axis reaches its speed at once
-    return to_positive(n, a, kMaxAccel);
+    return to_positive(n, a, kMaxAccel, kMinAccel);
   });
   r.read("power_on_speed", axis.power_on_speed, [](const YAML::Node& n, const At& a) { return to_choice(n, a, kAxisSpeeds); });
   r.read("ad_error", axis.ad_error, to_bool);

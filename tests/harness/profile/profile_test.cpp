@@ -300,6 +300,12 @@ TEST(profile, ErrorAxisRules) {
   expect_error("axes:\n  az: {tolerance_deg: 5.5}\n", 2, 8, "axes.az.tolerance_deg", "out of range 0.1 to 5");
   expect_error("axes:\n  az: {accel_dps2: 0}\n", 2, 8, "axes.az.accel_dps2", "greater than 0");
   expect_error("axes:\n  az: {accel_dps2: -3}\n", 2, 8, "axes.az.accel_dps2", "greater than 0");
+  // Slower than any mount: a full-range move would take longer than a
+  // millisecond count holds.
+  expect_error("axes:\n  az: {accel_dps2: 1e-300}\n", 2, 8, "axes.az.accel_dps2", "must be at least 0.001, got 1e-300");
+  expect_error("axes:\n  el: {slow_dps: 0.0009}\n", 2, 8, "axes.el.slow_dps", "must be at least 0.001, got 9e-04");
+  expect_error("axes:\n  pol: {fast_dps: 1e-300, slow_dps: 1e-300}\n", 2, 9, "axes.pol.fast_dps", "must be at least 0.001");
+  EXPECT_EQ(load_ok("axes:\n  el: {fast_dps: 0.001, slow_dps: 0.001, accel_dps2: 0.001}\n").el.slow_dps, 0.001);
   expect_error("axes:\n  az: {power_on_speed: medium}\n", 2, 8, "axes.az.power_on_speed", "not one of fast, slow");
   expect_error("axes:\n  az: {ad_error: 1}\n", 2, 8, "axes.az.ad_error", "true or false");
   // §3.2: positions show -180.0 to 180.0; a fluxgate azimuth 0.0 to 359.9.
