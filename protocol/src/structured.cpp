@@ -1,6 +1,7 @@
 #include "sabus/protocol/structured.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <set>
@@ -153,6 +154,23 @@ ParseError parse(const Opaque&, std::string_view s, std::string& v) {
   return std::nullopt;
 }
 
+// A number the field's wire format can carry: its codec writes it and reads
+// back the same value. The codecs write a fixed width and drop what does not
+// fit (azimuth "-1000" in 2A's five characters went out as "-0000", which
+// reads as 0). A value out of the spec's range but within the width (azimuth
+// 999.0) is still sent: vectors do that on purpose.
+template <class C>
+bool carried(const C& c, const typename C::value_type& v) {
+  std::array<std::uint8_t, 32> wire{};
+  if (c.width > wire.size()) return false;
+  c.encode(v, Out(wire.data(), c.width));
+  typename C::value_type back{};
+  return !c.decode(ByteView(wire.data(), c.width), back) && back == v;
+}
+template <class C>
+constexpr bool kNumeric = std::is_same_v<C, SignedDigits> || std::is_same_v<C, ZeroPaddedDecimal> ||
+                          std::is_same_v<C, LeftDecimal>;
+
 // Assigns named values to a layout's members.
 struct Assign {
   const std::map<std::string, std::string>& values;
@@ -163,7 +181,13 @@ struct Assign {
     auto it = values.find(std::string(name));
     if (it == values.end() || error) return;
     used.insert(it->first);
-    if (auto e = parse(c, it->second, member)) error = "field \"" + it->first + "\": expected " + *e + ", got \"" + it->second + "\"";
+    if (auto e = parse(c, it->second, member)) {
+      error = "field \"" + it->first + "\": expected " + *e + ", got \"" + it->second + "\"";
+    } else if constexpr (kNumeric<C>) {
+      if (!carried(c, member))
+        error = "field \"" + it->first + "\": \"" + it->second + "\" does not fit its " + std::to_string(c.width) +
+                " characters on the wire";
+    }
   }
 };
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
@@ -74,6 +75,29 @@ TEST(BuildRequest, NumbersOutOfRangeOrWithTwoSignsAreErrors) {
   EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2C", {{"axis", "A"}, {"target", "+5"}})), "A000500    ");
   EXPECT_FALSE(build_request(cmd("jog"), "E", {{"duration", "--5"}}).ok());
   EXPECT_FALSE(build_request(cmd("misc"), "K", {{"parameter", "0x-3A"}}).ok());
+}
+
+// A number the field's characters cannot carry is an error, not a value with
+// its high digits dropped; out of the spec's range but within the width is
+// sent (vectors do so on purpose).
+TEST(BuildRequest, NumbersWiderThanTheirFieldAreErrors) {
+  for (const auto& [command, form, field, value] : std::vector<std::array<std::string, 4>>{
+           {"auto_move", "2A", "azimuth", "-1000"},             // went out as -0000
+           {"auto_move", "2A", "azimuth", "12345.6"},           // went out as 2345.6
+           {"write_navigation", "", "latitude", "-10000"},
+           {"write_navigation", "", "latitude", "123456"},
+           {"write_satellite", "", "longitude", "-12345.6"},
+           {"write_navigation", "", "true heading", "12345.6"}}) {
+    std::map<std::string, std::string> fields{{field, value}};
+    if (command == "write_satellite") fields["index"] = "1";
+    auto r = build_request(cmd(command), form, fields);
+    ASSERT_FALSE(r.ok()) << command << " " << field << " " << value;
+    EXPECT_NE(r.error().message().find("does not fit its"), std::string::npos) << r.error().message();
+    EXPECT_NE(r.error().message().find(field), std::string::npos) << r.error().message();
+  }
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2A", {{"azimuth", "-999.9"}, {"elevation", "99.9"}})),
+            " -999900999");
+  EXPECT_EQ(data_of(build_request(cmd("auto_move"), "2A", {{"azimuth", "999.0"}, {"elevation", "0"}})), " 0999000000");
 }
 
 TEST(FieldNames, RequestsAndReplies) {
