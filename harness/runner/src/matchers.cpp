@@ -142,6 +142,12 @@ ResolvedMatcher resolve_near(FieldMatcher m, const ExprContext& cx) {
   return {Expansion::Kind::kValue, m, {}};
 }
 
+// A heading and a position of the axis's range (both within -180..360, the
+// profile's positions) are at most one turn apart; a number a vector writes
+// can be any, and subtracting 360 from 1e300 changes nothing: a loop of
+// turns until it fits would never end.
+constexpr int kTurnsAtMost = 2;
+
 // jogged: where the jog can leave the axis (motion::jog_end).
 ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
   const auto dir = motion::jog_direction(m.jog);
@@ -153,9 +159,9 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
   // A fluxgate heading (0.0-359.9, §3.2 NOTE) read where the axis's range
   // says -180 to 180: the same position, a turn away.
   double start = from.value;
-  if (m.angular) {
-    while (start > a.max_deg + 1e-9 && start - 360.0 >= a.min_deg - 1e-9) start -= 360.0;
-    while (start < a.min_deg - 1e-9 && start + 360.0 <= a.max_deg + 1e-9) start += 360.0;
+  for (int turn = 0; m.angular && turn < kTurnsAtMost; ++turn) {
+    if (start > a.max_deg + 1e-9 && start - 360.0 >= a.min_deg - 1e-9) start -= 360.0;
+    else if (start < a.min_deg - 1e-9 && start + 360.0 <= a.max_deg + 1e-9) start += 360.0;
   }
   const Count jog_ms = count_in(ms.value, 0, kMaxMs);
   if (jog_ms.error) return problem(Expansion::Kind::kError, m, "jogged: ms " + *jog_ms.error);
@@ -186,7 +192,7 @@ ResolvedMatcher resolve_matcher(const FieldMatcher& in, const ExprContext& cx) {
         m.high = high.value;
         // A heading (0.0-359.9) beside a bound of the axis's range (-180 to
         // 180): the same window, the low end a turn down.
-        while (m.angular && m.low > m.high + 1e-9) m.low -= 360.0;
+        for (int turn = 0; m.angular && turn < kTurnsAtMost && m.low > m.high + 1e-9; ++turn) m.low -= 360.0;
       }
       return {Expansion::Kind::kValue, m, {}};
     case FieldMatcher::Kind::kRegex:  // a pattern is never a template: its braces are quantifiers

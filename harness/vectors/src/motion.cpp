@@ -140,6 +140,7 @@ Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string
 std::chrono::milliseconds longest_move(const AxisProfile& a, double distance) {
   double ms = std::abs(distance) / a.slow_dps * 1000;
   if (a.accel_dps2) ms += 2 * a.fast_dps / *a.accel_dps2 * 1000;
+  if (!(ms < static_cast<double>(kLongestMoveMs))) return std::chrono::milliseconds(kLongestMoveMs);
   return std::chrono::milliseconds(static_cast<std::int64_t>(std::ceil(ms)));
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "sabus/harness/controller.hpp"
+#include "sabus/harness/motion.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
@@ -371,6 +372,23 @@ TEST(Matchers, JoggedIsWhereTheJogCanEndAndAHeadingIsModulo360) {
   const auto d = describe_frame(encode_reply(reply, '2', 0x31).value());
   Captures c;
   EXPECT_FALSE(check_field(d, resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kNear, {"0"}), ExprContext{p}).matcher, c));
+}
+
+// A heading's turn is taken at most twice: from 1e300 a loop of turns never
+// ended (1e300 - 360 is 1e300), and a poll's derived timeout is at most an hour.
+TEST(Matchers, HugeNumbersOnAFluxgateAxisResolveAndTimeOutInAnHour) {
+  Profile p;
+  p.az_sensor = AzSensor::kFluxgate;
+  FieldMatcher jogged = matcher("azimuth", FieldMatcher::Kind::kJogged, {"1e300", "1000"});
+  jogged.jog = 'W';
+  jogged.speed = 'F';
+  EXPECT_EQ(resolve_matcher(jogged, ExprContext{p}).kind, Expansion::Kind::kValue);
+  const ResolvedMatcher range = resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kRange, {"1e300", "0"}), ExprContext{p});
+  EXPECT_EQ(range.kind, Expansion::Kind::kValue);
+  EXPECT_GT(range.matcher.low, range.matcher.high) << "left as written: no position is in it";
+  EXPECT_EQ(motion::longest_move(p.az, 1e20), std::chrono::milliseconds(motion::kLongestMoveMs));
+  EXPECT_EQ(motion::longest_move(p.az, -1e300), std::chrono::milliseconds(motion::kLongestMoveMs));
+  EXPECT_LT(motion::longest_move(p.az, 360), std::chrono::milliseconds(motion::kLongestMoveMs));
 }
 
 TEST(Runner, AMissingCapabilityIsASkipThatNamesIt) {

@@ -88,7 +88,9 @@ Maybe<double> jog_start(const AxisProfile& a, int sign, char speed, int ms, std:
 Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string_view axis_name);
 
 // The longest an auto move of `distance` degrees can take: at slow speed
-// (a controller may approach at slow speed), with both ramps.
+// (a controller may approach at slow speed), with both ramps. At most
+// kLongestMoveMs: a distance from a vector's matcher can be any number.
+inline constexpr std::int64_t kLongestMoveMs = 3'600'000;
 std::chrono::milliseconds longest_move(const AxisProfile& a, double distance);
 
 }  // namespace sabus::harness::motion
