@@ -1066,6 +1066,50 @@ TEST(StateFile, ARestartedControllerKeepsItsStoredData) {
   EXPECT_FALSE(error.empty());
 }
 
+// A state file a person edited: each bad value is an error naming its key, and
+// the controller keeps the state it had (no half-read file, no cast of 1e300).
+TEST(StateFile, ABadValueNamesItsKeyAndChangesNothing) {
+  Rig first;
+  WriteSatellite w;
+  w.index = 3;
+  w.sat = {"AMC 21", 1250, 3, '1', '1', 125};
+  ASSERT_FALSE(is_nak(first.send(w)));
+  const std::string saved = save_state({&first.c});
+  // Edits the first `from` of the file, or with in_preset the one in preset
+  // 3's record (its keys sort around the name: data before index).
+  auto edited = [&](const std::string& from, const std::string& to, bool in_preset) {
+    std::string text = saved;
+    const auto name = text.find("\"AMC 21\"");
+    const auto before = text.rfind(from, name), after = text.find(from, name);
+    const auto at = !in_preset ? text.find(from) : before != std::string::npos && before > text.rfind("\"data\"", name) ? before : after;
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+  };
+  const struct {
+    std::string from, to;
+    bool in_preset;
+    std::string error;
+  } cases[] = {
+      {"\"index\": 3", "\"index\": 1e300", true, "presets.index: expected a whole number 1 to 20, got 1e+300"},
+      {"\"index\": 3", "\"index\": 300", true, "presets.index: expected a whole number 1 to 20, got 300"},
+      {"\"index\": 3", "\"index\": -1", true, "presets.index: expected a whole number 1 to 20, got -1"},
+      {"\"band\": \"1\"", "\"band\": \"\"", true, "presets 3.band: expected one character, got \"\""},
+      {"\"longitude\": 1250", "\"longitude\": 99999999", true,
+       "presets 3: not a record the Write Satellite Data command carries"},
+      {"\"longitude\": 1250", "\"longitude\": 5e9", true, "presets 3.longitude: expected a whole number"},
+      {"\"az\": ", "\"az\": 1e6, \"was\": ", false, "positions.az: 1000000.0 is outside the profile's range"},
+  };
+  for (const auto& c : cases) {
+    Rig other;
+    const std::string before = save_state({&other.c});
+    std::string error;
+    EXPECT_FALSE(load_state(edited(c.from, c.to, c.in_preset), {&other.c}, error)) << c.to;
+    EXPECT_NE(error.find("controller 50: " + c.error), std::string::npos) << error;
+    EXPECT_EQ(save_state({&other.c}), before) << c.to;
+  }
+}
+
 }  // namespace
 }  // namespace sabus::harness
 

@@ -101,9 +101,10 @@ class Controller {
   // when they hold, else what is broken.
   std::string check_invariants() const;
 
+  static constexpr std::size_t kMaxStored = 50;  // §3.6: the STORE list's capacity
+
  private:
   friend struct Handlers;
-  static constexpr std::size_t kMaxStored = 50;             // §3.6
   static constexpr std::size_t kExtendedStatus52DataBytes = 47;  // fault extended-status-52
 
   const AxisProfile& axis_profile(AxisId a) const;
