@@ -4,7 +4,10 @@
 
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -183,10 +186,22 @@ ordered_json header_json(const RunDocument& d) {
 
 namespace {
 
+// A run file may have been edited or written by another tool: a count is a
+// whole number within its type (json's get<> casts 1e300 or -1 as is, the
+// first undefined behaviour, the second a wrapped count).
 template <class T>
 T get(const json& j, const char* key, T fallback) {
   const auto it = j.find(key);
   if (it == j.end() || it->is_null()) return fallback;
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    const bool fits = it->is_number_unsigned()  ? std::in_range<T>(it->get<std::uint64_t>())
+                      : it->is_number_integer() ? std::in_range<T>(it->get<std::int64_t>())
+                                                : false;
+    if (!fits)
+      throw json::type_error::create(302, std::string(key) + ": expected a whole number " +
+                                              std::to_string(std::numeric_limits<T>::min()) + " to " +
+                                              std::to_string(std::numeric_limits<T>::max()) + ", got " + it->dump(), &*it);
+  }
   return it->get<T>();
 }
 

@@ -138,6 +138,26 @@ TEST(Json, ReadsVersion1AndRejectsOtherDocuments) {
   EXPECT_NE(error.find("vectors[0] (x)"), std::string::npos) << error;
 }
 
+// A count that is not a whole number of its type is an error naming the key,
+// not a cast (1e300) or a wrapped count (-1).
+TEST(Json, CountsAreWholeNumbersOfTheirType) {
+  const std::string head = R"({"schema":"sabus-run","schema_version":1,"status":"complete","vectors":[{"id":"x","paragraph":"1","level":"must","outcome":"pass",)";
+  for (const auto& [field, error_part] : std::vector<std::pair<std::string, std::string>>{
+           {R"("repeats":1e300)", "repeats: expected a whole number -2147483648 to 2147483647, got 1e+300"},
+           {R"("repeats":2.5)", "repeats: expected a whole number"},
+           {R"("transcript":[{"t_ms":1,"dir":"rx","hex":"06","fields":[{"first":-1,"last":0,"name":"n"}]}])",
+            "first: expected a whole number 0 to 18446744073709551615, got -1"}}) {
+    std::string error;
+    EXPECT_FALSE(from_json(nlohmann::json::parse(head + field + "}]}"), error)) << field;
+    EXPECT_NE(error.find("vectors[0] (x)"), std::string::npos) << error;
+    EXPECT_NE(error.find(error_part), std::string::npos) << error;
+  }
+  std::string error;
+  const auto ok = from_json(nlohmann::json::parse(head + R"("repeats":3})" + "]}"), error);
+  ASSERT_TRUE(ok) << error;
+  EXPECT_EQ(ok->vectors[0].repeats, 3);
+}
+
 TEST(Junit, OneSuitePerParagraphFailuresWithTranscriptSkipsWithReason) {
   RunDocument d = sample();
   d.vectors[1].transcript = {status_exchange(true, "02 32 31 03 02")};
