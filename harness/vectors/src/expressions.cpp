@@ -43,11 +43,18 @@ Result text(std::string t) { return {Kind::kValue, {false, 0, std::move(t)}, {}}
 Result error(std::string m) { return {Kind::kError, {}, std::move(m)}; }
 Result unavailable(std::string m) { return {Kind::kUnavailable, {}, std::move(m)}; }
 
-// A finite decimal number filling the text but for spaces around it (strtod
-// read "12abc" as 12, "1-2" as 1, and took "nan" and "inf").
+// A finite decimal number, or a byte's 0xNN (a one-byte field's text), filling
+// the text but for spaces around it (strtod read "12abc" as 12, "1-2" as 1,
+// and took "nan" and "inf").
 std::optional<double> parse_double(std::string_view s) {
   while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
   while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X') && s[2] != '-' && s[2] != '+') {
+    std::uint32_t h = 0;
+    const auto [end, ec] = std::from_chars(s.data() + 2, s.data() + s.size(), h, 16);
+    if (ec != std::errc{} || end != s.data() + s.size()) return std::nullopt;
+    return static_cast<double>(h);
+  }
   if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);  // from_chars takes no '+'
   double v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);

@@ -56,12 +56,15 @@ TEST(Expressions, ACaptureIsANumberOnlyWhenAllOfItIsOne) {
   const Profile p;
   const std::map<std::string, std::string> captures{
       {"$heading", "180.0T"}, {"$magnetic", " 90.5M"}, {"$prefix", "12abc"}, {"$nan", "nan"},
-      {"$inf", "inf"},        {"$letter", "T"},        {"$sum", "1-2"},      {"$plus", "+7"}};
+      {"$inf", "inf"},        {"$letter", "T"},        {"$sum", "1-2"},      {"$plus", "+7"},
+      {"$byte", "0x57"},      {"$hex_tail", "0x5g"}};
+  // A one-byte field's text is its 0xNN.
+  EXPECT_EQ(expand("{bitand($byte, 0x0f)}", p, &captures).text, "7");
   // A fluxgate heading keeps its reference letter (§3.2, E-12).
   EXPECT_EQ(expand("{$heading + 0.1}", p, &captures).text, "180.1");
   EXPECT_EQ(expand("{$magnetic}", p, &captures).text, "90.5");
   EXPECT_EQ(expand("{$plus + 1}", p, &captures).text, "8");
-  for (const std::string name : {"$prefix", "$nan", "$inf", "$letter", "$sum"}) {
+  for (const std::string name : {"$prefix", "$nan", "$inf", "$letter", "$sum", "$hex_tail"}) {
     EXPECT_EQ(expand(std::string(1, '{').append(name).append("}"), p, &captures).text, captures.at(name)) << name;
     EXPECT_EQ(expand(std::string(1, '{').append(name).append(" + 1}"), p, &captures).kind, Kind::kError) << name;
   }
