@@ -1043,11 +1043,17 @@ TEST(Controller, InvariantsSeeANameTwiceAnywhereInTheStoreList) {
 namespace sabus::harness {
 namespace {
 
-TEST(StateFile, ARestartedControllerKeepsItsStoredData) {
-  Rig first;
+// A preset the tests store, then save.
+WriteSatellite preset_3() {
   WriteSatellite w;
   w.index = 3;
   w.sat = {"AMC 21", 1250, 3, '1', '1', 125};
+  return w;
+}
+
+TEST(StateFile, ARestartedControllerKeepsItsStoredData) {
+  Rig first;
+  const WriteSatellite w = preset_3();
   ASSERT_FALSE(is_nak(first.send(w)));
   first.send(WriteNavigation{1234, -7530, 1234, ""});  // deletes the STORE list
   first.send(Jog{{'W', 'F', 1000}});
@@ -1070,10 +1076,7 @@ TEST(StateFile, ARestartedControllerKeepsItsStoredData) {
 // the controller keeps the state it had (no half-read file, no cast of 1e300).
 TEST(StateFile, ABadValueNamesItsKeyAndChangesNothing) {
   Rig first;
-  WriteSatellite w;
-  w.index = 3;
-  w.sat = {"AMC 21", 1250, 3, '1', '1', 125};
-  ASSERT_FALSE(is_nak(first.send(w)));
+  ASSERT_FALSE(is_nak(first.send(preset_3())));
   const std::string saved = save_state({&first.c});
   // Edits the first `from` of the file, or with in_preset the one in preset
   // 3's record (its keys sort around the name: data before index).
