@@ -156,8 +156,8 @@ ParseError parse(const Opaque&, std::string_view s, std::string& v) {
 
 // A number the field's wire format can carry: its codec writes it and reads
 // back the same value. The codecs write a fixed width and drop what does not
-// fit (azimuth "-1000" in 2A's five characters went out as "-0000", which
-// reads as 0). A value out of the spec's range but within the width (azimuth
+// fit (azimuth "-1000" in 2A's six characters, in hundredths, went out as
+// "-00000", which reads as 0). A value out of the spec's range but within the width (azimuth
 // 999.0) is still sent: vectors do that on purpose.
 template <class C>
 bool carried(const C& c, const typename C::value_type& v) {

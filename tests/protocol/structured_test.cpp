@@ -82,7 +82,7 @@ TEST(BuildRequest, NumbersOutOfRangeOrWithTwoSignsAreErrors) {
 // sent (vectors do so on purpose).
 TEST(BuildRequest, NumbersWiderThanTheirFieldAreErrors) {
   for (const auto& [command, form, field, value] : std::vector<std::array<std::string, 4>>{
-           {"auto_move", "2A", "azimuth", "-1000"},             // went out as -0000
+           {"auto_move", "2A", "azimuth", "-1000"},             // went out as -00000
            {"auto_move", "2A", "azimuth", "12345.6"},           // went out as 2345.6
            {"write_navigation", "", "latitude", "-10000"},
            {"write_navigation", "", "latitude", "123456"},
