@@ -247,7 +247,8 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::option
   range_at = range;
   if (axis.min_deg >= axis.max_deg)
     fail(range, "min_deg " + number_text(axis.min_deg) + " must be below max_deg " + number_text(axis.max_deg));
-  if (axis.max_deg - axis.min_deg < kMinAxisSpan)
+  // 1e-9: -61.6 - -71.6 is 9.999999999999993 in doubles, a span of 10.
+  if (axis.max_deg - axis.min_deg < kMinAxisSpan - 1e-9)
     fail(range, "min_deg " + number_text(axis.min_deg) + " to max_deg " + number_text(axis.max_deg) + " spans less than " +
                     number_text(kMinAxisSpan) + " degrees (a real mount's axis)");
   auto inside = [&](double d) { return d >= axis.min_deg && d <= axis.max_deg; };

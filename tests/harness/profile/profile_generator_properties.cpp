@@ -37,7 +37,7 @@ void check_axis(const AxisProfile& a) {
   RC_ASSERT(a.fast_dps <= 50.0);
   RC_ASSERT(a.slow_dps >= 0.1);
   RC_ASSERT(a.slow_dps <= a.fast_dps);
-  RC_ASSERT(a.max_deg - a.min_deg >= 10.0);
+  RC_ASSERT(a.max_deg - a.min_deg >= 10.0 - 1e-9);  // as the loader compares: -61.6 - -71.6 is 9.999999999999993
   RC_ASSERT(a.tolerance_deg >= 0.1);
   RC_ASSERT(a.tolerance_deg <= 5.0);
   if (a.accel_dps2) {

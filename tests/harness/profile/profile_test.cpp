@@ -294,6 +294,8 @@ TEST(profile, ErrorAxisRules) {
   // fast_dps lowered below the default slow speed: the error names fast_dps.
   expect_error("axes:\n  pol: {fast_dps: 0.5}\n", 2, 9, "axes.pol.fast_dps", "slow_dps 1 is above fast_dps 0.5");
   expect_error("axes:\n  pol: {min_deg: 0, max_deg: 9.9}\n", 2, 21, "axes.pol.max_deg", "spans less than 10 degrees");
+  // Exactly 10 degrees, though -61.6 - -71.6 is 9.999999999999993 in doubles.
+  EXPECT_EQ(load_ok("axes:\n  el: {min_deg: -71.6, max_deg: -61.6, initial_deg: -65, stow_deg: -70}\n").el.min_deg, -71.6);
   expect_error("axes:\n  el: {min_deg: 40, max_deg: 49.9}\n", 2, 21, "axes.el.max_deg", "40 to max_deg 49.9 spans");
   load_ok("axes:\n  el: {min_deg: 40, max_deg: 50, stow_deg: 40}\n");
   expect_error("axes:\n  az: {tolerance_deg: 0.05}\n", 2, 8, "axes.az.tolerance_deg", "out of range 0.1 to 5");
