@@ -5,7 +5,8 @@
 #                       source tree's layout: vectors/ (the suite, profiles/,
 #                       examples/, regression/; their READMEs are the vector
 #                       and profile schemas), protocol/ERRATA.md (read by the
-#                       linter), reports/junit.xsd and reports/SCHEMA.md
+#                       linter), reports/junit.xsd, reports/SCHEMA.md and
+#                       reports/run.schema.json
 #   share/doc/sabus/    README.md, PROXY-LOG.md
 #   lib/libsabus_protocol.a, include/sabus/protocol/, lib/cmake/sabus/
 #                       the protocol library for find_package(sabus),
@@ -19,7 +20,7 @@ endif()
 set(SABUS_INSTALL_DATADIR ${CMAKE_INSTALL_DATADIR}/sabus)
 install(DIRECTORY vectors DESTINATION ${SABUS_INSTALL_DATADIR})
 install(FILES protocol/ERRATA.md DESTINATION ${SABUS_INSTALL_DATADIR}/protocol)
-install(FILES reports/junit.xsd reports/SCHEMA.md DESTINATION ${SABUS_INSTALL_DATADIR}/reports)
+install(FILES reports/junit.xsd reports/SCHEMA.md reports/run.schema.json DESTINATION ${SABUS_INSTALL_DATADIR}/reports)
 install(FILES README.md tools/PROXY-LOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 # The protocol library as a CMake package.

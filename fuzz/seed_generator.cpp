@@ -23,7 +23,11 @@
 #include <string>
 
 #include "fuzz_support.hpp"
+#include "record_support.hpp"
 #include "vector_tree.hpp"
+#include "sabus/harness/faults.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/reports/writers.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -246,6 +250,52 @@ std::string read_text(const fs::path& p) {
 
 }  // namespace
 
+// What the reference controller answers to each command of fuzz_record's
+// run, recorded as that target's script: the replies a transport passes on.
+class RecordingTransport final : public harness::Transport {
+ public:
+  explicit RecordingTransport(harness::Transport& device) : device_(device) {}
+  void send(sabus::ByteView chars, std::span<const std::size_t> wrong_parity) override {
+    device_.send(chars, wrong_parity);
+    script.replies.emplace_back();
+  }
+  std::size_t receive(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
+    const std::size_t n = device_.receive(buf, timeout);
+    if (!script.replies.empty()) script.replies.back().insert(script.replies.back().end(), buf.begin(), buf.begin() + n);
+    return n;
+  }
+  void pause(std::chrono::milliseconds d) override { device_.pause(d); }
+  harness::TimePoint now() const override { return device_.now(); }
+  bool in_process() const override { return true; }
+  bool can_send_parity_errors() const override { return true; }
+  int baud() const override { return 0; }
+  std::string describe() const override { return device_.describe(); }
+  sabus::fuzz::record::Script script;
+
+ private:
+  harness::Transport& device_;
+};
+
+// fuzz_record: the replies of the reference controller, clean and with each
+// of its faults, to the target's run (the same options as the target's).
+std::size_t record_seeds(const fs::path& dir) {
+  namespace record = sabus::fuzz::record;
+  std::vector<std::pair<std::string, harness::FaultSet>> devices = {{"clean", {}}};
+  for (const auto& f : harness::all_faults()) {
+    harness::FaultSet set;
+    set.set(f.fault);
+    devices.push_back({std::string(f.name), set});
+  }
+  for (const auto& [name, faults] : devices) {
+    auto device = harness::make_in_process_transport(harness::bus_of(record::profile()), faults);
+    RecordingTransport recording(*device);
+    (void)sabus::reports::query_identity(recording, record::profile().address);
+    harness::Runner(recording, record::profile(), record::run_options()).run(record::vectors());
+    write(dir, "fault-" + file_name(name), record::script_input(recording.script));
+  }
+  return devices.size();
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: fuzz_seed_generator OUTDIR VECTORS_DIR\n");
@@ -306,18 +356,19 @@ int main(int argc, char** argv) {
     write(out / "fuzz_profile_loader", file_name(sabus::fuzz::kEmbeddedProfiles[i].name), Bytes(text.begin(), text.end()));
     yaml_keys(text, keys);
   }
+  const std::size_t records = record_seeds(out / "fuzz_record");
   // The differential target needs at least one seed even with no vectors.
   write(out / "fuzz_differential", "status-poll", {0, 1, 0});
 
   const auto tokens = sabus::fuzz::dictionary_tokens();
-  for (const char* t : {"fuzz_receiver", "fuzz_controller", "fuzz_reply_decoders", "fuzz_differential"})
+  for (const char* t : {"fuzz_receiver", "fuzz_controller", "fuzz_reply_decoders", "fuzz_differential", "fuzz_record"})
     write_dict(out / (std::string(t) + ".dict"), tokens);
   const auto yaml = key_tokens(keys, "YAML syntax", {"- ", "{", "}", "[", "]", "\"", "'", "&a", "*a", "!!str", "---", "|", ">", "#", "0x"});
   write_dict(out / "fuzz_vector_loader.dict", yaml);
   write_dict(out / "fuzz_profile_loader.dict", yaml);
   write_dict(out / "fuzz_vector_schema.dict",
              key_tokens(keys, "tree text", {"{", "}", "[", "]", ": ", ", ", "\"", "'", "~", "*0", "*1", "any", "true", "{addr}", "{lrc}"}));
-  std::printf("seed corpora written to %s: %zu vectors, %zu vector replies, %zu files skipped\n", out.c_str(), vectors,
-              replies, loaded.errors.size());
+  std::printf("seed corpora written to %s: %zu vectors, %zu vector replies, %zu recorded runs, %zu files skipped\n",
+              out.c_str(), vectors, replies, records, loaded.errors.size());
   return 0;
 }

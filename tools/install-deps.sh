@@ -13,7 +13,12 @@ packages=(
   libyaml-cpp-dev                       # vectors and device profiles
   libcli11-dev                          # command-line parsing of the sabus CLI
   libfmt-dev                            # formatting
-  nlohmann-json3-dev                    # JSON output
+  nlohmann-json3-dev                    # JSON: reading run files, profiles' state files, the proxy log
+  rapidjson-dev                         # JSON: the run JSON and journal writer (streaming) and strict reader
+  libvalijson-dev                       # JSON Schema: the run JSON and journal checked against reports/run.schema.json
+  libxml2-dev                           # JUnit: checked against reports/junit.xsd in-process (tests, gate, fuzz_record)
+  libgumbo-dev                          # HTML5 parser: the HTML report parsed in the tests and fuzz_record
+  libcmark-gfm-dev libcmark-gfm-extensions-dev  # GitHub Markdown parser: summary.md parsed in the tests and fuzz_record
   socat                                 # pty pairs for integration tests
   libxml2-utils                         # xmllint: the JUnit report validates against reports/junit.xsd
   dpkg-dev file                         # cpack -G DEB: dpkg-shlibdeps computes the package's Depends

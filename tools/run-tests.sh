@@ -37,7 +37,7 @@ run_ctest() {
 
 run_ctest "release build" --test-dir build
 # The vector suite's gates (ctest -L gate): their figures, from ctest's log.
-grep -hE "^(mutation score:|suite gates:|[0-9]+ of [0-9]+ cells covered)" build/Testing/Temporary/LastTest.log || true
+grep -hE "^(mutation score:|records:|suite gates:|[0-9]+ of [0-9]+ cells covered)" build/Testing/Temporary/LastTest.log || true
 # The Debian package, unpacked into a fresh prefix and run from there (ctest
 # -L install, tests/install/package_test.sh): its size, files, Depends, and
 # what its sabus printed.

@@ -1,6 +1,8 @@
 // Comparing two runs by vector id.
 #include "sabus/reports/diff.hpp"
 
+#include "sabus/reports/writers.hpp"
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -86,8 +88,8 @@ std::vector<std::string> comparability_warnings(const RunDocument& o, const RunD
   for (const auto& [k, v] : n.options.items()) keys.insert(k);
   for (const auto& k : keys) {
     const auto a = o.options.find(k), b = n.options.find(k);
-    const std::string av = a == o.options.end() ? "(not recorded)" : a->dump();
-    const std::string bv = b == n.options.end() ? "(not recorded)" : b->dump();
+    const std::string av = a == o.options.end() ? "(not recorded)" : json_value_text(*a);
+    const std::string bv = b == n.options.end() ? "(not recorded)" : json_value_text(*b);
     if (av != bv) w.push_back(fmt::format("option {}: {} -> {}", k, av, bv));
   }
   if (o.profile != n.profile) w.push_back("profile: " + o.profile + " -> " + n.profile);
@@ -190,19 +192,7 @@ std::string verdict_line(const RunDiff& d) {
                                      d.replies_changed.size(), d.timing_shifts.size());
 }
 
-std::string md(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '|') out += "\\|";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '`') out += '\'';
-    else if (c == '\n') out += ' ';
-    else out += c;
-  }
-  return out;
-}
+std::string md(std::string_view s) { return markdown_text(s); }
 
 }  // namespace
 
@@ -231,7 +221,7 @@ std::string diff_markdown(const RunDiff& d) {
     out += fmt::format("**{}{}** ({})\n\n| Vector | § | Level | Outcome | Detail |\n|---|---|---|---|---|\n",
                        s.regression ? "Regression: " : "", s.title, s.entries->size());
     for (const auto& e : *s.entries)
-      out += fmt::format("| `{}` | {} | {} | {} | {} |\n", md(e.id), md(e.paragraph), md(e.level), md(outcome_change(e)),
+      out += fmt::format("| `{}` | {} | {} | {} | {} |\n", markdown_code(e.id), md(e.paragraph), md(e.level), md(outcome_change(e)),
                          md(e.detail));
     out += "\n";
   }

@@ -158,9 +158,9 @@ std::string options_table(const RunDocument& d) {
     if (value.is_string()) {
       text = value.get<std::string>();
     } else if (value.is_array()) {
-      for (const auto& item : value) text += (text.empty() ? "" : ", ") + (item.is_string() ? item.get<std::string>() : item.dump());
+      for (const auto& item : value) text += (text.empty() ? "" : ", ") + (item.is_string() ? item.get<std::string>() : json_value_text(item));
     } else {
-      text = value.dump();
+      text = json_value_text(value);
     }
     out += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", e(name), text.empty() ? "<span class=\"none\">–</span>" : e(text));
   }

@@ -35,14 +35,14 @@ bool JournalWriter::open(const std::string& path, const RunDocument& header) {
     error_ = path + ": cannot write: " + std::strerror(errno);
     return false;
   }
-  return write_line({{"record", "header"}, {"run", header_json(header)}});
+  return write_text(journal_record_json("header", header));
 }
 
-bool JournalWriter::append(const VectorRecord& v) { return write_text(vector_json(v, &fields_)); }
+bool JournalWriter::append(const VectorRecord& v) { return write_text(vector_json(v)); }
 
 bool JournalWriter::close(const RunDocument& finished) {
   if (fd_ < 0) return false;
-  bool ok = write_line({{"record", "end"}, {"run", header_json(finished)}});
+  bool ok = write_text(journal_record_json("end", finished));
   if (ok && ::fsync(fd_) != 0) {
     error_ = path_ + ": fsync: " + std::strerror(errno);
     ok = false;
@@ -50,10 +50,6 @@ bool JournalWriter::close(const RunDocument& finished) {
   ::close(fd_);
   fd_ = -1;
   return ok;
-}
-
-bool JournalWriter::write_line(const ordered_json& record) {
-  return write_text(record.dump(-1, ' ', false, ordered_json::error_handler_t::replace));
 }
 
 bool JournalWriter::write_text(std::string line) {
@@ -73,6 +69,31 @@ bool JournalWriter::write_text(std::string line) {
     done += static_cast<std::size_t>(n);
   }
   return true;
+}
+
+// ---- in memory -------------------------------------------------------------------
+
+void MemoryRecord::start() {
+  if (doc.journal.empty()) doc.journal = "run.journal.jsonl";
+  journal = journal_record_json("header", doc) + "\n";
+}
+
+void MemoryRecord::add(const harness::VectorResult& r, std::optional<double> wall_ms) {
+  VectorRecord record = vector_record(r);
+  record.wall_ms = wall_ms;
+  journal += vector_json(record) + "\n";
+  compact_for_reports(record);
+  doc.vectors.push_back(std::move(record));
+}
+
+void MemoryRecord::end(const harness::RunResult& run, std::string finished_at) {
+  finish(doc, run, std::move(finished_at));
+  doc.journal.clear();
+  journal += journal_record_json("end", doc) + "\n";
+}
+
+std::function<void(const harness::VectorResult&)> MemoryRecord::on_result(std::optional<double> wall_ms) {
+  return [this, wall_ms](const harness::VectorResult& r) { add(r, wall_ms); };
 }
 
 // ---- reading ---------------------------------------------------------------------
@@ -101,6 +122,12 @@ std::optional<RunDocument> scan_journal(const std::string& path, const std::func
     error = path + ": cannot read";
     return std::nullopt;
   }
+  return scan_journal(in, path, on_vector, notes, error);
+}
+
+std::optional<RunDocument> scan_journal(std::istream& in, const std::string& path,
+                                        const std::function<void(const ordered_json&)>& on_vector, JournalNotes& notes,
+                                        std::string& error) {
   std::optional<RunDocument> header;
   std::size_t line_no = 0;
   auto fail = [&](const std::string& why) {
@@ -162,8 +189,17 @@ std::optional<RunDocument> scan_journal(const std::string& path, const std::func
 }
 
 std::optional<RunDocument> read_journal(const std::string& path, JournalNotes& notes, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = path + ": cannot read";
+    return std::nullopt;
+  }
+  return read_journal(in, path, notes, error);
+}
+
+std::optional<RunDocument> read_journal(std::istream& in, const std::string& name, JournalNotes& notes, std::string& error) {
   std::vector<VectorRecord> vectors;
-  auto doc = scan_journal(path, [&](const ordered_json& v) { vectors.push_back(vector_from_json(json(v))); }, notes, error);
+  auto doc = scan_journal(in, name, [&](const ordered_json& v) { vectors.push_back(vector_from_json(json(v))); }, notes, error);
   if (doc) {
     doc->vectors = std::move(vectors);
     doc->journal.clear();  // the document holds the vectors itself

@@ -1,12 +1,14 @@
-// The run JSON (reports/SCHEMA.md), written token by token: from a document
-// in memory, or from a run's journal line by line.
+// The run JSON (reports/SCHEMA.md) and its journal's records, written by
+// RapidJSON's Writer from a document in memory or from a run's journal line
+// by line; and writing report files safely.
+#include "json_out.hpp"  // first: RapidJSON's configuration
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <ext/stdio_filebuf.h>  // an ostream on the descriptor mkstemp opened (libstdc++, used with g++ and clang here)
 
-#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -22,192 +24,165 @@
 namespace sabus::reports {
 
 using nlohmann::ordered_json;
-
-// ---- JsonStreamWriter ----------------------------------------------------------
-
-// The serializer replaces a byte that is not UTF-8 with U+FFFD instead of
-// ending the write: strings from a device are 7-bit, but a damaged file may
-// hold anything.
-JsonStreamWriter::JsonStreamWriter(std::ostream& out, Layout layout)
-    : out_(out),
-      layout_(layout),
-      serializer_(nlohmann::detail::output_adapter<char>(buf_), ' ', ordered_json::error_handler_t::replace) {}
-
-JsonStreamWriter::~JsonStreamWriter() { flush(); }
-
-void JsonStreamWriter::flush() {
-  out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-  buf_.clear();
-}
-
-void JsonStreamWriter::flush_when_large() {
-  if (buf_.size() >= (1u << 16)) flush();
-}
-
-void JsonStreamWriter::newline(std::size_t depth) {
-  if (layout_ == Layout::kLines) buf_.append(1, '\n').append(2 * depth, ' ');
-}
-
-void JsonStreamWriter::before_value() {
-  if (stack_.empty()) {
-    if (started_) throw std::logic_error("JsonStreamWriter: a second top-level value");
-    started_ = true;
-    return;
-  }
-  Level& top = stack_.back();
-  if (top.object) {
-    if (!top.has_key) throw std::logic_error("JsonStreamWriter: a value in an object without its key");
-    top.has_key = false;  // the value follows its key on the same line
-    return;
-  }
-  if (!top.empty) buf_ += ',';
-  top.empty = false;
-  newline(stack_.size());
-}
-
-void JsonStreamWriter::begin_object() {
-  before_value();
-  buf_ += '{';
-  stack_.push_back({true});
-}
-
-void JsonStreamWriter::begin_array() {
-  before_value();
-  buf_ += '[';
-  stack_.push_back({false});
-}
-
-void JsonStreamWriter::key(std::string_view name) {
-  if (stack_.empty() || !stack_.back().object || stack_.back().has_key)
-    throw std::logic_error("JsonStreamWriter: a key outside an object");
-  Level& top = stack_.back();
-  if (!top.empty) buf_ += ',';
-  top.empty = false;
-  top.has_key = true;
-  newline(stack_.size());
-  // A name of letters, digits and '_' (every name of the schema) is its own
-  // JSON text between quotes; any other goes through the library.
-  const bool plain = std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  });
-  if (plain) buf_.append(1, '"').append(name).append(1, '"');
-  else serializer_.dump(ordered_json(name), false, false, 0);
-  buf_ += layout_ == Layout::kLines ? ": " : ":";
-}
-
-void JsonStreamWriter::value(const ordered_json& v) {
-  before_value();
-  serializer_.dump(v, false, false, 0);
-  flush_when_large();
-}
-
-void JsonStreamWriter::string_value(std::string_view s) {
-  string_.get_ref<std::string&>().assign(s);
-  value(string_);
-}
-
-void JsonStreamWriter::serialized_value(std::string_view json_text) {
-  before_value();
-  buf_ += json_text;
-  flush_when_large();
-}
-
-void JsonStreamWriter::end() {
-  if (stack_.empty() || stack_.back().has_key) throw std::logic_error("JsonStreamWriter: end without an open object or array");
-  const Level closed = stack_.back();
-  stack_.pop_back();
-  if (!closed.empty) newline(stack_.size());
-  buf_ += closed.object ? '}' : ']';
-  if (stack_.empty()) {
-    if (layout_ == Layout::kLines) buf_ += '\n';
-    flush();
-  }
-}
+using namespace json_out;
 
 // ---- a vector's JSON -------------------------------------------------------------
 
 namespace {
 
-void member(JsonStreamWriter& w, std::string_view key, const ordered_json& value) {
-  w.key(key);
-  w.value(value);
+template <class Writer>
+void put_key(Writer& w, std::string_view key) {
+  w.Key(key.data(), static_cast<rapidjson::SizeType>(key.size()));
 }
-// String members, in order.
-void members(JsonStreamWriter& w, std::initializer_list<std::pair<std::string_view, const std::string*>> list) {
-  for (const auto& [key, value] : list) {
-    w.key(key);
-    w.string_value(*value);
+
+template <class Writer>
+void put_string_member(Writer& w, std::string_view key, std::string_view value) {
+  put_key(w, key);
+  put_string(w, value);
+}
+
+// A frame's "fields": {first, last, name, raw, meaning, ok} each.
+template <class Writer>
+void put_fields(Writer& w, const std::vector<Field>& fields) {
+  w.StartArray();
+  for (const Field& x : fields) {
+    w.StartObject();
+    put_key(w, "first");
+    w.Uint64(x.first);
+    put_key(w, "last");
+    w.Uint64(x.last);
+    put_string_member(w, "name", x.name);
+    put_string_member(w, "raw", x.raw);
+    put_string_member(w, "meaning", x.meaning);
+    put_key(w, "ok");
+    w.Bool(x.ok);
+    w.EndObject();
   }
+  w.EndArray();
 }
 
-// A frame's "fields" array.
-void write_fields(JsonStreamWriter& w, const std::vector<Field>& fields) {
-  w.begin_array();
-  for (const auto& x : fields) {
-    w.begin_object();
-    member(w, "first", x.first);
-    member(w, "last", x.last);
-    members(w, {{"name", &x.name}, {"raw", &x.raw}, {"meaning", &x.meaning}});
-    member(w, "ok", x.ok);
-    w.end();
+template <class Writer>
+void put_frame(Writer& w, const FrameRecord& f) {
+  w.StartObject();
+  put_key(w, "t_ms");
+  put_number(w, f.t_ms);
+  put_string_member(w, "dir", f.dir);
+  put_string_member(w, "hex", f.hex);
+  put_string_member(w, "note", f.note);
+  put_string_member(w, "command", f.command);
+  put_key(w, "fields");
+  put_fields(w, f.fields);
+  if (f.dir == "tx") {
+    put_string_member(w, "form", f.form);
+    put_string_member(w, "expect", f.expect);
+    put_string_member(w, "path", f.path);
   }
-  w.end();
+  w.EndObject();
 }
 
-void write_frame(JsonStreamWriter& w, const FrameRecord& f, FieldsJsonCache* cache) {
-  w.begin_object();
-  member(w, "t_ms", f.t_ms);
-  members(w, {{"dir", &f.dir}, {"hex", &f.hex}, {"note", &f.note}, {"command", &f.command}});
-  w.key("fields");
-  if (cache) w.serialized_value(cache->text(f));
-  else write_fields(w, f.fields);
-  if (f.dir == "tx") members(w, {{"form", &f.form}, {"expect", &f.expect}, {"path", &f.path}});
-  w.end();
+// Members in the order of reports/SCHEMA.md.
+template <class Writer>
+void put_vector(Writer& w, const VectorRecord& v) {
+  w.StartObject();
+  put_string_member(w, "id", v.id);
+  put_string_member(w, "paragraph", v.paragraph);
+  put_string_member(w, "file", v.file);
+  put_string_member(w, "level", v.level);
+  put_string_member(w, "outcome", v.outcome);
+  put_key(w, "failures");
+  w.StartArray();
+  for (const auto& f : v.failures) put_string(w, f);
+  w.EndArray();
+  put_string_member(w, "skip_reason", v.skip_reason);
+  put_string_member(w, "skip_cause", v.skip_cause);
+  put_string_member(w, "known_issue", v.known_issue);
+  put_string_member(w, "quote", v.quote);
+  put_string_member(w, "comment", v.comment);
+  put_key(w, "duration_ms");
+  put_number(w, v.duration_ms);
+  if (v.wall_ms) {
+    put_key(w, "wall_ms");
+    put_number(w, *v.wall_ms);
+  }
+  put_key(w, "repeats");
+  w.Int(v.repeats);
+  put_key(w, "repeat_failures");
+  w.Int(v.repeat_failures);
+  put_key(w, "transcript");
+  w.StartArray();
+  for (const auto& f : v.transcript) put_frame(w, f);
+  w.EndArray();
+  w.EndObject();
 }
 
-void write_vector(JsonStreamWriter& w, const VectorRecord& v, FieldsJsonCache* cache) {
-  w.begin_object();
-  members(w, {{"id", &v.id}, {"paragraph", &v.paragraph}, {"file", &v.file}, {"level", &v.level}, {"outcome", &v.outcome}});
-  member(w, "failures", v.failures);
-  members(w, {{"skip_reason", &v.skip_reason},
-              {"skip_cause", &v.skip_cause},
-              {"known_issue", &v.known_issue},
-              {"quote", &v.quote},
-              {"comment", &v.comment}});
-  member(w, "duration_ms", v.duration_ms);
-  if (v.wall_ms) member(w, "wall_ms", *v.wall_ms);
-  member(w, "repeats", v.repeats);
-  member(w, "repeat_failures", v.repeat_failures);
-  w.key("transcript");
-  w.begin_array();
-  for (const auto& f : v.transcript) write_frame(w, f, cache);
-  w.end();
-  w.end();
+// The one-line JSON text of what `put` writes.
+template <class Put>
+std::string one_line(Put&& put) {
+  rapidjson::StringBuffer buffer;
+  LineWriter w(buffer);
+  put(w);
+  if (!w.IsComplete()) throw std::logic_error("a JSON text left unfinished");
+  return std::string(buffer.GetString(), buffer.GetSize());
 }
 
-// The text `write` writes with a one-line writer.
-template <class Write>
-std::string one_line(Write&& write) {
-  std::ostringstream out;
-  JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
-  write(w);  // its last end() writes the text out
-  return std::move(out).str();
-}
+// Passes a journal line's JSON on to a writer, event by event, noting
+// whether it is a record (its object has a "record" member) rather than a
+// vector. RapidJSON's Reader checks the line is JSON as it goes.
+template <class Writer>
+class RecordSniffer : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, RecordSniffer<Writer>> {
+ public:
+  explicit RecordSniffer(Writer& w) : w_(w) {}
+  bool Null() { return w_.Null(); }
+  bool Bool(bool b) { return w_.Bool(b); }
+  bool Int(int i) { return w_.Int(i); }
+  bool Uint(unsigned u) { return w_.Uint(u); }
+  bool Int64(std::int64_t i) { return w_.Int64(i); }
+  bool Uint64(std::uint64_t u) { return w_.Uint64(u); }
+  bool Double(double d) { return w_.Double(d); }
+  bool RawNumber(const char* s, rapidjson::SizeType n, bool copy) { return w_.RawNumber(s, n, copy); }
+  bool String(const char* s, rapidjson::SizeType n, bool copy) { return w_.String(s, n, copy); }
+  bool StartObject() {
+    ++depth_;
+    return w_.StartObject();
+  }
+  bool Key(const char* s, rapidjson::SizeType n, bool copy) {
+    if (depth_ == 1 && std::string_view(s, n) == "record") record_ = true;
+    return w_.Key(s, n, copy);
+  }
+  bool EndObject(rapidjson::SizeType n) {
+    --depth_;
+    return w_.EndObject(n);
+  }
+  bool StartArray() {
+    ++depth_;
+    return w_.StartArray();
+  }
+  bool EndArray(rapidjson::SizeType n) {
+    --depth_;
+    return w_.EndArray(n);
+  }
+  bool record() const { return record_; }
+
+ private:
+  Writer& w_;
+  int depth_ = 0;
+  bool record_ = false;
+};
 
 }  // namespace
 
-const std::string& FieldsJsonCache::text(const FrameRecord& f) {
-  Slot& slot = slots_[std::hash<std::string>{}(f.hex) % slots_.size()];
-  if (slot.hex != f.hex || slot.fields != f.fields) {
-    slot.hex = f.hex;
-    slot.fields = f.fields;
-    slot.text = one_line([&](JsonStreamWriter& w) { write_fields(w, f.fields); });
-  }
-  return slot.text;
+std::string vector_json(const VectorRecord& v) {
+  return one_line([&](LineWriter& w) { put_vector(w, v); });
 }
 
-std::string vector_json(const VectorRecord& v, FieldsJsonCache* cache) {
-  return one_line([&](JsonStreamWriter& w) { write_vector(w, v, cache); });
+std::string journal_record_json(std::string_view record, const RunDocument& run) {
+  return one_line([&](LineWriter& w) {
+    w.StartObject();
+    put_string_member(w, "record", record);
+    put_key(w, "run");
+    put_json(w, header_json(run));
+    w.EndObject();
+  });
 }
 
 // ---- the run JSON ----------------------------------------------------------------
@@ -215,23 +190,87 @@ std::string vector_json(const VectorRecord& v, FieldsJsonCache* cache) {
 namespace {
 
 // The header members in schema order, then "vectors": each vector that
-// `vectors` writes, one a line. "vectors" comes last so a reader sees the
-// header first.
-template <class WriteVectors>
-bool write_run(std::ostream& out, const ordered_json& header, WriteVectors&& vectors) {
-  JsonStreamWriter w(out);
-  w.begin_object();
+// `vectors` gives (its one-line JSON text, made by a LineWriter just before)
+// on a line of its own. "vectors" comes last so a reader sees the header
+// first. `vectors(put)` calls put(text) for each vector and returns false
+// (with `error` set) when it could not read them all.
+template <class Vectors>
+bool write_run(std::ostream& out, const ordered_json& header, std::string& error, Vectors&& vectors) {
+  OStreamBuffer os(out);
+  FileWriter w(os);
+  w.SetIndent(' ', 2);
+  w.StartObject();
   for (const auto& [name, value] : header.items()) {
-    w.key(name);
-    w.value(value);
+    put_key(w, name);
+    put_json(w, value);
   }
-  w.key("vectors");
-  w.begin_array();
-  const bool ok = vectors(w);
-  w.end();
-  w.end();
+  put_key(w, "vectors");
+  w.StartArray();
+  const bool ok = vectors([&](const std::string& text) {
+    w.RawValue(text.data(), text.size(), rapidjson::kObjectType);
+  }, error);
+  w.EndArray();
+  w.EndObject();
+  if (!w.IsComplete()) throw std::logic_error("the run JSON left unfinished");
+  os.Put('\n');
+  os.Flush();
   return ok;
 }
+
+ordered_json header_without_journal(const RunDocument& doc) {
+  ordered_json h = header_json(doc);
+  h.erase("journal");  // the file now holds every vector
+  return h;
+}
+
+}  // namespace
+
+void write_run_json(std::ostream& out, const RunDocument& doc) {
+  std::string unused;
+  write_run(out, header_json(doc), unused, [&](auto&& put, std::string&) {
+    for (const auto& v : doc.vectors) put(vector_json(v));
+    return true;
+  });
+}
+
+std::string json_text(const RunDocument& doc) {
+  std::ostringstream out;
+  write_run_json(out, doc);
+  return std::move(out).str();
+}
+
+bool write_run_json_from_journal(std::istream& journal, std::ostream& out, const RunDocument& header, std::string& error) {
+  return write_run(out, header_without_journal(header), error, [&](auto&& put, std::string& why) {
+    // A last line without its newline was cut short by a failed write: left
+    // out, as read_journal leaves it out.
+    std::size_t line_no = 0;
+    for (std::string line; std::getline(journal, line) && !journal.eof();) {
+      ++line_no;
+      if (line.empty()) continue;
+      rapidjson::StringBuffer buffer;
+      LineWriter w(buffer);
+      RecordSniffer<LineWriter> sniffer(w);
+      rapidjson::StringStream in(line.c_str());
+      rapidjson::Reader reader;
+      const auto parsed = reader.Parse<rapidjson::kParseFullPrecisionFlag | rapidjson::kParseValidateEncodingFlag>(in, sniffer);
+      if (parsed.IsError() || in.Tell() != line.size()) {
+        why = "journal line " + std::to_string(line_no) + " is not one JSON text (offset " +
+              std::to_string(parsed.IsError() ? parsed.Offset() : in.Tell()) + ")";
+        return false;
+      }
+      if (!sniffer.record()) put(std::string(buffer.GetString(), buffer.GetSize()));
+    }
+    if (journal.bad()) {
+      why = "the journal could not be read";
+      return false;
+    }
+    return true;
+  });
+}
+
+// ---- files -----------------------------------------------------------------------
+
+namespace {
 
 // What a path names, for the refusals of output_path_problem: "a directory",
 // "a character device", ...
@@ -309,27 +348,11 @@ bool replace_file(const std::string& path, std::string& error, Fill&& fill) {
   return true;
 }
 
-ordered_json header_without_journal(const RunDocument& doc) {
-  ordered_json h = header_json(doc);
-  h.erase("journal");  // the file now holds every vector
-  return h;
-}
-
 }  // namespace
-
-std::string json_text(const RunDocument& doc) {
-  std::ostringstream out;
-  FieldsJsonCache cache;
-  write_run(out, header_json(doc), [&](JsonStreamWriter& w) {
-    for (const auto& v : doc.vectors) w.serialized_value(vector_json(v, &cache));
-    return true;
-  });
-  return out.str();
-}
 
 bool write_run_json(const std::string& path, const RunDocument& doc, std::string& error) {
   return replace_file(path, error, [&](std::ostream& out, std::string&) {
-    out << json_text(doc);
+    write_run_json(out, doc);
     return true;
   });
 }
@@ -341,14 +364,9 @@ bool write_run_json(const std::string& path, const RunDocument& header, const st
       why = journal + ": cannot read";
       return false;
     }
-    return write_run(out, header_without_journal(header), [&](JsonStreamWriter& w) {
-      // JournalWriter's lines: the header and end records start so; every
-      // other line is one vector as to_json made it.
-      // A last line without its newline was cut short by a failed write.
-      for (std::string line; std::getline(in, line) && !in.eof();)
-        if (!line.empty() && !line.starts_with("{\"record\":")) w.serialized_value(line);
-      return !in.bad();
-    });
+    if (write_run_json_from_journal(in, out, header, why)) return true;
+    why = journal + ": " + why;
+    return false;
   });
 }
 
@@ -398,28 +416,14 @@ std::string report_paths_problem(const std::vector<std::pair<std::string, std::s
   return "";
 }
 
+// The same way as the run JSON: a report is whole or not there, never cut
+// short by a full disk or a kill, and never written through a device or a
+// link to one.
 bool write_file(const std::string& path, const std::string& text, std::string& error) {
-  if (path == kStandardOutput) {
-    std::cout << text << std::flush;
-    if (!std::cout) error = "standard output: write failed";
-    return static_cast<bool>(std::cout);
-  }
-  if (std::string why = output_path_problem(path); !why.empty()) {
-    error = why;
-    return false;
-  }
-  std::ofstream out(path, std::ios::trunc | std::ios::binary);
-  if (!out) {
-    error = path + ": cannot write: " + std::strerror(errno);
-    return false;
-  }
-  out << text;
-  out.close();
-  if (!out) {
-    error = path + ": write failed";
-    return false;
-  }
-  return true;
+  return replace_file(path, error, [&](std::ostream& out, std::string&) {
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    return true;
+  });
 }
 
 }  // namespace sabus::reports

@@ -15,27 +15,6 @@
 
 namespace sabus::reports {
 
-std::string xml_escape(std::string_view s) {
-  std::string out;
-  out.reserve(s.size());
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default:
-        // XML 1.0 cannot carry control characters other than tab, LF, CR,
-        // not even as references: show them as text.
-        if (u < 0x20 && c != '\n' && c != '\t' && c != '\r') out += fmt::format("\\x{:02x}", u);
-        else out += c;
-    }
-  }
-  return out;
-}
-
 namespace {
 
 std::string transcript_text(const VectorRecord& v) {
@@ -69,12 +48,12 @@ std::string run_properties(const RunDocument& doc) {
   if (doc.identity.ok) out += property("controller_type", doc.identity.controller_type, in);
   out += property("profile", doc.profile, in);
   const auto seed = doc.options.find("seed");
-  out += property("seed", seed == doc.options.end() ? "" : seed->dump(), in);
+  out += property("seed", seed == doc.options.end() ? "" : json_value_text(*seed), in);
   out += property("device", doc.device, in);
   std::string faults;
   for (const auto& f : doc.faults) faults += (faults.empty() ? "" : ",") + f;
   if (!faults.empty()) out += property("faults", faults, in);
-  out += property("options", doc.options.dump(), in);
+  out += property("options", json_value_text(doc.options), in);
   out += property("started_at", doc.started_at, in);
   out += property("status", doc.status + (doc.abort_reason.empty() ? "" : ": " + doc.abort_reason), in);
   out += property("schema", std::string(kSchemaName) + " " + std::to_string(doc.schema_version), in);

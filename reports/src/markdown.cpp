@@ -1,28 +1,15 @@
 // The Markdown summary: short, for a merge request or a release note.
 #include <fmt/format.h>
 
+
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::reports {
 
 namespace {
 
-// Table cells and list items: no pipes, no HTML, no line breaks.
-std::string md(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '|': out += "\\|"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '`': out += "'"; break;
-      case '\n': case '\r': out += ' '; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string md(std::string_view s) { return markdown_text(s); }
+std::string code(std::string_view s) { return markdown_code(s); }
 
 constexpr std::size_t kMaxListed = 25;
 
@@ -53,7 +40,7 @@ std::string markdown_summary(const RunDocument& d) {
   if (!failures.empty()) {
     out += "\n**Failures**\n\n";
     for (std::size_t i = 0; i < failures.size() && i < kMaxListed; ++i)
-      out += fmt::format("- `{}` §{} {}: {}\n", md(failures[i]->id), md(failures[i]->paragraph), md(failures[i]->level),
+      out += fmt::format("- `{}` §{} {}: {}\n", code(failures[i]->id), md(failures[i]->paragraph), md(failures[i]->level),
                          md(failures[i]->difference()));
     if (failures.size() > kMaxListed) out += fmt::format("- … and {} more\n", failures.size() - kMaxListed);
   }

@@ -76,6 +76,15 @@ browse --window-size=1280,7000 --screenshot="$work/report-filtered.png" "file://
 for png in "$work/report.png" "$work/report-filtered.png"; do
   check "a screenshot was written to $png" test -s "$png"
 done
+
+# A controller that gets its framing wrong (issue 21: its check bytes are
+# wrong, so nothing it says decodes and the run aborts): the page of that run
+# renders too, says ABORTED, and shows the receiver's reason as text.
+"$sabus" run --sim --fault lrc-skips-byte0 --report-dir "$work/framing" >"$work/framing.txt" 2>&1 || true
+framing=$(browse --dump-dom "file://$work/framing/report.html")
+check "the framing run's page says ABORTED" has 'id="verdict">ABORTED<' "$framing"
+check "the framing run's page shows why its replies were ignored" has "bad LRC: check byte 0x" "$framing"
+check "the framing run's script ran" has '<form id="filter" data-shown=' "$framing"
 if [[ $fail == 0 ]]; then
   echo "rendered: $(grep -o '<p id="summary">[^<]*' <<<"$dom" | sed 's/<[^>]*>//')"
   echo "filter ?$filter: $expected of $total vectors shown"

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "sample_run.hpp"
@@ -76,75 +77,65 @@ class Journal : public test::TempDirTest {
   }
 };
 
-TEST(JsonStreamWriter, OneMemberOrElementALineEachSerializedByTheLibrary) {
-  std::ostringstream out;
-  JsonStreamWriter w(out);
-  w.begin_object();
-  w.key("name \"q\"");
-  w.value("a\nb");
-  w.key("list");
-  w.begin_array();
-  w.value(ordered_json{{"z", 1}, {"a", 2}});
-  w.value(3.5);
-  w.end();
-  w.key("empty");
-  w.begin_array();
-  w.end();
-  w.end();
-  EXPECT_TRUE(w.done());
-  EXPECT_EQ(out.str(), "{\n  \"name \\\"q\\\"\": \"a\\nb\",\n  \"list\": [\n    {\"z\":1,\"a\":2},\n    3.5\n  ],\n  \"empty\": []\n}\n");
-  EXPECT_EQ(json::parse(out.str())["list"][0]["z"], 1);
-}
-
-TEST(JsonStreamWriter, RefusesWhatWouldNotBeJson) {
-  std::ostringstream out;
-  JsonStreamWriter w(out);
-  w.begin_object();
-  EXPECT_THROW(w.value(1), std::logic_error) << "a value without its key";
-  w.key("k");
-  EXPECT_THROW(w.key("k2"), std::logic_error) << "two keys in a row";
-  w.value(1);
-  w.end();
-  EXPECT_THROW(w.end(), std::logic_error);
-  EXPECT_THROW(w.value(2), std::logic_error) << "a second document";
-}
-
-TEST(JsonStreamWriter, OneLineIsWhatTheLibraryDumpsWithoutIndent) {
-  const ordered_json tree = {{"id", "a \"b\""}, {"n", 2.5}, {"list", {1, "x", nullptr}}, {"empty", ordered_json::object()}};
-  std::ostringstream out;
-  {
-    JsonStreamWriter w(out, JsonStreamWriter::Layout::kOneLine);
-    w.begin_object();
-    w.key("id");
-    w.string_value("a \"b\"");
-    w.key("n");
-    w.value(2.5);
-    w.key("list");
-    w.begin_array();
-    w.value(1);
-    w.serialized_value("\"x\"");
-    w.value(nullptr);
-    w.end();
-    w.key("empty");
-    w.begin_object();
-    w.end();
-    w.end();
+// The defect of issue 21: a reply that does not decode is a note without
+// bytes or fields, and the run JSON held `"fields":}` for it (a cache of
+// fields text answered an empty frame with an empty text). Every frame's
+// fields are an array, written by the serializer, whatever the frame.
+TEST(VectorJson, AFrameWithoutBytesOrFieldsHasAnEmptyFieldsArray) {
+  VectorRecord v = vector("3.2-status-reply-length", "fail");
+  FrameRecord ignored;
+  ignored.dir = "rx";
+  ignored.t_ms = 4;
+  ignored.note = "discarded bytes 0-10 (11): bad LRC: check byte 0x6a 'j' at offset 10, expected 0x6c 'l'";
+  v.transcript.push_back(ignored);
+  for (int round = 0; round < 2; ++round) {  // the same frame twice: nothing is kept from the first
+    const std::string text = vector_json(v);
+    const auto parsed = json::parse(text);
+    EXPECT_EQ(parsed["transcript"][2]["fields"], json::array()) << text;
+    EXPECT_EQ(parsed["transcript"][2]["hex"], "");
+    EXPECT_EQ(parsed["transcript"][2]["note"], ignored.note);
+    EXPECT_FALSE(parsed["transcript"][2].contains("expect")) << "a received frame has no expectation";
   }
-  EXPECT_EQ(out.str(), tree.dump());
 }
 
-// The frames' fields text is kept by frame and used again only for the same
-// fields: two documents' frames with one hex and different fields (one of
-// them read from a file) are each written with their own.
-TEST(VectorJson, TheFieldsCacheNeverGivesAFrameAnotherFramesFields) {
-  VectorRecord a = vector("a", "pass");
-  VectorRecord b = a;
-  b.transcript[1].fields[0].meaning = "another meaning";
-  FieldsJsonCache cache;
-  for (int round = 0; round < 2; ++round)
-    for (const VectorRecord* v : {&a, &b, &a}) EXPECT_EQ(vector_json(*v, &cache), vector_json(*v)) << round;
-  EXPECT_NE(vector_json(a, &cache), vector_json(b, &cache));
-  EXPECT_EQ(json::parse(vector_json(b, &cache))["transcript"][1]["fields"][0]["meaning"], "another meaning");
+// A device may send any byte, and a note or a field's raw text may carry it:
+// the JSON holds UTF-8 (U+FFFD for a byte that is not), control characters
+// escaped, and no number JSON cannot carry.
+TEST(VectorJson, StringsThatAreNotUtf8AndNumbersThatAreNotFinite) {
+  VectorRecord v = vector("x", "fail");
+  v.failures = {std::string("got \"\xff\x80\x01\x7f\" (\xc3\xa9 stays)")};
+  v.transcript[1].fields[0].raw = std::string("\"\xfe\"");
+  v.duration_ms = std::numeric_limits<double>::quiet_NaN();
+  const std::string text = vector_json(v);
+  EXPECT_EQ(text.find('\x01'), std::string::npos) << "control characters escaped";
+  const auto parsed = json::parse(text);  // throws on a byte that is not UTF-8
+  EXPECT_EQ(parsed["failures"][0], "got \"\xEF\xBF\xBD\xEF\xBF\xBD\x01\x7f\" (\xc3\xa9 stays)");
+  EXPECT_EQ(parsed["transcript"][1]["fields"][0]["raw"], "\"\xEF\xBF\xBD\"");
+  EXPECT_TRUE(parsed["duration_ms"].is_null());
+}
+
+// The run JSON is made from the journal line by line, each line read by a
+// JSON parser and written again: a damaged line stops it, naming the line,
+// instead of reaching the file.
+TEST(RunJsonFromJournal, ALineThatIsNotJsonStopsTheCopy) {
+  RunDocument d = header();
+  std::string journal = journal_record_json("header", d) + "\n" + vector_json(vector("a", "pass")) + "\n";
+  std::ostringstream out;
+  std::string error;
+  std::istringstream good(journal);
+  ASSERT_TRUE(write_run_json_from_journal(good, out, d, error)) << error;
+  EXPECT_EQ(json::parse(out.str())["vectors"][0]["id"], "a");
+  for (const std::string damaged : {"{\"id\":\"b\",\"fields\":}", "{\"id\":\"b\"} {\"id\":\"c\"}", "{\"id\":\"\xff\"}"}) {
+    std::istringstream bad(journal + damaged + "\n" + vector_json(vector("c", "pass")) + "\n");
+    std::ostringstream ignored;
+    EXPECT_FALSE(write_run_json_from_journal(bad, ignored, d, error)) << damaged;
+    EXPECT_NE(error.find("journal line 3 is not one JSON text"), std::string::npos) << error;
+  }
+  // Records are left out by what they are, not by how their line starts.
+  std::istringstream reordered(journal + "{\"run\":{},\"record\":\"end\"}\n");
+  std::ostringstream kept;
+  ASSERT_TRUE(write_run_json_from_journal(reordered, kept, d, error)) << error;
+  EXPECT_EQ(json::parse(kept.str())["vectors"].size(), 1u);
 }
 
 TEST(JsonText, HeaderInSchemaOrderAndVectorsLastOneALine) {

@@ -11,6 +11,7 @@ inline RunDocument sample_header() {
   d.started_at = "2024-01-01T00:00:00Z";
   d.device = "in-process";
   d.profile = "rc3000-1.59";
+  d.address = 0x32;  // the profile's address, 50
   d.identity = {true, "3K", "1.59", "06 32 30 33 4b 31 2e 35 39 03 6c", ""};
   return d;
 }

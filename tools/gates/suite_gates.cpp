@@ -4,9 +4,15 @@
 //  2. mutation: for every injected fault (faults.hpp), the suite fails at
 //     least one must-level vector on some shipped profile, as
 //     `sabus run --sim --fault NAME --profile P --allow-motion
-//     --allow-destructive` would. Prints the score, caught / faults.
-// Exit 0 when every profile passes, the score is 100% and there are at least
-// kMinFaults faults; 1 otherwise; 2 when the suite or a profile does not load.
+//     --allow-destructive` would. Prints the score, caught / faults;
+//  3. records: the record of every run above (the run JSON, its journal,
+//     JUnit, HTML and Markdown, as `sabus run --report-dir` writes them)
+//     reads back: each file parsed and checked by reports/checks.hpp,
+//     `sabus report` rebuilds the same reports from the run JSON, and the
+//     Markdown diff of a faulty run against its profile's clean run parses.
+//     The runs of a faulty controller are the ones whose records break.
+// Exit 0 when every profile passes, the score is 100%, there are at least
+// kMinFaults faults and every record reads back; 1 otherwise; 2 when the suite or a profile does not load.
 //
 // usage: suite_gates [VECTORS_DIR [PROFILES_DIR]]
 #include <fmt/format.h>
@@ -14,6 +20,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +31,9 @@
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "sabus/reports/checks.hpp"
+#include "sabus/reports/journal.hpp"
+#include "sabus/reports/writers.hpp"
 
 namespace {
 
@@ -31,12 +42,50 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kMinFaults = 25;
 
-RunResult run_suite(const Profile& profile, const std::vector<Vector>& vectors, FaultSet faults) {
+namespace reports = sabus::reports;
+
+// Records read back, those that did not, and why (the first problems of each).
+std::size_t g_records = 0, g_bad_records = 0;
+std::vector<std::string> g_record_problems;
+// Each profile's clean run, read back from its journal: what a faulty run's
+// diff (`sabus diff CLEAN FAULTY --md`) is made against.
+std::map<std::string, reports::RunDocument> g_clean_runs;
+
+// The suite against the reference controller, recorded as `sabus run
+// --report-dir` records it (tools/sabus/run.cpp), and the record read back.
+RunResult run_suite(const Profile& profile, const std::vector<Vector>& vectors, FaultSet faults, const std::string& what) {
   auto transport = make_in_process_transport(bus_of(profile), faults);
   RunOptions o;
   o.allow_motion = true;
   o.allow_destructive = true;
-  return Runner(*transport, profile, o).run(vectors);
+  o.keep_transcripts = false;
+  reports::MemoryRecord record;
+  reports::RunDocument& doc = record.doc;
+  doc.generator = "sabus suite_gates";
+  doc.started_at = reports::utc_now();
+  doc.device = transport->describe();
+  doc.profile = profile.name;
+  doc.address = profile.address;
+  doc.options = {{"allow_motion", true}, {"allow_destructive", true}, {"level", "informative"}, {"seed", 0}, {"repeat", 0}};
+  doc.planned = vectors.size();
+  doc.identity = reports::query_identity(*transport, profile.address);
+  record.start();
+  o.on_result = record.on_result(0.0);
+  RunResult run = Runner(*transport, profile, o).run(vectors);
+  record.end(run, reports::utc_now());
+  ++g_records;
+  const auto clean = g_clean_runs.find(profile.name);
+  const auto problems =
+      reports::checks::run_record_problems(doc, record.journal, clean == g_clean_runs.end() ? nullptr : &clean->second);
+  if (!faults.any()) {
+    std::istringstream journal(record.journal);
+    reports::JournalNotes notes;
+    std::string error;
+    if (auto back = reports::read_journal(journal, profile.name, notes, error)) g_clean_runs[profile.name] = std::move(*back);
+  }
+  g_bad_records += !problems.empty();
+  for (std::size_t i = 0; i < problems.size() && i < 3; ++i) g_record_problems.push_back(what + ": " + problems[i]);
+  return run;
 }
 
 std::vector<std::string> failed_must_vectors(const RunResult& r) {
@@ -81,7 +130,7 @@ int main(int argc, char** argv) {
   bool ok = true;
   std::cout << fmt::format("== profiles: {} vectors on each shipped profile\n", vectors.size());
   for (const Profile& p : profiles) {
-    const RunResult r = run_suite(p, vectors, {});
+    const RunResult r = run_suite(p, vectors, {}, p.name);
     const bool pass = r.failed == 0 && r.unexpected == 0 && !r.aborted && r.exit_code() == 0;
     ok = ok && pass;
     std::cout << fmt::format("{:<28} {:>4} passed, {} failed, {:>4} skipped{}{}\n", p.name, r.passed, r.failed, r.skipped,
@@ -99,7 +148,7 @@ int main(int argc, char** argv) {
     set.set(f.fault);
     std::string where;
     for (const Profile& p : profiles) {
-      const auto failed = failed_must_vectors(run_suite(p, vectors, set));
+      const auto failed = failed_must_vectors(run_suite(p, vectors, set, fmt::format("{} on {}", f.name, p.name)));
       if (failed.empty()) continue;
       where = fmt::format("{}: {} must vector(s), e.g. {}", p.name, failed.size(), failed.front());
       break;
@@ -114,6 +163,10 @@ int main(int argc, char** argv) {
     ok = false;
   }
   if (caught != faults.size()) ok = false;
+  std::cout << "== records: each run's JSON, journal, JUnit, HTML and Markdown read back\n";
+  for (const auto& p : g_record_problems) std::cout << "    " << p << "\n";
+  std::cout << fmt::format("records: {} of {} runs read back\n", g_records - g_bad_records, g_records);
+  if (g_bad_records > 0 || g_records == 0) ok = false;
   std::cout << (ok ? "suite gates: pass\n" : "suite gates: FAIL\n");
   return ok ? 0 : 1;
 }

@@ -21,94 +21,38 @@
 
 namespace sabus::reports {
 
-// ---- an incremental JSON writer --------------------------------------------------
-
-// Writes one JSON text token by token to a stream: nlohmann serializes every
-// key and value, this class places the brackets, commas and line breaks (one
-// member or element a line, indented by depth; or, kOneLine, none at all, as
-// nlohmann's dump() without indent writes). nlohmann has no writer that
-// streams a document it does not hold whole; a run JSON of thousands of
-// vectors is written without holding it.
-class JsonStreamWriter {
- public:
-  enum class Layout { kLines, kOneLine };
-  explicit JsonStreamWriter(std::ostream& out, Layout layout = Layout::kLines);
-  JsonStreamWriter(const JsonStreamWriter&) = delete;
-  JsonStreamWriter& operator=(const JsonStreamWriter&) = delete;
-  ~JsonStreamWriter();                           // writes out what is buffered
-  void begin_object();
-  void begin_array();
-  void end();                                    // closes the innermost object or array
-  void key(std::string_view name);               // in an object, before its value
-  void value(const nlohmann::ordered_json& v);   // one value, on one line
-  void string_value(std::string_view s);         // the same for a string, without a json value made for it
-  // One value nlohmann serialized earlier on one line (a journal's vector
-  // line), copied as it is.
-  void serialized_value(std::string_view json_text);
-  bool done() const { return stack_.empty() && started_; }
-
- private:
-  void before_value();
-  void newline(std::size_t depth);
-  struct Level {
-    bool object = false, empty = true, has_key = false;
-  };
-  void flush();
-  void flush_when_large();
-  std::ostream& out_;
-  Layout layout_;
-  std::vector<Level> stack_;
-  bool started_ = false;
-  // What is written goes to buf_ and from it to out_ in large pieces; the
-  // library's serializer (the one dump() uses, made once) writes into buf_,
-  // and one string value is reused for string_value.
-  std::string buf_;
-  nlohmann::detail::serializer<nlohmann::ordered_json> serializer_;
-  nlohmann::ordered_json string_ = nlohmann::ordered_json::value_t::string;
-};
-
-// ---- a vector's JSON ------------------------------------------------------------
-
-// The JSON text of transcript frames' "fields" arrays, serialized once a
-// distinct frame: the frames of a run repeat (the same poll, the same reply),
-// and their fields are most of a run JSON (4.3 of 4.9 MB for the suite), so
-// building, writing and freeing a tree of them for every frame was most of
-// what the reports cost a run. Found by the frame's hex and used only when
-// the fields are equal too, so a document whose fields differ (one read from
-// a file) is never written with another frame's. A table of 4096 slots, a
-// newer frame taking an older one's: bounded in a run of any length.
-class FieldsJsonCache {
- public:
-  const std::string& text(const FrameRecord& f);
-
- private:
-  struct Slot {
-    std::string hex, text;
-    std::vector<Field> fields;
-  };
-  std::vector<Slot> slots_ = std::vector<Slot>(4096);
-};
+// ---- the run JSON ----------------------------------------------------------------
+// Written by RapidJSON's Writer (reports/src/json_out.hpp): every bracket,
+// comma, quote and escape is the library's; strings that are not valid UTF-8
+// are repaired (valid_utf8) and non-finite numbers written as null.
 
 // One member of the run JSON's "vectors" (a journal's vector record), on one
-// line, members in the order of reports/SCHEMA.md. `cache`: where the
-// frames' fields text is kept between calls (none: each serialized anew).
-std::string vector_json(const VectorRecord& v, FieldsJsonCache* cache = nullptr);
+// line, members in the order of reports/SCHEMA.md.
+std::string vector_json(const VectorRecord& v);
+// A journal's header or end record on one line: {"record": RECORD, "run":
+// the header members of `run`}.
+std::string journal_record_json(std::string_view record, const RunDocument& run);
 
-// ---- the run JSON ----------------------------------------------------------------
-
-// The run JSON of a document held in memory: the header members, then
-// "vectors" last (a reader sees the header first), one vector a line.
+// The run JSON of a document held in memory: the header members one a line,
+// then "vectors" last (a reader sees the header first), one vector a line.
+void write_run_json(std::ostream& out, const RunDocument& doc);
 std::string json_text(const RunDocument& doc);
+// The run JSON with the header of `header` (less its "journal") and the
+// vectors of a journal (JournalWriter), one line at a time: each line is read
+// by RapidJSON's Reader and written again by its Writer, so a line that is
+// not JSON stops the copy (false, `error` names the line) rather than reach
+// the file; records are left out, and so is a last line without its newline
+// (cut short by a kill). Nothing but the line being copied is held in memory.
+bool write_run_json_from_journal(std::istream& journal, std::ostream& out, const RunDocument& header, std::string& error);
 
 // Writes the run JSON to a new temporary file beside PATH, fsyncs it and
 // renames it over PATH, so PATH is always a whole document; "-" writes it to
 // standard output. A PATH that is not a regular file (or a link to one) is
 // refused (output_path_problem), and never replaced.
 bool write_run_json(const std::string& path, const RunDocument& doc, std::string& error);
-// The same with the header of `header` and the vectors of a journal that
-// this process wrote (JournalWriter), copied line by line as they were
-// serialized: no vector is parsed again or held in memory. A journal from
-// elsewhere is read with read_journal and written from the document.
+// The same from a journal file that this process wrote (JournalWriter),
+// with write_run_json_from_journal. A journal from elsewhere is read with
+// read_journal and written from the document.
 bool write_run_json(const std::string& path, const RunDocument& header, const std::string& journal, std::string& error);
 
 // ---- the journal -----------------------------------------------------------------
@@ -137,11 +81,26 @@ class JournalWriter {
   const std::string& error() const { return error_; }
 
  private:
-  bool write_line(const nlohmann::ordered_json& record);
   bool write_text(std::string line);  // a record's JSON, without its newline
   int fd_ = -1;
   std::string path_, error_;
-  FieldsJsonCache fields_;
+};
+
+// A run recorded in memory as `sabus run` records it on disk: each finished
+// vector whole to the journal, and compacted for the reports
+// (compact_for_reports) to the document. For what checks a run's record
+// without files: the suite gate, fuzz_record, the tests.
+struct MemoryRecord {
+  RunDocument doc;      // filled by the caller before start()
+  std::string journal;  // the journal's text
+
+  // The header record: `doc` as it is now, naming a journal.
+  void start();
+  void add(const harness::VectorResult& r, std::optional<double> wall_ms);
+  // finish(doc, ...), then the end record.
+  void end(const harness::RunResult& run, std::string finished_at);
+  // RunOptions::on_result for add (wall_ms as given).
+  std::function<void(const harness::VectorResult&)> on_result(std::optional<double> wall_ms = std::nullopt);
 };
 
 // What reading a journal found besides its records.
@@ -159,8 +118,13 @@ struct JournalNotes {
 // record cut short by a kill and is left out with a note.
 std::optional<RunDocument> scan_journal(const std::string& path, const std::function<void(const nlohmann::ordered_json&)>& on_vector,
                                         JournalNotes& notes, std::string& error);
+// The same from a stream; `name` is what errors call it.
+std::optional<RunDocument> scan_journal(std::istream& in, const std::string& name,
+                                        const std::function<void(const nlohmann::ordered_json&)>& on_vector, JournalNotes& notes,
+                                        std::string& error);
 // The whole document of a journal, every vector with its transcript.
 std::optional<RunDocument> read_journal(const std::string& path, JournalNotes& notes, std::string& error);
+std::optional<RunDocument> read_journal(std::istream& in, const std::string& name, JournalNotes& notes, std::string& error);
 // Whether a file starts with a journal's header record.
 bool is_journal(const std::string& path);
 // A run JSON or a journal, whichever the file is (`notes.journal` says which).

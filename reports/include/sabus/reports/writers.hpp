@@ -65,7 +65,32 @@ std::string html_report(const RunDocument& doc);
 // A short Markdown summary for a merge request or a release note.
 std::string markdown_summary(const RunDocument& doc);
 
-std::string xml_escape(std::string_view s);  // also for HTML text and attributes
+// What every report shows of a string from the device, the vectors or the
+// command line: UTF-8 (a byte that is not becomes U+FFFD), with the
+// characters that XML 1.0 cannot carry even as references (C0 controls but
+// tab, LF and CR; U+FFFE, U+FFFF) and those HTML5 reads as parse errors (DEL,
+// C1 controls, noncharacters) written out as text ("\x01", "\u{fffe}").
+std::string shown_text(std::string_view s);
+// shown_text for XML and HTML (text and attribute values): & < > " ' as
+// references.
+std::string xml_escape(std::string_view s);
+// Markdown (GitHub Flavored) text for a table cell or a list item: shown_text
+// on one line (line ends and tabs as spaces), every character that starts
+// markup in the middle of a line (\ ` * _ [ ] < > & | ~ !) escaped with a
+// backslash. Not for the start of a line, where # - + . would count too.
+std::string markdown_text(std::string_view s);
+// The text of a code span: shown_text on one line, a backtick (which would
+// end the span) as '. Backslashes are not escapes in a code span.
+std::string markdown_code(std::string_view s);
+// Whether `s` is UTF-8 (RFC 3629), and `s` with each byte that does not
+// begin or continue a UTF-8 sequence replaced by U+FFFD. A device may send
+// any byte; every report format is read as UTF-8.
+bool is_valid_utf8(std::string_view s);
+std::string valid_utf8(std::string_view s);
+// A JSON value as the reports show it (an option's value, a seed): its JSON
+// text on one line, a string that is not UTF-8 repaired rather than thrown
+// at (nlohmann's dump() throws by default; options come from a command line).
+std::string json_value_text(const nlohmann::json& value);
 
 // A report path that means standard output.
 inline constexpr const char* kStandardOutput = "-";

@@ -1,0 +1,111 @@
+// JUnit XML read back: libxml2 parses it (no network, no entities from
+// outside) and validates it against reports/junit.xsd (embedded at build
+// time); then its testcases are held against the document's vectors.
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <libxml/xmlschemas.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "embedded_schemas.hpp"
+#include "sabus/reports/checks.hpp"
+
+namespace sabus::reports::checks {
+namespace {
+
+// libxml2's messages for one call, collected instead of printed.
+void collect(void* problems, xmlErrorPtr error) {
+  if (error == nullptr) return;
+  std::string message = error->message ? error->message : "?";
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  static_cast<Problems*>(problems)->push_back("JUnit line " + std::to_string(error->line) + ": " + message);
+}
+
+struct SchemaDeleter {
+  void operator()(xmlSchema* s) const { xmlSchemaFree(s); }
+};
+struct DocDeleter {
+  void operator()(xmlDoc* d) const { xmlFreeDoc(d); }
+};
+struct ValidDeleter {
+  void operator()(xmlSchemaValidCtxt* c) const { xmlSchemaFreeValidCtxt(c); }
+};
+
+const xmlSchema* junit_schema() {
+  static const std::unique_ptr<xmlSchema, SchemaDeleter> schema = [] {
+    xmlSchemaParserCtxtPtr parser =
+        xmlSchemaNewMemParserCtxt(generated::kJunitXsd, static_cast<int>(std::char_traits<char>::length(generated::kJunitXsd)));
+    xmlSchema* s = xmlSchemaParse(parser);
+    xmlSchemaFreeParserCtxt(parser);
+    if (s == nullptr) throw std::logic_error("reports/junit.xsd does not load");
+    return std::unique_ptr<xmlSchema, SchemaDeleter>(s);
+  }();
+  return schema.get();
+}
+
+std::string attribute(xmlNode* node, const char* name) {
+  xmlChar* value = xmlGetProp(node, reinterpret_cast<const xmlChar*>(name));
+  if (value == nullptr) return "";
+  std::string out(reinterpret_cast<const char*>(value));
+  xmlFree(value);
+  return out;
+}
+
+bool named(xmlNode* node, const char* name) {
+  return node->type == XML_ELEMENT_NODE && xmlStrcmp(node->name, reinterpret_cast<const xmlChar*>(name)) == 0;
+}
+
+// What each testcase says of its vector: "fail", "skip" or "pass".
+std::map<std::string, std::string> testcases(xmlNode* root, Problems& problems) {
+  std::map<std::string, std::string> out;
+  for (xmlNode* suite = root->children; suite; suite = suite->next) {
+    if (!named(suite, "testsuite")) continue;
+    for (xmlNode* test = suite->children; test; test = test->next) {
+      if (!named(test, "testcase")) continue;
+      std::string verdict = "pass";
+      for (xmlNode* c = test->children; c; c = c->next) {
+        if (named(c, "failure")) verdict = "fail";
+        if (named(c, "skipped")) verdict = "skip";
+      }
+      const std::string name = attribute(test, "name");
+      if (!out.emplace(name, verdict).second) problems.push_back("JUnit: testcase \"" + name + "\" twice");
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Problems junit_problems(std::string_view xml, const RunDocument& doc) {
+  Problems problems;
+  xmlSetStructuredErrorFunc(&problems, collect);
+  std::unique_ptr<xmlDoc, DocDeleter> parsed(
+      xmlReadMemory(xml.data(), static_cast<int>(xml.size()), "junit.xml", nullptr, XML_PARSE_NONET));
+  if (parsed) {
+    std::unique_ptr<xmlSchemaValidCtxt, ValidDeleter> valid(xmlSchemaNewValidCtxt(const_cast<xmlSchema*>(junit_schema())));
+    xmlSchemaSetValidStructuredErrors(valid.get(), collect, &problems);
+    if (xmlSchemaValidateDoc(valid.get(), parsed.get()) != 0 && problems.empty())
+      problems.push_back("JUnit: not valid against reports/junit.xsd");
+  } else if (problems.empty()) {
+    problems.push_back("JUnit: not XML");
+  }
+  xmlSetStructuredErrorFunc(nullptr, nullptr);
+  if (!problems.empty()) return problems;
+
+  // Every vector a testcase, with its verdict.
+  const auto cases = testcases(xmlDocGetRootElement(parsed.get()), problems);
+  if (cases.size() != doc.vectors.size())
+    problems.push_back("JUnit: " + std::to_string(cases.size()) + " testcases for " + std::to_string(doc.vectors.size()) +
+                       " vectors");
+  for (const auto& v : doc.vectors) {
+    const std::string want = v.is_failure() ? "fail" : v.is_skip() ? "skip" : "pass";
+    const auto it = cases.find(shown(v.id));
+    if (it == cases.end()) problems.push_back("JUnit: no testcase for " + v.id);
+    else if (it->second != want) problems.push_back("JUnit: testcase " + v.id + " is a " + it->second + ", the vector a " + want);
+  }
+  return problems;
+}
+
+}  // namespace sabus::reports::checks

@@ -1,0 +1,315 @@
+// The readers that prove the record of a run (reports/checks.hpp), failing
+// paths first: each finds what a broken file breaks; then the records of
+// runs against a faulty controller and of a document full of hostile text
+// read back clean.
+#include "sabus/reports/checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "sabus/harness/faults.hpp"
+#include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/runner.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/harness/vector_loader.hpp"
+#include "sabus/reports/journal.hpp"
+#include "sabus/reports/writers.hpp"
+#include "sample_run.hpp"
+
+namespace sabus::reports {
+namespace {
+
+using checks::Problems;
+using nlohmann::json;
+
+std::string joined(const Problems& p) {
+  std::string out;
+  for (const auto& line : p) out += line + "\n";
+  return out;
+}
+
+// Whether one of the problems says `what` (if not, what they say).
+testing::AssertionResult says(const Problems& p, std::string_view what) {
+  if (std::any_of(p.begin(), p.end(), [&](const std::string& line) { return line.find(what) != std::string::npos; }))
+    return testing::AssertionSuccess();
+  return testing::AssertionFailure() << "no problem says \"" << what << "\"; they say:\n" << joined(p);
+}
+
+// The text as the device might send it: markup, quotes, controls, DEL, a
+// byte that is not UTF-8, line ends, Markdown's markup.
+const std::string kHostile = std::string("<script>alert(1)</script> &amp; \"q\" 'a' \x01\x7f\x1b[0m \xff\xfe | `code` *em* _u_ [l](x) ~s~ \\ \r\n- item\n# head");
+
+FrameRecord frame(std::string dir, std::string hex, std::string note, std::vector<Field> fields = {}) {
+  FrameRecord f;
+  f.dir = std::move(dir);
+  f.hex = std::move(hex);
+  f.note = std::move(note);
+  f.fields = std::move(fields);
+  if (f.dir == "tx") f.expect = f.path = "ack";
+  return f;
+}
+
+VectorRecord vector(std::string id, std::string outcome) {
+  VectorRecord v;
+  v.id = std::move(id);
+  v.outcome = std::move(outcome);
+  v.paragraph = "3.2";
+  v.level = "must";
+  v.duration_ms = 3;
+  v.wall_ms = 0.5;
+  v.transcript = {frame("tx", "02 32 31 03 02", "status poll"),
+                  frame("rx", "06 32 31 03 04", "status reply", {{0, 0, "start", "0x06", "ACK", true}})};
+  if (v.outcome == "fail" || v.outcome == "known failure") v.failures = {"byte 3: expected 0x57, got 0x44"};
+  if (v.outcome == "known failure" || v.outcome == "unexpected pass") v.known_issue = "listed";
+  if (v.outcome == "skip") {
+    v.skip_reason = "needs --allow-motion";
+    v.skip_cause = "motion";
+    v.transcript.clear();
+  }
+  return v;
+}
+
+// A finished run of one vector of each outcome, recorded as sabus run does.
+MemoryRecord finished_record() {
+  MemoryRecord r;
+  r.doc = test_documents::sample_header();
+  r.doc.generator = "sabus 1.2.3";
+  r.doc.options = {{"seed", 7}};
+  r.doc.planned = 5;
+  r.start();
+  for (const char* outcome : {"pass", "fail", "skip", "known failure", "unexpected pass"}) {
+    VectorRecord v = vector(std::string("3.2-") + outcome, outcome);
+    r.journal += vector_json(v) + "\n";
+    compact_for_reports(v);
+    r.doc.vectors.push_back(v);
+  }
+  r.doc.status = "complete";
+  r.doc.finished_at = "2024-01-01T00:00:01Z";
+  r.doc.summary = Summary{1, 1, 1, 1, 1, 1, {{"motion", 1}}};
+  r.doc.traffic = {{"bytes_sent", 10}, {"bytes_received", 10}, {"silence_windows", 0}, {"silence_listened_ms", 0.0},
+                   {"measured_turnaround_ms", 0.0}};
+  r.doc.journal.clear();
+  r.journal += journal_record_json("end", r.doc) + "\n";
+  return r;
+}
+
+// ---- each reader finds what breaks its format ------------------------------------
+
+TEST(RunJsonProblems, FindWhatBreaksTheFileOrTheSchema) {
+  const std::string good = json_text(finished_record().doc);
+  ASSERT_EQ(joined(checks::run_json_problems(good)), "");
+  auto broken = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"fields\":[]", "\"fields\":")), "not JSON")) << "the defect of issue 21";
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"hex\":\"02 32", "\"hex\":\"2 32")), "/hex"));
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"outcome\":\"fail\",\"failures\":[\"byte", "\"outcome\":\"fail\",\"failures\":[],\"x\":[\"byte")), "at /vectors/1"))
+      << "a failure without its reason, and a member the schema does not have";
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"status\": \"complete\"", "\"status\": \"running\"")), "at /:"))
+      << "a run that goes on has no summary";
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"passed\": 1", "\"passed\": 2")), "summary.passed is 2"));
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"id\":\"3.2-fail\"", "\"id\":\"3.2-pass\"")), "twice"));
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"first\":0,\"last\":0", "\"first\":0,\"last\":9")), "bytes 0-9 of a frame of 5"));
+  EXPECT_TRUE(says(checks::run_json_problems(broken("\"skip_cause\":\"motion\"", "\"skip_cause\":\"\"")), "at /vectors/2"))
+      << "a skip names its cause";
+}
+
+TEST(JournalProblems, FindALineOrARecordOutOfPlace) {
+  const std::string good = finished_record().journal;
+  ASSERT_EQ(joined(checks::journal_problems(good)), "");
+  const auto first_end = good.find('\n') + 1;
+  EXPECT_TRUE(says(checks::journal_problems(good.substr(first_end)), "not a header record"));
+  EXPECT_TRUE(says(checks::journal_problems(good.substr(0, good.size() - 1)), "cut short"));
+  std::string damaged = good;
+  damaged.insert(first_end, "{\"id\":\"x\",\"fields\":}\n");
+  EXPECT_TRUE(says(checks::journal_problems(damaged), "journal line 2: not JSON"));
+  std::string vector_line_broken = good;
+  vector_line_broken.replace(vector_line_broken.find("\"level\":\"must\""), 14, "\"level\":\"may\"");
+  EXPECT_TRUE(says(checks::journal_problems(vector_line_broken), "journal line 2: at /level"));
+  EXPECT_TRUE(says(checks::journal_problems(good + good.substr(0, first_end)), "a record that is not"));
+}
+
+TEST(JunitProblems, FindInvalidXmlAndMissingTestcases) {
+  const MemoryRecord r = finished_record();
+  const std::string good = junit_xml(r.doc);
+  ASSERT_EQ(joined(checks::junit_problems(good, r.doc)), "");
+  std::string not_xml = good;
+  not_xml.insert(not_xml.find("<testcase"), "<b>&</b>");
+  EXPECT_TRUE(says(checks::junit_problems(not_xml, r.doc), "JUnit line"));
+  std::string invalid = good;
+  invalid.replace(invalid.find(" errors=\"0\" skipped"), 11, "");
+  EXPECT_FALSE(checks::junit_problems(invalid, r.doc).empty()) << "the schema refuses a testsuite without errors=";
+  RunDocument more = r.doc;
+  more.vectors.push_back(vector("3.2-another", "pass"));
+  EXPECT_TRUE(says(checks::junit_problems(good, more), "no testcase for 3.2-another"));
+  RunDocument other = r.doc;
+  other.vectors[0].outcome = "fail";
+  EXPECT_TRUE(says(checks::junit_problems(good, other), "testcase 3.2-pass is a pass, the vector a fail"));
+}
+
+TEST(HtmlProblems, FindMarkupFromAStringAndTextNotShown) {
+  const MemoryRecord r = finished_record();
+  const std::string good = html_report(r.doc);
+  ASSERT_EQ(joined(checks::html_problems(good, r.doc)), "");
+  auto with = [&](const std::string& html_inserted) {
+    std::string text = good;
+    return text.insert(text.find("<div id=\"vectors\">"), html_inserted);
+  };
+  EXPECT_TRUE(says(checks::html_problems(with("<script>alert(1)</script>"), r.doc), "2 scripts"));
+  EXPECT_TRUE(says(checks::html_problems(with("<img src=x>"), r.doc), "<img>"));
+  EXPECT_TRUE(says(checks::html_problems(with("<b onclick=\"x()\">b</b>"), r.doc), "event handler attribute onclick"));
+  EXPECT_TRUE(says(checks::html_problems(with("<a href=\"http://x\">x</a>"), r.doc), "a link out of the page"));
+  EXPECT_TRUE(says(checks::html_problems(with("<p>a\x01b</p></div>"), r.doc), "parse error"));
+  RunDocument other = r.doc;
+  other.vectors[1].failures = {"a failure the page does not show"};
+  EXPECT_TRUE(says(checks::html_problems(good, other), "\"a failure the page does not show\" is not shown as text"));
+}
+
+TEST(MarkdownProblems, FindRawHtmlWrongCountsAndFailuresOtherwiseWritten) {
+  const MemoryRecord r = finished_record();
+  const std::string good = markdown_summary(r.doc);
+  ASSERT_EQ(joined(checks::markdown_problems(good, r.doc)), "") << good;
+  EXPECT_TRUE(says(checks::markdown_problems(good + "\n<div>x</div>\n", r.doc), "html_block"));
+  EXPECT_TRUE(says(checks::markdown_problems(good + "\nsee *this*\n", r.doc), "emph"));
+  std::string counts = good;
+  counts.replace(counts.find("| must | 1 | 2 |"), 17, "| must | 1 | 3 |");
+  EXPECT_TRUE(says(checks::markdown_problems(counts, r.doc), "per-level table")) << counts;
+  EXPECT_TRUE(says(checks::markdown_problems(good + "- `3.2-extra` §3.2 must: x\n", r.doc), "list items"));
+  RunDocument other = r.doc;
+  other.vectors[1].failures = {"another reason"};
+  EXPECT_TRUE(says(checks::markdown_problems(good, other), "failure item 1 reads"));
+}
+
+// ---- the schema's two files --------------------------------------------------------
+
+std::string read_source(const std::string& relative) {
+  std::ifstream in(std::string(SABUS_SOURCE_DIR) + "/" + relative, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Every property name in a JSON Schema, at any depth.
+void property_names(const json& schema, std::set<std::string>& out) {
+  if (schema.is_object()) {
+    if (const auto p = schema.find("properties"); p != schema.end() && p->is_object())
+      for (const auto& [name, _] : p->items()) out.insert(name);
+    for (const auto& [key, value] : schema.items()) property_names(value, out);
+  } else if (schema.is_array()) {
+    for (const auto& value : schema) property_names(value, out);
+  }
+}
+
+// SCHEMA.md says what each field means and run.schema.json what it may
+// hold: every field in the first column of SCHEMA.md's tables (`name`, or
+// `a`, `b` for fields described together) is a property of the schema, and
+// every property of the schema is named in SCHEMA.md (nested ones, as the
+// options' and the summary's, in the text of their field's row, or as
+// `{first, last, ...}`).
+TEST(RunSchema, TheSchemaAndSchemaMdNameTheSameFields) {
+  std::set<std::string> in_schema, in_tables, in_text;
+  property_names(json::parse(read_source("reports/run.schema.json")), in_schema);
+  const std::string md_text = read_source("reports/SCHEMA.md");
+  std::istringstream md(md_text);
+  const std::regex row(R"(^\| (`[a-z_]+`(, `[a-z_]+`)*) \|)"), name("`([a-z_]+)`");
+  for (std::string line; std::getline(md, line);) {
+    std::smatch m;
+    if (!std::regex_search(line, m, row)) continue;
+    const std::string cell = m[1];
+    for (auto it = std::sregex_iterator(cell.begin(), cell.end(), name); it != std::sregex_iterator(); ++it) in_tables.insert((*it)[1]);
+  }
+  // In the text: every word of a code span (`{when, alive, detail}` too).
+  const std::regex span("`([^`]+)`"), word("[a-z_]+");
+  for (auto it = std::sregex_iterator(md_text.begin(), md_text.end(), span); it != std::sregex_iterator(); ++it) {
+    const std::string code = (*it)[1];
+    for (auto w = std::sregex_iterator(code.begin(), code.end(), word); w != std::sregex_iterator(); ++w) in_text.insert(w->str());
+  }
+  ASSERT_GT(in_tables.size(), 40u) << "SCHEMA.md's tables read";
+  for (const auto& n : in_tables) EXPECT_TRUE(in_schema.count(n)) << "SCHEMA.md's tables name " << n << ", run.schema.json does not";
+  for (const auto& n : in_schema) EXPECT_TRUE(in_text.count(n)) << "run.schema.json names " << n << ", SCHEMA.md does not";
+}
+
+// ---- records that must read back --------------------------------------------------
+
+// Every string of the document hostile: each format keeps it as text.
+TEST(RunRecordProblems, HostileTextFromTheDeviceReadsBackAsText) {
+  MemoryRecord r;
+  r.doc = test_documents::sample_header();
+  r.doc.generator = "sabus " + kHostile;
+  r.doc.device = kHostile;
+  r.doc.profile = kHostile;
+  r.doc.identity = {false, "", "", "", kHostile};
+  r.doc.faults = {kHostile};
+  r.doc.options = {{"filters", {kHostile}}, {"known_issues", kHostile}};
+  r.start();
+  VectorRecord v = vector("3.2-hostile", "fail");
+  v.failures = {kHostile, "second " + kHostile};
+  v.quote = v.comment = v.file = kHostile;
+  v.transcript.push_back(frame("rx", "", kHostile));
+  v.transcript[1].note = kHostile;
+  v.transcript[1].fields = {{0, 0, kHostile, kHostile, kHostile, false}};
+  r.journal += vector_json(v) + "\n";
+  compact_for_reports(v);
+  r.doc.vectors.push_back(v);
+  r.doc.status = "aborted";
+  r.doc.abort_reason = kHostile;
+  r.doc.finished_at = "2024-01-01T00:00:01Z";
+  r.doc.summary = Summary{0, 1, 0, 0, 0, 1, {}};
+  r.doc.liveness = {{kHostile, false, kHostile}};
+  r.doc.restore = {kHostile};
+  r.doc.traffic = {{"bytes_sent", 1}, {"bytes_received", 1}, {"silence_windows", 0}, {"silence_listened_ms", 0.0},
+                   {"measured_turnaround_ms", 0.0}};
+  r.doc.journal.clear();
+  r.journal += journal_record_json("end", r.doc) + "\n";
+  EXPECT_EQ(joined(checks::run_record_problems(r.doc, r.journal)), "");
+}
+
+// The runs of issue 21 (a reply that does not decode, a NAK without its
+// command, another reply address) and the clean controller: the whole suite,
+// recorded as `sabus run` records it, reads back.
+TEST(RunRecordProblems, TheSuiteAgainstFaultyControllersReadsBack) {
+  const auto loaded = harness::load_vectors({harness::default_vectors_dir()});
+  ASSERT_TRUE(loaded.ok());
+  std::vector<harness::Vector> vectors;
+  for (const auto& f : loaded.files) vectors.insert(vectors.end(), f.vectors.begin(), f.vectors.end());
+  const auto profile = harness::load_profile_file(harness::default_profile_path());
+  ASSERT_TRUE(profile) << profile.error->text();
+  for (const char* fault : {"", "lrc-skips-byte0", "nak-without-command", "reply-address-0x30"}) {
+    harness::FaultSet faults;
+    if (*fault) {
+      const auto f = harness::find_fault(fault);
+      ASSERT_TRUE(f) << fault;
+      faults.set(*f);
+    }
+    auto transport = harness::make_in_process_transport(harness::bus_of(*profile.profile), faults);
+    MemoryRecord r;
+    r.doc = test_documents::sample_header();
+    r.doc.generator = "sabus test";
+    r.doc.device = transport->describe();
+    r.doc.identity = query_identity(*transport, profile.profile->address);
+    r.doc.address = profile.profile->address;
+    r.doc.planned = vectors.size();
+    r.start();
+    harness::RunOptions o;
+    o.allow_motion = o.allow_destructive = true;
+    o.keep_transcripts = false;
+    o.on_result = r.on_result(1.0);
+    r.end(harness::Runner(*transport, *profile.profile, o).run(vectors), "2024-01-01T00:00:01Z");
+    const Problems p = checks::run_record_problems(r.doc, r.journal);
+    EXPECT_EQ(joined(p), "") << (*fault ? fault : "clean");
+    if (*fault) {
+      EXPECT_NE(r.doc.verdict(), "PASS") << fault;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sabus::reports
