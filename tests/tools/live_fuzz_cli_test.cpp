@@ -3,11 +3,13 @@
 // `sabus run` with the fault and passes without it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "process.hpp"
+#include "yaml_text.hpp"
 
 namespace {
 
@@ -71,6 +73,81 @@ TEST(Fuzz, NoFaultNoFindingAndUsageErrors) {
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--sim", "--fault", "no-such-fault"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--sim", "--port", "/dev/null"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--port", "/nonexistent/tty"}).wait_exit(), 3);
+}
+
+// ---- the finding files: new files, each written or said not to be -----------------------
+
+// `sabus fuzz --sim --fault ignores-parity --seed 1` in `dir` (its one
+// finding), with any other options; stdout and stderr, and the exit status.
+sabus::test::ShellResult fuzz_in(const fs::path& dir, const std::string& before = "", const std::string& options = "") {
+  return sabus::test::shell(before + "'" SABUS_BIN "' fuzz --sim --fault ignores-parity --seed 1 --max-frames 500 --findings '" +
+                            dir.string() + "' " + options + " 2>&1");
+}
+
+std::vector<fs::path> files_in(const fs::path& dir) {
+  std::vector<fs::path> files;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(FuzzFindingFiles, AFileAtTheNameIsNeverReplacedNorFollowed) {
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-files-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  ASSERT_EQ(fuzz_in(dir).status, 1);
+  const auto first = files_in(dir);
+  ASSERT_EQ(first.size(), 1u);
+  const fs::path name = first[0];  // fuzz-1-1-KIND.yaml
+  const fs::path second = dir / (name.stem().string() + "-2.yaml"), third = dir / (name.stem().string() + "-3.yaml");
+  // An earlier finding kept by hand, and a link planted at the next name.
+  { std::ofstream(name) << "# kept by hand\n"; }
+  fs::create_symlink("/dev/full", second);
+  const auto r = fuzz_in(dir);
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(read_file(name), "# kept by hand\n");
+  EXPECT_TRUE(fs::is_symlink(second));
+  ASSERT_TRUE(fs::exists(third)) << r.out;
+  EXPECT_NE(r.out.find(third.string()), std::string::npos) << r.out;
+  EXPECT_EQ(Process({SABUS_BIN, "vectors", "lint", third.string()}).wait_exit(), 0) << read_file(third);
+  fs::remove_all(dir);
+}
+
+TEST(FuzzFindingFiles, AFindingThatCannotBeWrittenIsSaidToBeAndTheRunGoesOn) {
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-unwritable-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A folder that cannot be made: it was an uncaught exception (exit by abort).
+  { std::ofstream(dir / "a-file") << "x"; }
+  auto r = fuzz_in(dir / "a-file" / "findings");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("sabus fuzz: the finding is not written: cannot create the folder"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 finding(s)\n  (not written) "), std::string::npos) << r.out;
+  // A write that fails (no file may grow past 0 bytes): said, and no file left.
+  r = fuzz_in(dir / "findings", "ulimit -f 0; trap '' XFSZ; ");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("write failed: File too large"), std::string::npos) << r.out;
+  EXPECT_TRUE(files_in(dir / "findings").empty());
+  fs::remove_all(dir);
+}
+
+// The command line in the finding's comment holds what a person typed: a
+// profile path with a line break made the rest of it YAML.
+TEST(FuzzFindingFiles, ACommandLineWithALineBreakStaysInTheComment) {
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-argv-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  const fs::path profile = dir / "profiles\nparagraph: x\r" / "rc3000.yaml";
+  fs::create_directories(profile.parent_path());
+  fs::copy_file(SABUS_SOURCE_DIR "/vectors/profiles/rc3000-1.59.yaml", profile);
+  const auto r = fuzz_in(dir / "findings", "", "--profile '" + profile.string() + "'");
+  EXPECT_EQ(r.status, 1) << r.out;
+  const auto files = files_in(dir / "findings");
+  ASSERT_EQ(files.size(), 1u) << r.out;
+  const std::string text = read_file(files[0]);
+  EXPECT_EQ(sabus::test::yaml_text_problem(text), "") << text;
+  EXPECT_NE(text.find("--profile " + (dir / "profiles").string() + "\n# paragraph: x\\x0d/rc3000.yaml"), std::string::npos) << text;
+  EXPECT_EQ(Process({SABUS_BIN, "vectors", "lint", files[0].string()}).wait_exit(), 0) << text;
+  fs::remove_all(dir);
 }
 
 }  // namespace

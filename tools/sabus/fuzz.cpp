@@ -9,7 +9,6 @@
 #include <condition_variable>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <random>
 #include <mutex>
@@ -18,6 +17,7 @@
 
 #include "commands.hpp"
 #include "device.hpp"
+#include "new_file.hpp"
 #include "sabus/harness/line.hpp"
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/transports.hpp"
@@ -192,12 +192,15 @@ int run_fuzz(const FuzzCliOptions& o) {
     progress->line(fmt::format("FINDING {} after {} writes: {}", to_string(v.kind), frames, v.message));
     progress->update(frames, findings.size(), fmt::format("minimizing the {} finding", to_string(v.kind)));
     minimize(f, profile, so, fresh, fresh ? nullptr : &session);
-    fs::create_directories(o.findings);
-    const fs::path file = fs::path(o.findings) / fmt::format("fuzz-{}-{}-{}.yaml", seed, findings.size() + 1, to_string(v.kind));
-    std::ofstream(file) << finding_vector_yaml(f, profile, {seed, command_line(o, seed), findings.size() + 1});
+    // A new file: a finding of an earlier run with this seed stays as it is.
+    std::string error;
+    const auto file = write_new_file(o.findings, fmt::format("fuzz-{}-{}-{}", seed, findings.size() + 1, to_string(v.kind)),
+                                     ".yaml", finding_vector_yaml(f, profile, {seed, command_line(o, seed), findings.size() + 1}),
+                                     error);
     progress->line(fmt::format("  {} {} write(s) -> {}", f.reproduced ? "minimized to" : "NOT reproduced; kept",
-                               f.reproducer.size(), file.string()));
-    written.push_back(file.string());
+                               f.reproducer.size(), file ? file->string() : "NOT WRITTEN: " + error));
+    if (!file) std::cerr << "sabus fuzz: the finding is not written: " << error << "\n";
+    written.push_back(file ? file->string() : "(not written)");
     findings.push_back(std::move(f));
     progress->update(frames, findings.size());
   };

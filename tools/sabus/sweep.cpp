@@ -11,7 +11,6 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -23,6 +22,7 @@
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "new_file.hpp"
 #include "sweep.hpp"
 
 namespace sabus::cli {
@@ -54,7 +54,7 @@ std::string skip_cause(const std::string& reason) {
 
 struct ProfileOutcome {
   std::uint64_t seed = 0;
-  std::string profile_yaml;
+  Profile profile;
   std::size_t ran = 0, passed = 0, skipped = 0;
   std::map<std::string, std::size_t> skips;  // cause -> count
   std::vector<std::string> failures;         // "id: first failure"
@@ -64,8 +64,8 @@ struct ProfileOutcome {
 ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed) {
   ProfileOutcome o;
   o.seed = seed;
-  const Profile p = random_profile(seed);
-  o.profile_yaml = to_yaml(p);
+  o.profile = random_profile(seed);
+  const Profile& p = o.profile;
   auto transport = make_in_process_transport(bus_of(p), {});
   RunOptions options;
   options.allow_motion = true;
@@ -97,19 +97,17 @@ std::string skip_line(const ProfileOutcome& o) {
 
 // Writes a profile (a failing one with its failures) with its seed, so that
 // `sabus run --sim --profile FILE --allow-motion --allow-destructive` or
-// `sabus vectors sweep --profile-seed SEED` reproduces it.
-std::string write_profile(const fs::path& dir, const ProfileOutcome& o) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  const fs::path file = dir / fmt::format("sweep-{:016x}.yaml", o.seed);
-  std::ofstream out(file);
-  out << fmt::format("# A random legal profile (random_profile seed 0x{:016x}){}\n", o.seed,
-                     o.failures.empty() && o.aborted.empty() ? "" : " on which vectors failed:");
-  for (const auto& f : o.failures) out << "#   " << f << "\n";
-  if (!o.aborted.empty()) out << "#   run aborted: " << o.aborted << "\n";
-  out << "# Reproduce: sabus vectors sweep --profile-seed " << o.seed << "\n";
-  out << o.profile_yaml;
-  return file.string();
+// `sabus vectors sweep --profile-seed SEED` reproduces it: a new file, never
+// one that is there (new_file.hpp). The failures, which hold what the vectors
+// and the controller said, are comment lines that the profile loader skips.
+// The file's path, or nullopt with `error`.
+std::optional<fs::path> write_profile(const fs::path& dir, const ProfileOutcome& o, std::string& error) {
+  std::string comment = fmt::format("A random legal profile (random_profile seed 0x{:016x}){}\n", o.seed,
+                                    o.failures.empty() && o.aborted.empty() ? "" : " on which vectors failed:");
+  for (const auto& f : o.failures) comment += "  " + f + "\n";
+  if (!o.aborted.empty()) comment += "  run aborted: " + o.aborted + "\n";
+  comment += fmt::format("Reproduce: sabus vectors sweep --profile-seed {}", o.seed);
+  return write_new_file(dir, fmt::format("sweep-{:016x}", o.seed), ".yaml", to_yaml(o.profile, comment), error);
 }
 
 std::size_t percentile(std::vector<std::size_t> v, double q) {
@@ -149,10 +147,13 @@ int run_sweep(const SweepOptions& opts) {
                                o.ran - o.passed, o.skipped, skip_line(o));
       for (const auto& f : o.failures) std::cout << "  FAIL " << f << "\n";
       if (!o.aborted.empty()) std::cout << "  ABORTED " << o.aborted << "\n";
-      if (!o.failures.empty() || !o.aborted.empty())
-        std::cout << "  profile written to " << write_profile(opts.out, o) << "\n";
-      else if (!opts.write_profiles.empty())
-        write_profile(opts.write_profiles, o);
+      const bool failed = !o.failures.empty() || !o.aborted.empty();
+      if (failed || !opts.write_profiles.empty()) {
+        std::string error;
+        const auto file = write_profile(failed ? opts.out : opts.write_profiles, o, error);
+        if (!file) std::cerr << "sabus vectors sweep: the profile of seed " << o.seed << " is not written: " << error << "\n";
+        else if (failed) std::cout << "  profile written to " << file->string() << "\n";
+      }
       std::cout.flush();
     }
   };

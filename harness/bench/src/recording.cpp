@@ -2,14 +2,16 @@
 #include "sabus/harness/recording.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
 
+#include "sabus/harness/expressions.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "sabus/harness/yaml_writer.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/lrc.hpp"
@@ -81,7 +83,20 @@ struct RecordedVector {
   std::vector<Exchange> steps;
 };
 
-std::string yaml_text(std::string_view s) { return nlohmann::json(std::string(s)).dump(); }
+// Data in the file (ids, raw templates, matcher values, paragraphs):
+// double-quoted, exactly as it is.
+struct Data {
+  std::string_view text;
+};
+YAML::Emitter& operator<<(YAML::Emitter& e, const Data& d) { return e << YAML::DoubleQuoted << std::string(d.text); }
+// Text for a person (the title, a vector's comment) may hold what a capture
+// said (a run's vector id and outcome): printable, double-quoted.
+struct Prose {
+  std::string_view text;
+};
+YAML::Emitter& operator<<(YAML::Emitter& e, const Prose& p) {
+  return e << YAML::DoubleQuoted << yaml_writer::printable_text(p.text);
+}
 
 std::string id_part(std::string_view s) {
   std::string out;
@@ -125,26 +140,62 @@ Effects effects_of(const Bytes& chars) {
   return info->effects();
 }
 
-// The expectation of one exchange, as YAML lines at `indent`.
-std::string expectation(const Exchange& x, const std::string& indent, std::vector<std::string>& notes) {
-  if (x.replies.empty()) return indent + "expect: silence\n";
+// How a reply field is checked on replay: its mask, or its text as it came
+// (`eq`; `one_of` for the texts of several fields of one name).
+void field_matcher(YAML::Emitter& e, const std::vector<const FieldDescription*>& same_name) {
+  if (const MaskRule* rule = mask_rule_for(*same_name.front())) {
+    if (rule->mask == Mask::kAny) e << "any";
+    else e << YAML::Flow << YAML::BeginMap << YAML::Key << "regex" << YAML::Value << Data{rule->regex} << YAML::EndMap;
+    return;
+  }
+  // A matcher's value is a template (vectors/README.md, "Profile
+  // expressions"): a brace in the text (a satellite named "{X}") is doubled.
+  std::vector<std::string> texts;
+  for (const auto* f : same_name)
+    if (const std::string t = literal_template(matcher_text(*f)); std::find(texts.begin(), texts.end(), t) == texts.end())
+      texts.push_back(t);
+  e << YAML::Flow << YAML::BeginMap;
+  if (texts.size() == 1) {
+    e << YAML::Key << "eq" << YAML::Value << Data{texts[0]};
+  } else {
+    e << YAML::Key << "one_of" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const auto& t : texts) e << Data{t};
+    e << YAML::EndSeq;
+  }
+  e << YAML::EndMap;
+}
+
+// The expectation of one exchange: the value of a step's `expect`.
+void expectation(YAML::Emitter& e, const Exchange& x, std::vector<std::string>& notes) {
+  if (x.replies.empty()) {
+    e << "silence";
+    return;
+  }
   if (x.replies.size() > 1) {
     notes.push_back(fmt::format("t={:.1f} ms: {} frames answered one request; recorded as `any`", x.t_ms, x.replies.size()));
-    return indent + "expect: any\n";
+    e << "any";
+    return;
   }
   const Bytes& reply = x.replies.front();
   auto frame = one_frame(reply);
   const CommandInfo* asked = request_command(x.request);
-  if (frame && frame->kind == FrameKind::kNak && reply.size() == kNakReplyLength) return indent + "expect: nak\n";
-  if (frame && is_offline_reply(*frame)) return indent + "expect: offline\n";
+  if (frame && frame->kind == FrameKind::kNak && reply.size() == kNakReplyLength) {
+    e << "nak";
+    return;
+  }
+  if (frame && is_offline_reply(*frame)) {
+    e << "offline";
+    return;
+  }
   const FrameDescription d = describe_frame(reply);
   if (!frame || frame->kind != FrameKind::kAck || d.error || !asked || frame->command != asked->code ||
       !asked->reply_length || reply.size() != *asked->reply_length) {
-    notes.push_back(fmt::format("t={:.1f} ms: the reply is not the command's normal reply ({}); recorded as `any`",
-                                x.t_ms, d.summary));
-    return indent + "expect: any\n";
+    notes.push_back(fmt::format("t={:.1f} ms: the reply is not the command's normal reply ({}{}); recorded as `any`",
+                                x.t_ms, d.summary, d.error ? ": " + d.error->message() : std::string()));
+    e << "any";
+    return;
   }
-  // Field name -> the texts of every field of that name, in order.
+  // Field name -> every field of that name, in order.
   std::vector<std::string> order;
   std::map<std::string, std::vector<const FieldDescription*>> by_name;
   for (const auto& f : d.fields) {
@@ -152,29 +203,16 @@ std::string expectation(const Exchange& x, const std::string& indent, std::vecto
     if (!by_name.count(f.name)) order.push_back(f.name);
     by_name[f.name].push_back(&f);
   }
-  std::string out = indent + "expect:\n" + indent + "  reply: ack\n";
-  if (order.empty()) return out;
-  out += indent + "  fields:\n";
-  for (const auto& name : order) {
-    const auto& list = by_name[name];
-    out += indent + "    " + yaml_text(name) + ": ";
-    if (const MaskRule* rule = mask_rule_for(*list.front())) {
-      out += rule->mask == Mask::kAny ? "any" : "{regex: " + yaml_text(rule->regex) + "}";
-      out += "\n";
-      continue;
+  e << YAML::BeginMap << YAML::Key << "reply" << YAML::Value << "ack";
+  if (!order.empty()) {
+    e << YAML::Key << "fields" << YAML::Value << YAML::BeginMap;
+    for (const auto& name : order) {
+      e << YAML::Key << Data{name} << YAML::Value;
+      field_matcher(e, by_name[name]);
     }
-    std::vector<std::string> texts;
-    for (const auto* f : list)
-      if (std::find(texts.begin(), texts.end(), matcher_text(*f)) == texts.end()) texts.push_back(matcher_text(*f));
-    if (texts.size() == 1) {
-      out += "{eq: " + yaml_text(texts[0]) + "}\n";
-    } else {
-      std::string items;
-      for (const auto& t : texts) items += (items.empty() ? "" : ", ") + yaml_text(t);
-      out += "{one_of: [" + items + "]}\n";
-    }
+    e << YAML::EndMap;
   }
-  return out;
+  e << YAML::EndMap;
 }
 
 std::vector<RecordedVector> from_proxy_log(const Capture& c, std::vector<std::string>& notes) {
@@ -236,6 +274,23 @@ std::vector<RecordedVector> from_run_json(const Capture& c, std::vector<std::str
   return out;
 }
 
+// A capture holds 7-bit characters (the receiver takes the parity bit off;
+// tools/PROXY-LOG.md), and so does a raw send (vectors/README.md): a
+// request with a byte of 80h or more cannot be sent again as it was. Why
+// not, naming the exchange, or "".
+std::string eight_bit_request(const std::vector<RecordedVector>& vectors) {
+  for (std::size_t i = 0; i < vectors.size(); ++i)
+    for (const auto& x : vectors[i].steps)
+      for (std::size_t k = 0; k < x.request.size(); ++k)
+        if (x.request[k] > 0x7F)
+          return fmt::format("{} (t={:.1f} ms): byte {} of the request is 0x{:02x}, not a 7-bit character; a capture holds "
+                             "the characters sent, without the parity bit",
+                             vectors[i].source_id.empty() ? fmt::format("exchange {}", i + 1)
+                                                          : "vector " + yaml_writer::printable_text(vectors[i].source_id),
+                             x.t_ms, k, x.request[k]);
+  return "";
+}
+
 bool is_cross_cutting(std::string_view p) {
   return std::find(std::begin(kCrossCutting), std::end(kCrossCutting), p) != std::end(kCrossCutting);
 }
@@ -287,6 +342,7 @@ std::optional<Recording> record_vectors(const Capture& capture, const RecordOpti
     error = "no request/reply exchange to record in the " + std::string(to_string(capture.source));
     return std::nullopt;
   }
+  if (error = eight_bit_request(vectors); !error.empty()) return std::nullopt;
   // The session's address: that of the first well-formed request.
   std::optional<std::uint8_t> address;
   std::vector<Exchange> all;
@@ -310,16 +366,21 @@ std::optional<Recording> record_vectors(const Capture& capture, const RecordOpti
   }
   const bool cross = is_cross_cutting(rec.paragraph);
 
-  std::string y;
-  y += "# Regression vectors recorded by `sabus record` from " + (options.source.empty() ? std::string("a capture") : options.source) +
-       " (" + std::string(to_string(capture.source)) + (capture.device.empty() ? "" : ", device " + capture.device) + ").\n";
-  y += "# What that controller answered then; fields that change between runs are masked\n";
-  y += "# (vectors/README.md, \"Recorded regression vectors\"). Schema: vectors/README.md.\n";
-  y += "paragraph: " + yaml_text(rec.paragraph) + "\n";
-  y += "title: " + yaml_text("Regression " + options.name + ": " + std::to_string(vectors.size()) + " recorded " +
-                          (capture.source == Capture::Source::kProxyLog ? "exchange(s)" : "vector(s)")) + "\n";
-  if (address) y += fmt::format("requires: {{address: {}}}\n", *address);
-  y += "vectors:\n";
+  YAML::Emitter y;
+  y << YAML::Comment(yaml_writer::printable_text(
+      "Regression vectors recorded by `sabus record` from " + (options.source.empty() ? std::string("a capture") : options.source) +
+      " (" + std::string(to_string(capture.source)) + (capture.device.empty() ? "" : ", device " + capture.device) + ").\n" +
+      "What that controller answered then; fields that change between runs are masked\n" +
+      "(vectors/README.md, \"Recorded regression vectors\"). Schema: vectors/README.md."));
+  y << YAML::BeginMap;
+  y << YAML::Key << "paragraph" << YAML::Value << Data{rec.paragraph};
+  y << YAML::Key << "title" << YAML::Value
+    << Prose{"Regression " + options.name + ": " + std::to_string(vectors.size()) + " recorded " +
+             (capture.source == Capture::Source::kProxyLog ? "exchange(s)" : "vector(s)")};
+  if (address)
+    y << YAML::Key << "requires" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "address" << YAML::Value
+      << static_cast<int>(*address) << YAML::EndMap;
+  y << YAML::Key << "vectors" << YAML::Value << YAML::BeginSeq;
 
   std::set<std::string> ids;
   for (std::size_t i = 0; i < vectors.size(); ++i) {
@@ -343,28 +404,34 @@ std::optional<Recording> record_vectors(const Capture& capture, const RecordOpti
       e.moves_antenna |= one_e.moves_antenna;
       e.changes_stored_data |= one_e.changes_stored_data;
     }
-    y += "  - id: " + yaml_text(id) + "\n";
-    y += "    comment: " + yaml_text(v.comment) + "\n";
-    y += "    spec: {paragraph: " + yaml_text(spec_paragraph) + ", quote: " + yaml_text(quote) + "}\n";
-    y += "    level: must\n";
-    std::vector<std::string> tags;
-    if (e.moves_antenna) tags.push_back("motion");
-    if (e.changes_stored_data) tags.push_back("destructive");
-    if (!tags.empty()) {
-      std::string t;
-      for (const auto& s : tags) t += (t.empty() ? "" : ", ") + s;
-      y += "    tags: [" + t + "]\n";
+    y << YAML::BeginMap;
+    y << YAML::Key << "id" << YAML::Value << Data{id};
+    y << YAML::Key << "comment" << YAML::Value << Prose{v.comment};
+    y << YAML::Key << "spec" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "paragraph" << YAML::Value
+      << Data{spec_paragraph} << YAML::Key << "quote" << YAML::Value << Data{quote} << YAML::EndMap;
+    y << YAML::Key << "level" << YAML::Value << "must";
+    if (e.moves_antenna || e.changes_stored_data) {
+      y << YAML::Key << "tags" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      if (e.moves_antenna) y << "motion";
+      if (e.changes_stored_data) y << "destructive";
+      y << YAML::EndSeq;
     }
-    y += "    steps:\n";
+    y << YAML::Key << "steps" << YAML::Value << YAML::BeginSeq;
     for (const auto& x : v.steps) {
-      y += "      - send: {raw: " + yaml_text(raw_template(x.request, address.value_or(0))) + "}\n";
-      if (needs_length_mismatch(x.request)) y += "        length_mismatch: true\n";
-      y += expectation(x, "        ", rec.notes);
+      y << YAML::BeginMap;
+      y << YAML::Key << "send" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "raw" << YAML::Value
+        << Data{raw_template(x.request, address.value_or(0))} << YAML::EndMap;
+      if (needs_length_mismatch(x.request)) y << YAML::Key << "length_mismatch" << YAML::Value << true;
+      y << YAML::Key << "expect" << YAML::Value;
+      expectation(y, x, rec.notes);
+      y << YAML::EndMap;
       ++rec.steps;
     }
+    y << YAML::EndSeq << YAML::EndMap;
     ++rec.vectors;
   }
-  rec.yaml = std::move(y);
+  y << YAML::EndSeq << YAML::EndMap;
+  rec.yaml = yaml_writer::document(y);
   return rec;
 }
 

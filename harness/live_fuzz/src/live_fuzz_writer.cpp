@@ -1,11 +1,12 @@
 // A live-fuzzer finding as a conformance vector (vectors/README.md) that
 // `sabus run --vectors FILE` replays and `sabus vectors lint` accepts.
-#include <sstream>
+#include <yaml-cpp/yaml.h>
 
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "sabus/harness/yaml_writer.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
 
@@ -14,18 +15,10 @@ namespace {
 
 using namespace std::chrono_literals;
 
-std::string yaml_quoted(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
+using yaml_writer::printable_text;
+
+// Data (the paragraph, the quote, a raw template): double-quoted, exactly.
+YAML::Emitter& quoted(YAML::Emitter& e, std::string_view s) { return e << YAML::DoubleQuoted << std::string(s); }
 
 struct FrameEnds : ReceiverSink {
   std::vector<std::uint64_t> cuts;  // stream offsets of byte 0 of each accepted frame and one past it
@@ -105,45 +98,58 @@ std::string finding_vector_yaml(const Finding& finding, const Profile& profile, 
     destructive |= !is_safe_to_send(s.chars, true, false);
   }
   const std::string kind(to_string(finding.kind));
-  std::ostringstream y;
-  y << "# A finding of sabus fuzz (" << kind << "), seed " << context.seed << ":\n";
-  y << "#   " << context.command_line << "\n";
-  y << "# " << finding.message << "\n";
-  y << "# " << (finding.reproduced ? "Minimized by delta debugging from " : "NOT reproduced on replay; the last ")
-    << finding.history.size() << " writes" << (finding.reproduced ? "" : " are kept") << ". Schema: vectors/README.md.\n";
-  y << "paragraph: framing\n";
-  y << "title: " << yaml_quoted("sabus fuzz finding " + std::to_string(context.number) + ": " + kind) << "\n";
-  y << "vectors:\n";
-  y << "  - id: framing-fuzz-" << context.seed << "-" << context.number << "-" << kind << "\n";
-  y << "    comment: " << yaml_quoted(finding.message + " (§" + std::string(paragraph_of(finding.kind)) + "; found by sabus fuzz, seed " +
-                                      std::to_string(context.seed) + "; expectations from the reference controller)")
-    << "\n";
-  y << "    spec:\n";
-  y << "      paragraph: " << yaml_quoted(paragraph_of(finding.kind)) << "\n";
-  y << "      quote: " << yaml_quoted(quote_of(finding.kind)) << "\n";
-  y << "    level: must\n";
-  std::vector<std::string> tags;
-  if (motion) tags.push_back("motion");
-  if (destructive) tags.push_back("destructive");
-  if (parity) tags.push_back("parity");
-  if (!tags.empty()) {
-    y << "    tags: [";
-    for (std::size_t i = 0; i < tags.size(); ++i) y << (i ? ", " : "") << tags[i];
-    y << "]\n";
+  // The finding's message and the command line hold what a device said and
+  // what a person typed: printable_text, in the comments and the vector's
+  // comment alike.
+  YAML::Emitter y;
+  y << YAML::Comment(printable_text(
+      "A finding of sabus fuzz (" + kind + "), seed " + std::to_string(context.seed) + ":\n" + "  " + context.command_line +
+      "\n" + finding.message + "\n" +
+      (finding.reproduced ? "Minimized by delta debugging from " : "NOT reproduced on replay; the last ") +
+      std::to_string(finding.history.size()) + " writes" + (finding.reproduced ? "" : " are kept") +
+      ". Schema: vectors/README.md."));
+  y << YAML::BeginMap;
+  y << YAML::Key << "paragraph" << YAML::Value << "framing";
+  y << YAML::Key << "title" << YAML::Value << YAML::DoubleQuoted
+    << "sabus fuzz finding " + std::to_string(context.number) + ": " + kind;
+  y << YAML::Key << "vectors" << YAML::Value << YAML::BeginSeq << YAML::BeginMap;
+  y << YAML::Key << "id" << YAML::Value
+    << "framing-fuzz-" + std::to_string(context.seed) + "-" + std::to_string(context.number) + "-" + kind;
+  y << YAML::Key << "comment" << YAML::Value << YAML::DoubleQuoted
+    << printable_text(finding.message + " (§" + std::string(paragraph_of(finding.kind)) + "; found by sabus fuzz, seed " +
+                      std::to_string(context.seed) + "; expectations from the reference controller)");
+  y << YAML::Key << "spec" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "paragraph" << YAML::Value;
+  quoted(y, paragraph_of(finding.kind));
+  y << YAML::Key << "quote" << YAML::Value;
+  quoted(y, quote_of(finding.kind));
+  y << YAML::EndMap;
+  y << YAML::Key << "level" << YAML::Value << "must";
+  if (motion || destructive || parity) {
+    y << YAML::Key << "tags" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    if (motion) y << "motion";
+    if (destructive) y << "destructive";
+    if (parity) y << "parity";
+    y << YAML::EndSeq;
   }
-  y << "    steps:\n";
+  y << YAML::Key << "steps" << YAML::Value << YAML::BeginSeq;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const FuzzFrame& s = steps[i];
-    y << "      - send: {raw: " << yaml_quoted(to_hex(s.chars)) << "}   # " << s.what << "\n";
+    y << YAML::BeginMap;
+    y << YAML::Key << "send" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "raw" << YAML::Value;
+    quoted(y, to_hex(s.chars)) << YAML::EndMap << YAML::Comment(printable_text(s.what));
     if (!s.wrong_parity.empty()) {
-      y << "        modify: {parity_flip: [";
-      for (std::size_t k = 0; k < s.wrong_parity.size(); ++k) y << (k ? ", " : "") << s.wrong_parity[k];
-      y << "]}\n";
+      y << YAML::Key << "modify" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "parity_flip"
+        << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (std::size_t k : s.wrong_parity) y << k;
+      y << YAML::EndSeq << YAML::EndMap;
     }
-    if (needs_length_mismatch(s.chars)) y << "        length_mismatch: true\n";
-    y << "        expect: " << expect[i] << "\n";
+    if (needs_length_mismatch(s.chars)) y << YAML::Key << "length_mismatch" << YAML::Value << true;
+    y << YAML::Key << "expect" << YAML::Value << expect[i];
+    y << YAML::EndMap;
   }
-  return y.str();
+  y << YAML::EndSeq << YAML::EndMap << YAML::EndSeq << YAML::EndMap;
+  return yaml_writer::document(y);
 }
 
 }  // namespace sabus::harness::live_fuzz

@@ -1,6 +1,8 @@
 // The device profile writer: to_yaml writes every key of the schema
 // (vectors/profiles/README.md), which load_profile_text reads back to an
-// equal profile.
+// equal profile. The text is built here rather than by YAML::Emitter, for
+// speed (yaml_writer.hpp says why); every text value goes through
+// yaml_writer::double_quoted, and tests read every branch back.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +14,7 @@
 #include "profile_tables.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/yaml_reader.hpp"
+#include "sabus/harness/yaml_writer.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -19,26 +22,10 @@ namespace {
 using namespace profile_internal;
 using yaml_reader::number_text;
 
-// A double-quoted YAML string: the loader's text fields are printable ASCII,
-// anything else is escaped so the output stays well-formed YAML.
-std::string quoted(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (u < 0x20 || u == 0x7F) {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[u >> 4];
-      out += kHex[u & 0xF];
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+// Text values double-quoted (yaml_writer.hpp): the loader's text fields are
+// printable ASCII, read back exactly; anything else is escaped, so the
+// output stays well-formed YAML and the loader names the field.
+std::string quoted(std::string_view s) { return yaml_writer::double_quoted(s); }
 
 // (Appended, not "-" + std::to_string(...): GCC 12 warns falsely, -Wrestrict,
 // where that operator+ is inlined.)
@@ -207,6 +194,10 @@ std::string to_yaml(const Profile& p) {
   sub("locate_index_max", std::to_string(p.locate_index_max));
   sub("restore_lost_locate_exit", bool_text(p.restore_lost_locate_exit));
   return out;
+}
+
+std::string to_yaml(const Profile& p, std::string_view comment) {
+  return yaml_writer::comment_lines(comment) + to_yaml(p);
 }
 
 }  // namespace sabus::harness

@@ -4,6 +4,7 @@
 // against one with a fault), and `sabus decode` of both capture formats.
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <chrono>
 #include <filesystem>
@@ -14,16 +15,22 @@
 #include "sabus/harness/capture.hpp"
 #include "sabus/harness/line.hpp"
 #include "sabus/harness/recording.hpp"
+#include "sabus/harness/runner.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/receiver.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "process.hpp"
 #include "temp_dir.hpp"
+#include "test_support.hpp"
+#include "yaml_text.hpp"
 
 namespace sabus::harness {
 namespace {
 
+using test::hex;
 using test::Process;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
@@ -257,6 +264,270 @@ TEST(Decode, ReadsAProxyLog) {
   EXPECT_EQ(j["frames"], 4);
   EXPECT_EQ(j["events"][1]["reply_to"], 1);
   fs::remove(s.log);
+}
+
+// ---- what `sabus record` writes, read back ---------------------------------------
+//
+// Captures made here (proxy_frame, as `sabus proxy` logs; a run JSON as
+// `sabus run --json` writes it) of requests and the reference controller's
+// replies, and of replies no controller sends; every file recorded from them
+// loads with the suite's loader, passes its lint with no error, holds only
+// text a strict YAML reader takes, and replays against the controller the
+// capture came from.
+
+// A profile whose text fields hold YAML's own characters: the displayed name
+// (the status reply's `sat name`) and a preset satellite's name (3Ah).
+Profile hostile_text_profile() {
+  Profile p;
+  p.display.satellite = "A\"B\\C#: D";
+  PresetSatellite preset;
+  preset.index = 3;
+  preset.data.name = "q\"\\'{x} #-";
+  p.presets = {preset};
+  return p;
+}
+
+// The frames (7-bit characters) the controller answers `request` with.
+std::vector<Bytes> replies_of(InProcessTransport& t, const Bytes& request) {
+  struct Frames : ReceiverSink {
+    std::vector<Bytes> frames;
+    void on_frame(const FrameView& f) override { frames.emplace_back(f.bytes.begin(), f.bytes.end()); }
+    void on_discard(const Discard&) override {}
+  } sink;
+  t.send(request);
+  Receiver rx(ReceiverOptions::master());
+  std::uint8_t buf[512];
+  for (std::size_t n; (n = t.receive(buf, 1ms)) > 0;) rx.feed(ByteView(buf, n), sink);
+  rx.finish(sink);
+  return sink.frames;
+}
+
+// A frame with its check byte computed: `body` is byte 0 through ETX.
+Bytes with_lrc(Bytes body) {
+  std::uint8_t x = 0;
+  for (auto b : body) x ^= b;
+  body.push_back(x);
+  return body;
+}
+
+struct Exchange {
+  Bytes request;
+  std::vector<Bytes> replies;
+  std::vector<Bytes> ignored;  // device bytes the receiver discarded, logged before the replies
+};
+
+std::string proxy_log_of(const std::vector<Exchange>& exchanges, const std::string& device) {
+  std::string log = proxy_header("pty /dev/pts/9 (link /tmp/mc)", device, "8N1").dump() + "\n";
+  std::uint64_t seq = 0;
+  double t = 0;
+  for (const auto& x : exchanges) {
+    log += proxy_frame(t += 10, Direction::kToDevice, x.request, ++seq, std::nullopt).dump() + "\n";
+    for (const auto& g : x.ignored)
+      log += nlohmann::json{{"type", "discard"}, {"t_ms", t + 1}, {"wall", "2024-05-06T12:34:56.789Z"}, {"dir", "dev->mc"},
+                            {"reason", "bad LRC"}, {"message", "bad LRC"}, {"length", g.size()}, {"hex", to_hex(g)}}
+                 .dump() +
+             "\n";
+    for (const auto& r : x.replies) log += proxy_frame(t + 2, Direction::kFromDevice, r, std::nullopt, seq).dump() + "\n";
+  }
+  return log;
+}
+
+Recording record_ok(const std::string& capture_text, const RecordOptions& options) {
+  std::string error;
+  const auto capture = read_capture(capture_text, error);
+  EXPECT_TRUE(capture) << error;
+  if (!capture) return {};
+  auto rec = record_vectors(*capture, options, error);
+  EXPECT_TRUE(rec) << error;
+  return rec.value_or(Recording{});
+}
+
+// The recording as the suite reads it: loaded and linted with no error, and
+// its characters those a strict YAML reader takes.
+std::vector<Vector> load_and_lint(const Recording& rec) {
+  EXPECT_EQ(test::yaml_text_problem(rec.yaml), "") << rec.yaml;
+  LoadResult loaded = load_vector_text(rec.yaml, "recorded.yaml");
+  for (const auto& e : loaded.errors) ADD_FAILURE() << e.text() << "\n" << rec.yaml;
+  if (!loaded.ok()) return {};
+  for (const auto& e : lint(loaded.files)) ADD_FAILURE() << e.text() << "\n" << rec.yaml;
+  return loaded.files.at(0).vectors;
+}
+
+RunResult replay(const std::vector<Vector>& vectors, const Profile& profile) {
+  auto t = make_in_process_transport({profile});
+  RunOptions o;
+  o.backup_stored_data = false;
+  return Runner(*t, profile, o).run(vectors);
+}
+
+// What the file says a step of vector `v` expects, read with yaml-cpp.
+YAML::Node expect_of(const std::string& yaml, std::size_t v, std::size_t step = 0) {
+  return YAML::Load(yaml)["vectors"][v]["steps"][step]["expect"];
+}
+
+TEST(RecordWrites, EveryExpectationOfAProxySessionLoadsLintsAndReplays) {
+  const Profile p = hostile_text_profile();
+  auto t = make_in_process_transport({p});
+  const Bytes status = encode_request(StatusPoll{}, '2');
+  ReadSatellite read;
+  read.index = 3;
+  const Bytes read_preset = encode_request(read, '2');
+  const Bytes device_type = encode_request(DeviceTypeQuery{}, '2');
+  const Bytes other_address = encode_request(StatusPoll{}, '3');
+  const Bytes long_status = with_lrc({0x02, '2', 0x31, 'A', 0x03});  // a data byte too many: NAK (§3)
+  const Bytes status_reply = replies_of(*t, status).at(0);
+  // The status reply with a control character (01h) in the satellite name, and
+  // with a byte of 80h or more: the check byte made right, so only the field
+  // is wrong.
+  Bytes control = status_reply, eight_bit = status_reply;
+  control[5] = 0x01;
+  eight_bit[5] = 0xFF;
+  control = with_lrc(Bytes(control.begin(), control.end() - 1));
+  eight_bit = with_lrc(Bytes(eight_bit.begin(), eight_bit.end() - 1));
+
+  const std::vector<Exchange> session = {
+      {status, replies_of(*t, status), {}},                         // 0: an exact reply, a name with quotes and a backslash
+      {read_preset, replies_of(*t, read_preset), {}},               // 1: the same in a preset's name
+      {device_type, replies_of(*t, device_type), {hex("06 b2 00")}},  // 2: bytes ignored before the reply
+      {other_address, replies_of(*t, other_address), {}},           // 3: silence
+      {long_status, replies_of(*t, long_status), {}},               // 4: nak, with length_mismatch
+      {status, {status_reply, hex("15 32 31 03 15")}, {}},          // 5: two frames: any
+      {status, {control}, {}},                                      // 6: a field that does not decode: any
+      {status, {eight_bit}, {}},                                    // 7: a byte of 80h or more: any
+      {status, {Bytes(status_reply.begin(), status_reply.end() - 3)}, {}},  // 8: cut short: no frame, any
+  };
+  ASSERT_EQ(session[3].replies.size(), 0u);
+  ASSERT_EQ(session[4].replies.at(0).front(), NAK);
+  const Recording rec = record_ok(proxy_log_of(session, "serial /dev/ttyUSB0 9600 8N1 (termios)"),
+                                  {"hostile", "", "session.jsonl"});
+  const std::vector<Vector> vectors = load_and_lint(rec);
+  ASSERT_EQ(vectors.size(), session.size()) << rec.yaml;
+  EXPECT_EQ(rec.paragraph, "framing");
+
+  EXPECT_EQ(expect_of(rec.yaml, 0)["reply"].Scalar(), "ack");
+  EXPECT_EQ(expect_of(rec.yaml, 0)["fields"]["sat name"]["eq"].Scalar(), "A\"B\\C#: D") << rec.yaml;
+  EXPECT_EQ(expect_of(rec.yaml, 0)["fields"]["azimuth"].Scalar(), "any") << "masked: follows the mount";
+  EXPECT_EQ(expect_of(rec.yaml, 1)["fields"]["sat name"]["eq"].Scalar(), "q\"\\'{{x}} #-")
+      << "a matcher's value is a template: its braces doubled\n"
+      << rec.yaml;
+  EXPECT_EQ(expect_of(rec.yaml, 2)["fields"]["version"]["eq"].Scalar(), "1.59") << rec.yaml;
+  EXPECT_EQ(expect_of(rec.yaml, 3).Scalar(), "silence");
+  EXPECT_EQ(expect_of(rec.yaml, 4).Scalar(), "nak");
+  EXPECT_TRUE(YAML::Load(rec.yaml)["vectors"][4]["steps"][0]["length_mismatch"].as<bool>()) << rec.yaml;
+  for (std::size_t v : {5u, 6u, 7u, 8u}) EXPECT_EQ(expect_of(rec.yaml, v).Scalar(), "any") << v;
+  std::size_t noted_any = 0;
+  for (const auto& n : rec.notes) noted_any += n.find("recorded as `any`") != std::string::npos;
+  EXPECT_EQ(noted_any, 4u);
+
+  // Replayed against the controller it came from: every vector passes.
+  const RunResult same = replay(vectors, p);
+  EXPECT_EQ(same.exit_code(), 0);
+  EXPECT_EQ(same.passed, session.size());
+  for (const auto& v : same.vectors)
+    EXPECT_EQ(v.verdict, Verdict::kPass) << v.id << ": " << (v.failures.empty() ? "" : v.failures.front());
+  // And the names are checked: a controller with other names fails the two
+  // vectors that read them.
+  Profile renamed = p;
+  renamed.display.satellite = "A\"B\\C#: E";
+  renamed.presets[0].data.name = "q\"\\'{x} #+";
+  const RunResult other = replay(vectors, renamed);
+  EXPECT_EQ(other.exit_code(), 1);
+  EXPECT_EQ(other.failed, 2u);
+}
+
+TEST(RecordWrites, AnOfflineSessionRecordsTheOfflineReply) {
+  Profile p;
+  p.remote_enabled = false;
+  auto t = make_in_process_transport({p});
+  const Bytes status = encode_request(StatusPoll{}, '2');
+  const Recording rec = record_ok(proxy_log_of({{status, replies_of(*t, status), {}}}, "dev"), {"offline", "", "off.jsonl"});
+  const std::vector<Vector> vectors = load_and_lint(rec);
+  ASSERT_EQ(vectors.size(), 1u);
+  EXPECT_EQ(expect_of(rec.yaml, 0).Scalar(), "offline") << rec.yaml;
+  EXPECT_EQ(replay(vectors, p).exit_code(), 0);
+  EXPECT_EQ(replay(vectors, Profile{}).exit_code(), 1) << "an enabled controller answers";
+}
+
+// The header comment names the capture's file and device, which may hold
+// anything a file name or a JSON string can: a line break there made the
+// rest of the line YAML (a device "dev\nline2: x" was an unknown key, a file
+// name "b\nparagraph: x" a duplicate one, and the recording was refused).
+TEST(RecordWrites, TheHeaderTakesAnyFileAndDeviceName) {
+  auto t = make_in_process_transport({Profile{}});
+  const Bytes status = encode_request(StatusPoll{}, '2');
+  const std::string device = "dev\nline2: x\r\nvectors: []\x01\x7f \xe2\x80\xa8 # \xc3\xa9";
+  const std::string source = "b\xff\nparagraph: \"x\".jsonl";
+  const Recording rec = record_ok(proxy_log_of({{status, replies_of(*t, status), {}}}, device), {"header", "", source});
+  const std::vector<Vector> vectors = load_and_lint(rec);
+  ASSERT_EQ(vectors.size(), 1u);
+  EXPECT_NE(rec.yaml.find("from b\\xff\n# paragraph: \"x\".jsonl (proxy log, device dev\n# line2: x\\x0d\n# vectors: []\\x01\\x7f "
+                          "\\xe2\\x80\\xa8 # \xc3\xa9)."),
+            std::string::npos)
+      << rec.yaml;
+  EXPECT_EQ(replay(vectors, Profile{}).exit_code(), 0);
+}
+
+// A run JSON's vector ids, paragraphs and outcomes reach each vector's
+// comment: printable there, and the ids made of id characters.
+TEST(RecordWrites, ARunJsonWithAnyTextInItsIdsAndOutcomesLoadsLintsAndReplays) {
+  const Profile p = hostile_text_profile();
+  auto t = make_in_process_transport({p});
+  const Bytes status = encode_request(StatusPoll{}, '2');
+  const Bytes device_type = encode_request(DeviceTypeQuery{}, '2');
+  auto entry = [](double t_ms, const char* dir, const Bytes& b) {
+    return nlohmann::json{{"t_ms", t_ms}, {"dir", dir}, {"hex", to_hex(b)}, {"note", "x"}};
+  };
+  nlohmann::json run = {{"schema", "sabus-run"}, {"version", 2}, {"device", "dev\r\nx: y"}, {"vectors", nlohmann::json::array()}};
+  const std::string hostile = "a\"b\\c\nd: e\r\x01\x7f\xc2\x85\xe2\x80\xa8 # \xc3\xa9";
+  run["vectors"].push_back({{"id", "3.2-" + hostile},
+                            {"paragraph", hostile},
+                            {"level", "must"},
+                            {"outcome", "fail: " + hostile},
+                            {"transcript",
+                             {entry(1, "tx", status), entry(2, "rx", replies_of(*t, status).at(0)), entry(3, "rx", {}),
+                              entry(4, "tx", device_type), entry(5, "rx", replies_of(*t, device_type).at(0))}}});
+  run["vectors"].push_back({{"id", "3.2-plain"}, {"transcript", {entry(1, "tx", encode_request(StatusPoll{}, '3'))}}});  // silence
+  const Recording rec = record_ok(run.dump(), {"fw", "", "run.json"});
+  const std::vector<Vector> vectors = load_and_lint(rec);
+  ASSERT_EQ(vectors.size(), 2u) << rec.yaml;
+  EXPECT_EQ(vectors[0].id, "framing-fw-3.2-a-b-c-d--e-------------") << rec.yaml;
+  EXPECT_EQ(vectors[0].comment,
+            "Recorded from run vector 3.2-a\"b\\c\nd: e\\x0d\\x01\\x7f\\xc2\\x85\\xe2\\x80\\xa8 # \xc3\xa9 (\xc2\xa7" +
+                std::string("a\"b\\c\nd: e\\x0d\\x01\\x7f\\xc2\\x85\\xe2\\x80\\xa8 # \xc3\xa9, must, outcome fail: a\"b\\c\nd: "
+                            "e\\x0d\\x01\\x7f\\xc2\\x85\\xe2\\x80\\xa8 # \xc3\xa9)."))
+      << rec.yaml;
+  EXPECT_EQ(expect_of(rec.yaml, 0, 0)["fields"]["sat name"]["eq"].Scalar(), "A\"B\\C#: D");
+  EXPECT_EQ(expect_of(rec.yaml, 1, 0).Scalar(), "silence");
+  EXPECT_EQ(replay(vectors, p).exit_code(), 0);
+}
+
+TEST(RecordWrites, ARequestOfEightBitCharactersIsAnErrorNamingTheExchange) {
+  const std::string log = proxy_log_of({{encode_request(StatusPoll{}, '2'), {}, {}}, {hex("02 32 30 ff 03 fe"), {}, {}}}, "dev");
+  std::string error;
+  const auto capture = read_capture(log, error);
+  ASSERT_TRUE(capture) << error;
+  EXPECT_FALSE(record_vectors(*capture, {"x", "", "log.jsonl"}, error));
+  EXPECT_EQ(error,
+            "exchange 2 (t=20.0 ms): byte 3 of the request is 0xff, not a 7-bit character; a capture holds the characters "
+            "sent, without the parity bit");
+}
+
+// `sabus record` as a process, on a log whose file name holds a line break
+// and a byte that is not UTF-8: it records, and what it wrote lints clean.
+TEST(Record, AFileNamedWithALineBreakAndAByteThatIsNotUtf8) {
+  auto t = make_in_process_transport({Profile{}});
+  const Bytes status = encode_request(StatusPoll{}, '2');
+  const std::string log = temp_path("b\xff\nparagraph: x.jsonl"), out = temp_path("named.yaml");
+  {
+    std::ofstream f(log);
+    f << proxy_log_of({{status, replies_of(*t, status), {}}}, "dev");
+  }
+  std::string text;
+  ASSERT_EQ(run_sabus({"record", log, "--out", out}, &text), 0) << text;
+  EXPECT_EQ(run_sabus({"vectors", "lint", out}, &text), 0) << text;
+  EXPECT_EQ(test::yaml_text_problem(test::slurp(out)), "") << test::slurp(out);
+  fs::remove(log);
+  fs::remove(out);
 }
 
 // ---- the mask table -------------------------------------------------------------

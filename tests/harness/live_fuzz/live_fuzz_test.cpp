@@ -2,6 +2,9 @@
 // the session against the in-process reference controller, and findings
 // written as vectors that the runner replays.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <sstream>
 
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/runner.hpp"
@@ -10,6 +13,7 @@
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "test_support.hpp"
+#include "yaml_text.hpp"
 
 namespace sabus::harness::live_fuzz {
 namespace {
@@ -286,6 +290,92 @@ TEST(LiveFuzzMinimize, ShrinksTheHistoryAndTheVectorReplaysIt) {
     auto clean = make_in_process_transport({profile()});
     EXPECT_EQ(Runner(*clean, profile(), {}).run(vectors).exit_code(), 0) << yaml;
   }
+}
+
+// Every kind of finding from the one table (SABUS_LIVE_FUZZ_FINDINGS).
+constexpr FindingKind kEveryKind[] = {
+#define SABUS_X(id, name, paragraph, quote) FindingKind::id,
+    SABUS_LIVE_FUZZ_FINDINGS(SABUS_X)
+#undef SABUS_X
+};
+
+// What a device said and a person typed, in a finding's message, its
+// command line and the writes' descriptions: line breaks, YAML, control
+// characters, DEL, a line separator, a byte that is not UTF-8.
+const std::string kHostile = "x\nparagraph: nak\r\n  - send: {raw: \"00\"}\x01\x7f \xe2\x80\xa8 # \xc3\xa9 \xff {{$a}}";
+
+// Writes of every shape a vector step takes: an answered poll, a frame the
+// device must ignore with a poll after it in one write (two steps), a wrong
+// parity bit (modify.parity_flip, tag parity), a wrong length
+// (length_mismatch), a move (tag motion) and a store (tag destructive).
+std::vector<FuzzFrame> writes_of_every_shape() {
+  return {{hex("02 32 31 03 02"), {}, "status poll " + kHostile},
+          {test::concat({hex("02 32 31 03 03"), hex("02 32 31 03 02")}), {}, "bad LRC + status poll after it " + kHostile},
+          {hex("02 32 31 03 02"), {2}, "parity " + kHostile},
+          {hex("02 32 31 41 03 43"), {}, "one data byte too many " + kHostile},
+          {encode_frame(cmd(0x36, "S ")), {}, "stow " + kHostile},
+          {encode_frame(cmd(0x46, std::string(28, '0'))), {}, "write navigation " + kHostile}};
+}
+
+// A finding written with finding_vector_yaml: loaded and linted with no
+// error, held to a strict check of its characters, its comments all
+// comment, and replayed clean against the reference controller it took its
+// expectations from.
+void expect_a_clean_vector_file(const std::string& yaml, const Profile& p) {
+  EXPECT_EQ(test::yaml_text_problem(yaml), "") << yaml;
+  LoadResult loaded = load_vector_text(yaml, "finding.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.errors.front().text() << "\n" << yaml;
+  const auto errors = lint(loaded.files);
+  ASSERT_TRUE(errors.empty()) << errors.front().text() << "\n" << yaml;
+  std::istringstream lines(yaml);
+  std::string line;
+  while (std::getline(lines, line) && line.rfind("paragraph:", 0) != 0) EXPECT_EQ(line.rfind("# ", 0), 0u) << line;
+  EXPECT_EQ(line, "paragraph: framing") << yaml;
+  RunOptions o;
+  o.allow_motion = o.allow_destructive = true;
+  o.backup_stored_data = false;
+  auto clean = make_in_process_transport({p});
+  const RunResult r = Runner(*clean, p, o).run(loaded.files.at(0).vectors);
+  EXPECT_EQ(r.exit_code(), 0) << (r.vectors.empty() || r.vectors[0].failures.empty() ? "" : r.vectors[0].failures[0]) << "\n"
+                              << yaml;
+}
+
+TEST(LiveFuzzWriter, EveryFindingKindIsALintCleanVectorWhateverItsTextSays) {
+  for (const FindingKind kind : kEveryKind) {
+    for (const bool reproduced : {true, false}) {
+      SCOPED_TRACE(std::string(to_string(kind)) + (reproduced ? ", reproduced" : ", not reproduced"));
+      const Finding f{kind, "message " + kHostile, writes_of_every_shape(),
+                      reproduced ? writes_of_every_shape() : std::vector<FuzzFrame>{}, reproduced};
+      const std::string yaml = finding_vector_yaml(f, profile(), {5, "sabus fuzz --sim --profile " + kHostile + " --seed 5", 2});
+      expect_a_clean_vector_file(yaml, profile());
+      const YAML::Node doc = YAML::Load(yaml);
+      const YAML::Node v = doc["vectors"][0];
+      EXPECT_EQ(v["id"].Scalar(), "framing-fuzz-5-2-" + std::string(to_string(kind)));
+      EXPECT_EQ(v["spec"]["paragraph"].Scalar(), paragraph_of(kind));
+      EXPECT_EQ(v["spec"]["quote"].Scalar(), quote_of(kind));
+      EXPECT_EQ(v["tags"].size(), 3u) << yaml;  // motion, destructive, parity
+      const YAML::Node steps = v["steps"];
+      ASSERT_EQ(steps.size(), 7u) << yaml;
+      const char* expected[] = {"ack", "silence", "ack", "silence", "nak", "ack", "nak"};
+      for (std::size_t i = 0; i < steps.size(); ++i) EXPECT_EQ(steps[i]["expect"].Scalar(), expected[i]) << i << "\n" << yaml;
+      EXPECT_EQ(steps[3]["modify"]["parity_flip"][0].as<int>(), 2) << yaml;
+      EXPECT_TRUE(steps[4]["length_mismatch"].as<bool>()) << yaml;
+      EXPECT_NE(v["comment"].Scalar().find("message x\nparagraph: nak\\x0d\n  - send: {raw: \"00\"}\\x01\\x7f \\xe2\\x80\\xa8 # "
+                                           "\xc3\xa9 \\xff {{$a}}"),
+                std::string::npos)
+          << yaml;
+      EXPECT_EQ(yaml.find("NOT reproduced") == std::string::npos, reproduced) << yaml;
+    }
+  }
+}
+
+TEST(LiveFuzzWriter, AFindingOnAControllerWithRemoteControlDisabledExpectsTheOfflineReply) {
+  Profile off = profile();
+  off.remote_enabled = false;
+  const Finding f{FindingKind::kWrongReply, "m", {{hex("02 32 31 03 02"), {}, "status poll"}}, {}, false};
+  const std::string yaml = finding_vector_yaml(f, off, {1, "sabus fuzz --sim", 1});
+  expect_a_clean_vector_file(yaml, off);
+  EXPECT_EQ(YAML::Load(yaml)["vectors"][0]["steps"][0]["expect"].Scalar(), "offline") << yaml;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/profile_loader.hpp"
+#include "yaml_text.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -25,6 +26,22 @@ RC_GTEST_PROP(ProfileGenerator, EveryProfileLoadsBackEqualAfterToYaml, (std::uin
   loaded.source = p.source;
   RC_ASSERT(loaded == p);
   RC_ASSERT(to_yaml(loaded) == yaml);
+}
+
+// As `sabus vectors sweep` writes a failing profile: under a comment of its
+// failures, which may hold anything a vector or a controller said. Any
+// bytes at all: the profile reads back equal and the file stays valid.
+RC_GTEST_PROP(ProfileGenerator, EveryProfileLoadsBackEqualUnderAnyComment, (std::uint64_t seed)) {
+  const std::string comment =
+      *rc::gen::container<std::string>(rc::gen::map(rc::gen::inRange(0, 256), [](int b) { return static_cast<char>(b); }));
+  const Profile p = random_profile(seed);
+  const std::string yaml = to_yaml(p, comment);
+  RC_ASSERT(test::yaml_text_problem(yaml).empty());
+  const ProfileResult back = load_profile_text(yaml, "random.yaml");
+  if (!back) RC_FAIL(back.error->text() + "\n" + yaml);
+  Profile loaded = *back.profile;
+  loaded.source = p.source;
+  RC_ASSERT(loaded == p);
 }
 
 RC_GTEST_PROP(ProfileGenerator, ASeedAlwaysGivesTheSameProfile, (std::uint64_t seed)) {

@@ -14,6 +14,7 @@
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "profile_tables.hpp"  // the enumeration names, checked name by name
+#include "yaml_text.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -527,6 +528,89 @@ TEST(profile, ToYamlRoundTripWithEveryFieldSet) {
   ASSERT_TRUE(back) << back.error->text() << "\n" << yaml;
   expect_same(*back.profile, p);
   EXPECT_EQ(to_yaml(*back.profile), yaml);
+}
+
+// Text a profile may hold that YAML would read as something else, or that
+// ends a value, a line or a document: written exactly, read back exactly.
+TEST(profile, ToYamlWritesTextThatLooksLikeYamlExactly) {
+  const std::string hostile[] = {"\"", "\\", "\\\"", "#", " # x", "a: b", "- x", "~", "null", "NULL", "true", "no",
+                                 "0x32", "1e3", ".5", "'", "''", "{a}", "[a]", "&A", "*A", "!T", "%", "@", "`", "|",
+                                 ">", "? x", "---", "...", " lead", "{{x}}", "\\x41", "\\n"};
+  for (const std::string& text : hostile) {
+    SCOPED_TRACE(text);
+    std::string capitals = text;  // the displayed and stored names are in capitals (E-68)
+    for (char& c : capitals) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    Profile p = every_field_set();
+    p.name = text;
+    p.display.satellite = capitals;
+    p.store[0].name = capitals;
+    p.presets[0].data.name = text;
+    p.signposts[0].data.id = text.substr(0, 4);
+    p.tles[0].line1 = (text + std::string(69, 'x')).substr(0, 69);
+    const std::string yaml = to_yaml(p);
+    EXPECT_EQ(test::yaml_text_problem(yaml), "") << yaml;
+    auto back = load_profile_text(yaml);
+    ASSERT_TRUE(back) << back.error->text() << "\n" << yaml;
+    expect_same(*back.profile, p);
+    EXPECT_EQ(to_yaml(*back.profile), yaml);
+  }
+}
+
+// A profile made in code may hold what no profile file can (a control
+// character, DEL, a byte that is not UTF-8): the text is escaped, the file
+// stays valid YAML and the loader names the field.
+TEST(profile, ToYamlEscapesTextNoProfileHoldsAndTheLoaderNamesIt) {
+  for (int b = 0; b < 256; ++b) {
+    if (b >= 0x20 && b <= 0x7E) continue;
+    SCOPED_TRACE(b);
+    Profile p;
+    p.name = std::string("A") + static_cast<char>(b) + "Z";
+    const std::string yaml = to_yaml(p);
+    EXPECT_EQ(test::yaml_text_problem(yaml), "") << yaml;
+    const ProfileError e = load_bad(yaml);
+    EXPECT_EQ(e.key, "name") << e.text();
+    EXPECT_NE(e.message.find("printable ASCII"), std::string::npos) << e.text();
+  }
+}
+
+// A code that is not in its table (a preset's band, a signpost's FEC) is
+// written quoted as it is, for the loader to name.
+TEST(profile, ToYamlWritesACodeNotInItsTableForTheLoaderToName) {
+  Profile p = every_field_set();
+  p.presets[0].data.band = '\x01';
+  std::string yaml = to_yaml(p);
+  EXPECT_EQ(test::yaml_text_problem(yaml), "") << yaml;
+  EXPECT_EQ(load_bad(yaml).key, "presets[0].band");
+  p = every_field_set();
+  p.signposts[0].data.fec = '"';
+  yaml = to_yaml(p);
+  EXPECT_NE(yaml.find("fec: \"\\\"\""), std::string::npos) << yaml;
+  EXPECT_EQ(load_bad(yaml).key, "signposts[0].fec");
+}
+
+// The sweep writes a failing profile with the failures, which hold what the
+// vectors and the controller said, as a comment above it (to_yaml with a
+// comment): whatever they hold, the profile reads back equal.
+TEST(profile, ToYamlWithACommentOfAnyTextReadsBackEqual) {
+  const std::string comment =
+      "A random legal profile on which vectors failed:\n"
+      "  3.2-x: expected x\ny: 1\r\"q\" \\ \x01\x7f\xc2\x85\xe2\x80\xa8\xef\xbb\xbf \xc3\xa9 # z, got L0\n"
+      "  run aborted: \xff\xfe name: \"injected\"\r\n---\n...\n"
+      "Reproduce: sabus vectors sweep --profile-seed 5";
+  const Profile p = every_field_set();
+  const std::string yaml = to_yaml(p, comment);
+  EXPECT_EQ(test::yaml_text_problem(yaml), "") << yaml;
+  ASSERT_EQ(yaml.rfind(to_yaml(p)), yaml.size() - to_yaml(p).size()) << "the profile after the comment:\n" << yaml;
+  const std::string head = yaml.substr(0, yaml.size() - to_yaml(p).size());
+  std::istringstream lines(head);
+  std::size_t n = 0;
+  for (std::string line; std::getline(lines, line); ++n) EXPECT_EQ(line.rfind("# ", 0), 0u) << "line " << n << ": " << line;
+  EXPECT_EQ(n, 7u) << head;
+  EXPECT_NE(head.find("#   3.2-x: expected x\n# y: 1\\x0d\"q\" \\ \\x01\\x7f"), std::string::npos) << head;
+  EXPECT_NE(head.find("\\xff\\xfe name"), std::string::npos) << head;
+  auto back = load_profile_text(yaml);
+  ASSERT_TRUE(back) << back.error->text() << "\n" << yaml;
+  expect_same(*back.profile, p);
 }
 
 // ---------------------------------------------------------------------------

@@ -33,6 +33,18 @@ TEST(Expressions, TextOutsideBracesIsKeptAndBracesEscape) {
   EXPECT_TRUE(has_placeholder("{home(az)}"));
 }
 
+TEST(Expressions, ALiteralTemplateExpandsToItsText) {
+  const Profile p;
+  for (std::string_view text : {"", "plain", "{x}", "}{", "{{", "a}}b", "{home(az)}", "{$t} {", "q\"\\'{x} #-"}) {
+    const std::string t = literal_template(text);
+    EXPECT_FALSE(has_placeholder(t)) << t;
+    EXPECT_EQ(check_template(t, {}), std::nullopt) << t;
+    const Expansion e = expand(t, p);
+    EXPECT_TRUE(e.ok()) << t << ": " << e.text;
+    EXPECT_EQ(e.text, text) << t;
+  }
+}
+
 TEST(Expressions, PositionsComeFromTheProfile) {
   const Profile p = profile_with_el(0, 90, 20, 5);
   EXPECT_EQ(expand("{home(el)}", p).text, "45");

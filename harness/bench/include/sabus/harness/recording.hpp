@@ -51,8 +51,13 @@ struct Recording {
   std::vector<std::string> notes;    // what was left out, and why
 };
 
-// nullopt with `error` set when nothing can be recorded (no exchange) or an
-// option is bad.
+// The file is written by yaml-cpp's Emitter: data (ids, raw templates,
+// matcher texts) double-quoted exactly, and text from the capture meant for a
+// person (the source and device in the header comment, a run's vector ids
+// and outcomes in a vector's comment) made printable first
+// (yaml_writer::printable_text). nullopt with `error` set when nothing can be
+// recorded (no exchange), an option is bad, or a request holds a byte of 80h
+// or more (a capture holds 7-bit characters; no raw send can carry it).
 std::optional<Recording> record_vectors(const Capture& capture, const RecordOptions& options, std::string& error);
 
 }  // namespace sabus::harness

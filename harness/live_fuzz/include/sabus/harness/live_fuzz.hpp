@@ -299,6 +299,9 @@ struct FindingContext {
 // one raw send per accepted frame, expectations from the reference
 // controller with the same profile, the spec paragraph and quote of the rule
 // the finding broke, and a comment with the seed and the command line.
+// Written by yaml-cpp's Emitter; the message, the command line and the
+// writes' descriptions, which hold what a device said and a person typed,
+// made printable first (yaml_writer::printable_text).
 std::string finding_vector_yaml(const Finding& finding, const Profile& profile, const FindingContext& context);
 
 }  // namespace sabus::harness::live_fuzz

@@ -35,5 +35,9 @@ ProfileResult load_profile_text(std::string_view yaml, const std::string& name =
 std::string default_profile_path();
 // Writes a profile back as YAML that load_profile_text reads to an equal profile.
 std::string to_yaml(const Profile& profile);
+// The same, after a comment of any text (yaml_writer::printable_text: one
+// comment line for each line of it, what is not printable as \xNN), which
+// leaves the profile read back unchanged.
+std::string to_yaml(const Profile& profile, std::string_view comment);
 
 }  // namespace sabus::harness

@@ -45,6 +45,9 @@ struct Expansion {
 
 // Whether the text holds a "{…}" placeholder.
 bool has_placeholder(std::string_view text);
+// The template that expands to `text` as it is: each brace doubled. For
+// text a writer takes from elsewhere (a recorded reply's field text).
+std::string literal_template(std::string_view text);
 // Expands every placeholder of `text`.
 Expansion expand_template(std::string_view text, const ExprContext& cx);
 // A text that must expand to one number ("{home(az)}" or "12.5").
