@@ -2,10 +2,11 @@
 // transport answers each command the runner sends for a short selection of
 // the suite's vectors (record_support.hpp) with bytes from the input:
 // silence, a reply cut short, a bad LRC, wrong parity, another address, a NAK
-// without its command, garbage, many frames, 8-bit bytes. The run is
-// recorded as `sabus run --json --junit --html --md` records it (the
-// journal line by line, the run JSON from the journal, the reports from the
-// document), and then read back as `sabus report` and a CI server read it.
+// without its command, garbage, many frames, 8-bit bytes; or the port is
+// lost. The run is recorded as `sabus run --json --junit --html --md`
+// records it (the journal line by line, the run JSON from the journal, the
+// reports from the document), and then read back as `sabus report` and a CI
+// server read it.
 // Oracle: checks::run_record_problems (reports/checks.hpp) finds nothing:
 //  - the journal: every line JSON, each record valid against
 //    reports/run.schema.json; the run JSON made from it valid too;
@@ -46,6 +47,7 @@ class ScriptedTransport final : public harness::Transport {
  public:
   explicit ScriptedTransport(fuzz::record::Script script) : script_(std::move(script)) {}
   void send(ByteView, std::span<const std::size_t>) override {
+    if (script_.lost_at && next_ >= *script_.lost_at) throw harness::TransportLost("the scripted device is lost");
     if (next_ < script_.replies.size()) {
       const Bytes& reply = script_.replies[next_++];
       pending_.insert(pending_.end(), reply.begin(), reply.end());

@@ -60,6 +60,7 @@ Script parse_script(const std::uint8_t* data, std::size_t size) {
   s.true_7e1 = data[0] & kTrue7E1;
   for (std::size_t i = 1; i + 1 < size;) {
     const std::uint8_t flags = data[i];
+    if ((flags & kLost) && !s.lost_at) s.lost_at = s.replies.size();
     const std::size_t length = std::min<std::size_t>(data[i + 1], size - i - 2);
     Bytes reply(data + i + 2, data + i + 2 + length);
     if (flags & kWithParity)
@@ -72,9 +73,10 @@ Script parse_script(const std::uint8_t* data, std::size_t size) {
 
 Bytes script_input(const Script& s) {
   Bytes out{static_cast<std::uint8_t>(s.true_7e1 ? kTrue7E1 : 0)};
-  for (const auto& r : s.replies) {
+  for (std::size_t i = 0; i < s.replies.size(); ++i) {
+    const Bytes& r = s.replies[i];
     const std::size_t length = std::min<std::size_t>(r.size(), 255);
-    out.push_back(0);
+    out.push_back(s.lost_at == i ? kLost : 0);
     out.push_back(static_cast<std::uint8_t>(length));
     out.insert(out.end(), r.begin(), r.begin() + static_cast<std::ptrdiff_t>(length));
   }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,12 +49,16 @@ const harness::Profile& profile();
 //   each reply: [flags] [length] [length bytes]
 //     flags bit 0: put even parity in bit 7 of each byte (the bytes are
 //                  characters); otherwise the bytes are as on the wire
+//     flags bit 1: the device is lost at this command (the port closes:
+//                  TransportLost), the reply is not sent
 inline constexpr std::uint8_t kTrue7E1 = 0x01;
 inline constexpr std::uint8_t kWithParity = 0x01;
+inline constexpr std::uint8_t kLost = 0x02;
 
 struct Script {
   bool true_7e1 = false;
   std::vector<Bytes> replies;  // wire bytes for each command, in order
+  std::optional<std::size_t> lost_at;  // the command at which the device is lost
 };
 Script parse_script(const std::uint8_t* data, std::size_t size);
 // The input of a script (its replies as wire bytes, up to 255 each).

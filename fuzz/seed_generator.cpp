@@ -292,8 +292,13 @@ std::size_t record_seeds(const fs::path& dir) {
     (void)sabus::reports::query_identity(recording, record::profile().address);
     harness::Runner(recording, record::profile(), record::run_options()).run(record::vectors());
     write(dir, "fault-" + file_name(name), record::script_input(recording.script));
+    if (name == "clean") {  // the device lost half way: the run aborted
+      record::Script lost = recording.script;
+      lost.lost_at = lost.replies.size() / 2;
+      write(dir, "lost-half-way", record::script_input(lost));
+    }
   }
-  return devices.size();
+  return devices.size() + 1;
 }
 
 int main(int argc, char** argv) {

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "sabus/reports/writers.hpp"
 #include "sabus/harness/capture.hpp"
 #include "sabus/harness/recording.hpp"
 #include "sabus/harness/vector_loader.hpp"
@@ -58,10 +59,15 @@ int run_record(const RecordCliOptions& o) {
   }
   const fs::path dir = fs::path(o.out).parent_path();
   std::error_code ec;
-  if (!dir.empty()) fs::create_directories(dir, ec);
-  std::ofstream out(o.out, std::ios::trunc);
-  if (!out || !(out << rec->yaml) || !out.flush()) {
-    std::cerr << "sabus record: cannot write " << o.out << "\n";
+  if (!dir.empty() && !fs::create_directories(dir, ec) && ec) {
+    std::cerr << "sabus record: cannot make the folder " << dir.string() << ": " << ec.message() << "; " << o.out
+              << " not written\n";
+    return kExitUsage;
+  }
+  // Written whole or not at all, and never through a device or a link to one
+  // (the reports' file writer).
+  if (std::string why; !reports::write_file(o.out, rec->yaml, why)) {
+    std::cerr << "sabus record: " << why << "; " << o.out << " not written\n";
     return kExitUsage;
   }
   for (const auto& n : rec->notes) std::cout << "note: " << n << "\n";
