@@ -1,13 +1,17 @@
 #include "sabus/harness/state_file.hpp"
 
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "sabus/harness/files.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -168,7 +172,9 @@ ControllerState restored(const json& j, const Controller& c) {
 std::string save_state(const std::vector<const Controller*>& controllers) {
   json doc = {{"format", "sabus-sim-state"}, {"version", kFormatVersion}, {"controllers", json::object()}};
   for (const Controller* c : controllers) doc["controllers"][std::to_string(c->profile().address)] = controller_json(*c);
-  return doc.dump(2) + "\n";
+  // Names and texts are the codecs' printable ASCII; a string that is not
+  // UTF-8 all the same is written with U+FFFD, not thrown on mid-session.
+  return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 bool load_state(const std::string& text, const std::vector<Controller*>& controllers, std::string& error) {
@@ -199,27 +205,19 @@ bool load_state(const std::string& text, const std::vector<Controller*>& control
 }
 
 bool write_state_file(const std::string& path, const std::vector<const Controller*>& controllers, std::string& error) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << save_state(controllers);
-    if (!out) {
-      error = "cannot write " + tmp;
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    error = "cannot rename " + tmp + " to " + path + ": " + ec.message();
-    return false;
-  }
-  return true;
+  return replace_file(path, save_state(controllers), error);
 }
 
 bool read_state_file(const std::string& path, const std::vector<Controller*>& controllers, std::string& error) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec) && !ec) return true;  // first start: nothing saved yet
+  // A file there that cannot be read is not a first start: the first change
+  // would replace it with the profile's defaults.
   std::ifstream in(path);
-  if (!in) return true;  // first start: nothing saved yet
+  if (!in) {
+    error = path + ": cannot read: " + (ec ? ec.message() : std::strerror(errno));
+    return false;
+  }
   std::stringstream ss;
   ss << in.rdbuf();
   if (!load_state(ss.str(), controllers, error)) {
