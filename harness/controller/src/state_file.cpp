@@ -69,6 +69,23 @@ void check_record(const Write& write, const std::string& key) {
                    (r.ok() ? std::string() : " (" + r.error().message() + ")"));
 }
 
+// A STORE name is one the Query Name reply gives back unchanged (§3.6: ten
+// printable characters), and is in the list once: the 35h reply would
+// otherwise carry it cut short, or its bytes beyond 7Fh (a name such as
+// "caf\u00e9" in the file) onto a 7-bit line.
+void check_store_name(const std::string& name, const std::vector<StoredSatellite>& before, const std::string& key) {
+  const QueryNameReply reply{1, 1, name};
+  const auto bytes = encode_reply(Reply{reply}, '2', 0x35);
+  const auto frame = bytes.ok() ? decode_frame(bytes.value()) : Expected<Frame>(bytes.error());
+  const auto back = frame.ok() ? decode_reply(frame.value()) : Expected<Reply>(frame.error());
+  const auto* read = back.ok() ? std::get_if<QueryNameReply>(&back.value()) : nullptr;
+  if (!read || !(*read == reply))
+    throw BadState(key + ".name: not a name the Query Name reply carries" +
+                   (back.ok() ? std::string() : " (" + back.error().message() + ")"));
+  for (const auto& other : before)
+    if (other.name == name) throw BadState(key + ".name: " + json(name).dump() + " is in the STORE list twice");
+}
+
 json sat_json(const SatelliteData& s) {
   return {{"name", s.name}, {"longitude", opt(s.longitude)}, {"inclination", opt(s.inclination)},
           {"band", std::string(1, s.band)}, {"ephemeris", std::string(1, s.ephemeris)}, {"pol_offset", opt(s.pol_offset)}};
@@ -121,6 +138,7 @@ ControllerState restored(const json& j, const Controller& c) {
   for (const auto& x : j.at("store")) {
     const std::string key = "store[" + std::to_string(s.store.size()) + "]";
     if (s.store.size() == Controller::kMaxStored) throw BadState(key + ": the STORE list holds " + std::to_string(Controller::kMaxStored) + " (§3.6)");
+    check_store_name(x.at("name").get<std::string>(), s.store, key);
     s.store.push_back({x.at("name").get<std::string>(), degrees(x.at("az"), key + ".az"), degrees(x.at("el"), key + ".el"),
                        degrees(x.at("h_pol"), key + ".h_pol"), degrees(x.at("v_pol"), key + ".v_pol")});
   }

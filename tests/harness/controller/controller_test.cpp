@@ -1112,6 +1112,9 @@ TEST(StateFile, ABadValueNamesItsKeyAndChangesNothing) {
        "presets 3: not a record the Write Satellite Data command carries"},
       {"\"longitude\": 1250", "\"longitude\": 5e9", true, "presets 3.longitude: expected a whole number"},
       {"\"az\": ", "\"az\": 1e6, \"was\": ", false, "positions.az: 1000000.0 is outside the profile's range"},
+      {"\"name\": \"SBS 6\"", "\"name\": \"caf\u00e9\"", false, "store[0].name: not a name the Query Name reply carries"},
+      {"\"name\": \"SBS 6\"", "\"name\": \"ELEVEN CHAR\"", false, "store[0].name: not a name the Query Name reply carries"},
+      {"\"name\": \"SBS 6\"", "\"name\": \"GALAXY 19\"", false, "store[1].name: \"GALAXY 19\" is in the STORE list twice"},
   };
   for (const auto& c : cases) {
     Rig other;
