@@ -255,7 +255,19 @@ TEST(Run, ARealDeviceIsStillBackedUpAndRestored) {
                        " --paragraph 3.10 --allow-destructive --pace 0 --report-dir " + dir + " 2>&1");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("stored data backed up to " + dir + "/backup.json"), std::string::npos) << r.out;
-  EXPECT_TRUE(fs::exists(fs::path(dir) / "backup.json"));
+  const auto backup = read_json((fs::path(dir) / "backup.json").string());
+  EXPECT_EQ(backup["store_names"].size(), 3u) << backup;
+  EXPECT_TRUE(backup["presets"].contains("1")) << backup;
+  EXPECT_TRUE(backup["tles"].is_object() && backup["signposts"].is_object() && backup["navigation"].is_string()) << backup;
+  // Again into the same folder: the first backup may be the only copy of
+  // what the device held, and stays; the second goes beside it.
+  const std::string first = test::slurp(fs::path(dir) / "backup.json");
+  const auto again = shell(kSabus + " run --tcp 127.0.0.1:" + ready.substr(ready.rfind(':') + 1) +
+                           " --paragraph 3.10 --allow-destructive --pace 0 --report-dir " + dir + " 2>&1");
+  EXPECT_EQ(again.status, 0) << again.out;
+  EXPECT_NE(again.out.find("stored data backed up to " + dir + "/backup-2.json"), std::string::npos) << again.out;
+  EXPECT_EQ(test::slurp(fs::path(dir) / "backup.json"), first);
+  EXPECT_EQ(read_json((fs::path(dir) / "backup-2.json").string())["store_names"], backup["store_names"]);
   EXPECT_EQ(sim.interrupt(), 0);
   fs::remove_all(dir);
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "json_output.hpp"
 #include "sabus/harness/capture.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/receiver.hpp"
@@ -190,7 +191,7 @@ int run_decode_capture(const DecodeOptions& o, const std::string& text) {
                           {"valid", all_valid},
                           {"session_events", capture->events},
                           {"events", jevents}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out);
   } else {
     std::cout << fmt::format("{} frame(s), {} ignored run(s)\n", frames, ignored);
   }
@@ -286,7 +287,7 @@ int run_decode(const DecodeOptions& o) {
                           {"discarded_bytes", discarded_bytes},
                           {"valid", all_valid},
                           {"events", jevents}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out);
   } else {
     std::cout << fmt::format("{} bytes: {} frame(s), {} discarded run(s) ({} bytes); side {}, parity {}\n",
                              bytes.size(), frames, discarded, discarded_bytes, side, even ? "even" : "none");

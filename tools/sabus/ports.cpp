@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "json_output.hpp"
 #include "sabus/harness/line.hpp"
 
 namespace sabus::cli {
@@ -65,7 +66,7 @@ int run_ports(const PortsOptions& o) {
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& p : ports) out.push_back(port_json(p));
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out);
   } else if (ports.empty()) {
     std::cout << "no serial ports found\n";
   } else {

@@ -49,7 +49,16 @@ class ProxyLogger {
     sides_[0].rx = Receiver(req);
     sides_[1].rx = Receiver(rep);
   }
-  void write(const nlohmann::json& record) { out_ << record.dump() << '\n' << std::flush; }
+  // A log that cannot be written (a full disk) is said once; the bytes go on
+  // being forwarded: the M&C system and the controller are not the log's.
+  void write(const nlohmann::json& record) {
+    out_ << proxy_log_line(record) << std::flush;
+    if (!out_ && !lost_) {
+      lost_ = true;
+      std::cerr << "sabus proxy: the log cannot be written (" << std::strerror(errno)
+                << "); forwarding goes on, unlogged\n";
+    }
+  }
   double now_ms() const {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
   }
@@ -121,6 +130,7 @@ class ProxyLogger {
   }
 
   std::ostream& out_;
+  bool lost_ = false;  // the log failed to be written; said once
   std::chrono::steady_clock::time_point start_;
   Side sides_[2] = {{Receiver(ReceiverOptions::slave_any_address()), {}, 0}, {Receiver(ReceiverOptions::master()), {}, 0}};
   std::uint64_t seq_ = 0;

@@ -310,11 +310,11 @@ void write_reports(const ReportPaths& paths, const reports::RunDocument& doc) {
 
 // The lines after the last vector: liveness, backup, restore, abort, summary;
 // the exit status.
-int finish_console(Console& console, const RunResult& run, const RunOptions& ro, const reports::RunDocument& doc) {
+int finish_console(Console& console, const RunResult& run, const reports::RunDocument& doc) {
   console.end();
   for (const auto& l : run.liveness)
     if (!l.alive) console.line(fmt::format("LIVENESS {}: {}", l.when, l.detail));
-  if (run.backup.taken && !ro.backup_path.empty() && !quiet()) console.line("stored data backed up to " + ro.backup_path);
+  if (!run.backup.file.empty() && !quiet()) console.line("stored data backed up to " + run.backup.file);
   for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
   if (run.aborted) console.line("ABORTED: " + run.abort_reason);
   console.line(reports::summary_line(*doc.summary));
@@ -390,7 +390,7 @@ int run_run(RunCliOptions o) {
   reports::finish(doc, run, reports::utc_now());
   journal.close(*paths, doc);
   write_reports(*paths, doc);
-  return finish_console(console, run, ro, doc);
+  return finish_console(console, run, doc);
 }
 
 static_assert(kExitNothingRan == harness::kNothingRanExitCode);

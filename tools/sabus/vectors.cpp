@@ -16,11 +16,13 @@
 #include <set>
 
 #include "commands.hpp"
+#include "json_output.hpp"
 #include "selection.hpp"
 #include "sweep.hpp"
 #include "sabus/harness/coverage.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/expressions.hpp"
+#include "sabus/harness/files.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
 namespace sabus::cli {
@@ -112,7 +114,7 @@ int run_list(const VectorsOptions& o) {
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
     for (const Vector* v : shown) out.push_back(vector_json(*v));
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out);
   } else {
     for (const Vector* v : shown)
       std::cout << fmt::format("{:<44} §{:<5} {:<12} {}\n", v->id, v->paragraph, harness::to_string(v->level), joined(v->tags));
@@ -147,12 +149,10 @@ int run_coverage(const VectorsOptions& o) {
                       {"form", row.form ? std::string(row.form->id) : std::string()},
                       {"cells", cells}});
     }
-    std::cout << nlohmann::json{{"rows", rows},
-                                {"unknown_codes", {{"nak", m.unknown_codes}}},
-                                {"nak_rules", m.nak_rules},
-                                {"missing", missing}}
-                     .dump(2)
-              << "\n";
+    std::cout << json_text({{"rows", rows},
+                            {"unknown_codes", {{"nak", m.unknown_codes}}},
+                            {"nak_rules", m.nak_rules},
+                            {"missing", missing}});
   } else {
     std::size_t covered = 0, cells = 0;
     for (const auto& row : m.rows) {
@@ -286,7 +286,13 @@ int run_errata(const VectorsOptions& o) {
     if (stale) std::cout << stale << " entr" << (stale == 1 ? "y" : "ies") << " to update: sabus vectors errata --update " << path << "\n";
     return stale ? kExitFailed : kExitOk;
   }
-  std::ofstream(path, std::ios::trunc) << out;
+  // Whole or not at all: ERRATA.md is a document people edit, and a write
+  // cut short (a full disk) would have left it truncated.
+  std::string error;
+  if (!harness::replace_file(path, out, error)) {
+    std::cerr << "sabus vectors errata: " << error << "\n";
+    return kExitFailed;
+  }
   std::cout << "updated " << stale << " entr" << (stale == 1 ? "y" : "ies") << " of " << path << "\n";
   return kExitOk;
 }

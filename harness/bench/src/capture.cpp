@@ -94,6 +94,10 @@ nlohmann::json proxy_event(double t_ms, std::string_view what, const std::string
   return j;
 }
 
+std::string proxy_log_line(const nlohmann::json& record) {
+  return record.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + '\n';
+}
+
 // ---- reading --------------------------------------------------------------------------
 
 namespace {

@@ -1,13 +1,17 @@
 #include "sabus/harness/state_file.hpp"
 
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "sabus/harness/files.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -65,6 +69,23 @@ void check_record(const Write& write, const std::string& key) {
                    (r.ok() ? std::string() : " (" + r.error().message() + ")"));
 }
 
+// A STORE name is one the Query Name reply gives back unchanged (§3.6: ten
+// printable characters), and is in the list once: the 35h reply would
+// otherwise carry it cut short, or its bytes beyond 7Fh (a name such as
+// "caf\u00e9" in the file) onto a 7-bit line.
+void check_store_name(const std::string& name, const std::vector<StoredSatellite>& before, const std::string& key) {
+  const QueryNameReply reply{1, 1, name};
+  const auto bytes = encode_reply(Reply{reply}, '2', 0x35);
+  const auto frame = bytes.ok() ? decode_frame(bytes.value()) : Expected<Frame>(bytes.error());
+  const auto back = frame.ok() ? decode_reply(frame.value()) : Expected<Reply>(frame.error());
+  const auto* read = back.ok() ? std::get_if<QueryNameReply>(&back.value()) : nullptr;
+  if (!read || !(*read == reply))
+    throw BadState(key + ".name: not a name the Query Name reply carries" +
+                   (back.ok() ? std::string() : " (" + back.error().message() + ")"));
+  for (const auto& other : before)
+    if (other.name == name) throw BadState(key + ".name: " + json(name).dump() + " is in the STORE list twice");
+}
+
 json sat_json(const SatelliteData& s) {
   return {{"name", s.name}, {"longitude", opt(s.longitude)}, {"inclination", opt(s.inclination)},
           {"band", std::string(1, s.band)}, {"ephemeris", std::string(1, s.ephemeris)}, {"pol_offset", opt(s.pol_offset)}};
@@ -117,6 +138,7 @@ ControllerState restored(const json& j, const Controller& c) {
   for (const auto& x : j.at("store")) {
     const std::string key = "store[" + std::to_string(s.store.size()) + "]";
     if (s.store.size() == Controller::kMaxStored) throw BadState(key + ": the STORE list holds " + std::to_string(Controller::kMaxStored) + " (§3.6)");
+    check_store_name(x.at("name").get<std::string>(), s.store, key);
     s.store.push_back({x.at("name").get<std::string>(), degrees(x.at("az"), key + ".az"), degrees(x.at("el"), key + ".el"),
                        degrees(x.at("h_pol"), key + ".h_pol"), degrees(x.at("v_pol"), key + ".v_pol")});
   }
@@ -168,7 +190,9 @@ ControllerState restored(const json& j, const Controller& c) {
 std::string save_state(const std::vector<const Controller*>& controllers) {
   json doc = {{"format", "sabus-sim-state"}, {"version", kFormatVersion}, {"controllers", json::object()}};
   for (const Controller* c : controllers) doc["controllers"][std::to_string(c->profile().address)] = controller_json(*c);
-  return doc.dump(2) + "\n";
+  // Names and texts are the codecs' printable ASCII; a string that is not
+  // UTF-8 all the same is written with U+FFFD, not thrown on mid-session.
+  return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 bool load_state(const std::string& text, const std::vector<Controller*>& controllers, std::string& error) {
@@ -199,27 +223,19 @@ bool load_state(const std::string& text, const std::vector<Controller*>& control
 }
 
 bool write_state_file(const std::string& path, const std::vector<const Controller*>& controllers, std::string& error) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << save_state(controllers);
-    if (!out) {
-      error = "cannot write " + tmp;
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    error = "cannot rename " + tmp + " to " + path + ": " + ec.message();
-    return false;
-  }
-  return true;
+  return replace_file(path, save_state(controllers), error);
 }
 
 bool read_state_file(const std::string& path, const std::vector<Controller*>& controllers, std::string& error) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec) && !ec) return true;  // first start: nothing saved yet
+  // A file there that cannot be read is not a first start: the first change
+  // would replace it with the profile's defaults.
   std::ifstream in(path);
-  if (!in) return true;  // first start: nothing saved yet
+  if (!in) {
+    error = path + ": cannot read: " + (ec ? ec.message() : std::strerror(errno));
+    return false;
+  }
   std::stringstream ss;
   ss << in.rdbuf();
   if (!load_state(ss.str(), controllers, error)) {

@@ -5,8 +5,9 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
+#include <nlohmann/json.hpp>
 
+#include "sabus/harness/files.hpp"
 #include "sabus/protocol/fields.hpp"
 
 namespace sabus::harness::detail {
@@ -76,7 +77,7 @@ void restore_navigation(Session& s, const StoredDataBackup& b, std::vector<std::
 
 }  // namespace
 
-StoredDataBackup take_backup(Session& s) {
+StoredDataBackup take_backup(Session& s, std::string& error) {
   StoredDataBackup b;
   std::vector<TranscriptEntry> scratch;
   s.transcript = &scratch;
@@ -94,8 +95,10 @@ StoredDataBackup take_backup(Session& s) {
   b.taken = true;
   s.transcript = nullptr;
   if (!s.options.backup_path.empty()) {
-    std::ofstream out(s.options.backup_path);
-    out << b.to_json();
+    // A backup already there may be the only copy of what a device held
+    // before an earlier run whose restore failed: it is never replaced.
+    if (auto file = write_new_file(s.options.backup_path, b.to_json(), error)) b.file = *file;
+    else error = "the stored-data backup cannot be written: " + error;
   }
   return b;
 }
@@ -127,21 +130,20 @@ void restore_backup(Session& s, const StoredDataBackup& b, std::vector<std::stri
 namespace sabus::harness {
 
 std::string StoredDataBackup::to_json() const {
+  using json = nlohmann::ordered_json;
   auto slots = [](const std::map<std::uint8_t, Bytes>& m) {
-    std::string out = "{";
-    for (const auto& [i, d] : m) out += (out.size() > 1 ? ", " : "") + std::string("\"") + std::to_string(i) + "\": \"" + to_hex(d) + "\"";
-    return out + "}";
+    json out = json::object();
+    for (const auto& [i, d] : m) out[std::to_string(i)] = to_hex(d);
+    return out;
   };
-  std::string names = "[";
-  for (const auto& n : store_names) {
-    names += (names.size() > 1 ? ", \"" : "\"");
-    for (char c : n) names += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    names += "\"";
-  }
-  names += "]";
-  return "{\n  \"store_names\": " + names + ",\n  \"presets\": " + slots(presets) + ",\n  \"tles\": " + slots(tles) +
-         ",\n  \"signposts\": " + slots(signposts) + ",\n  \"navigation\": \"" +
-         (navigation ? to_hex(*navigation) : std::string()) + "\"\n}\n";
+  const json doc = {{"store_names", store_names},
+                    {"presets", slots(presets)},
+                    {"tles", slots(tles)},
+                    {"signposts", slots(signposts)},
+                    {"navigation", navigation ? json(to_hex(*navigation)) : json()}};
+  // Names are 35h's printable text; one that is not UTF-8 all the same is
+  // written with U+FFFD rather than thrown on before the destructive vectors.
+  return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace sabus::harness

@@ -280,10 +280,17 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
       r.skip_reason = std::move(why->reason);
     } else {
       if (v.has_tag("destructive") && options_.backup_stored_data && !result.backup.taken) {
+        std::string error;
         try {
-          result.backup = detail::take_backup(s);
+          result.backup = detail::take_backup(s, error);
         } catch (const TransportLost& e) {
           abort_run(result, std::string("device lost while backing up stored data: ") + e.what());
+          break;
+        }
+        // The file is what is left when the run (or the machine) dies before
+        // the restore: no destructive vector runs without it.
+        if (!error.empty()) {
+          abort_run(result, error + "; no destructive vector runs without it");
           break;
         }
       }

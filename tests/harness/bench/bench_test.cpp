@@ -6,11 +6,15 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
+#include <thread>
+#include <tuple>
 
 #include "sabus/harness/capture.hpp"
 #include "sabus/harness/line.hpp"
@@ -20,9 +24,11 @@
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/receiver.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "process.hpp"
+#include "proxy_log_check.hpp"
 #include "temp_dir.hpp"
 #include "test_support.hpp"
 #include "yaml_text.hpp"
@@ -70,6 +76,28 @@ std::vector<nlohmann::json> read_log(const std::string& path) {
   std::vector<nlohmann::json> out;
   for (std::string line; std::getline(in, line);) out.push_back(nlohmann::json::parse(line));
   return out;
+}
+
+// The proxy log's problems as tools/PROXY-LOG.md documents it
+// (proxy_log_check.hpp), one a line; "" for a log as documented.
+std::string log_problems(const std::string& text) {
+  static const test::ProxyLogSpec spec = test::read_proxy_log_spec(test::slurp(SABUS_SOURCE_DIR "/tools/PROXY-LOG.md"));
+  std::string out;
+  for (const auto& p : test::proxy_log_problems(text, spec)) out += p + "\n";
+  return out;
+}
+
+// Waits up to 5 s for the log to hold `text` `count` times (the proxy writes
+// it as it reads); the count found.
+int wait_for_log(const std::string& path, const std::string& text, int count = 1) {
+  int found = 0;
+  for (auto end = std::chrono::steady_clock::now() + 5s; std::chrono::steady_clock::now() < end; std::this_thread::sleep_for(10ms)) {
+    const std::string log = test::slurp(path);
+    found = 0;
+    for (auto at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) ++found;
+    if (found >= count) break;
+  }
+  return found;
 }
 
 int run_sabus(std::vector<std::string> args, std::string* output = nullptr) {
@@ -150,6 +178,7 @@ TEST(Proxy, ForwardsRepliesUnchangedAndLogsDecodedPairedFrames) {
   EXPECT_EQ(wire_from_device, to_hex(s.proxied_status) + " " + to_hex(s.proxied_type));
   EXPECT_EQ(log.back()["type"], "event");
   EXPECT_EQ(log.back()["what"], "stop");
+  EXPECT_EQ(log_problems(test::slurp(s.log)), "");
   for (const auto& r : log)
     if (r.contains("t_ms")) {
       EXPECT_TRUE(r["wall"].is_string());
@@ -168,7 +197,131 @@ TEST(Proxy, ExitsThreeWhenTheDeviceIsLost) {
   const auto records = read_log(log);
   ASSERT_FALSE(records.empty());
   EXPECT_EQ(records.back()["what"], "device lost");
+  EXPECT_EQ(log_problems(test::slurp(log)), "");
   fs::remove(log);
+  fs::remove(a);  // the killed sim's link
+}
+
+// Wire bytes as the M&C side sends them: 7-bit characters with the even
+// parity bit (line.hpp).
+Bytes wire(const Frame& f) { return add_even_parity(encode_frame(f)); }
+
+// A command stream with a run of each discard the M&C side's receiver
+// (every address, parity in bit 7) can make, and every byte value.
+Bytes hostile_commands() {
+  Bytes out;
+  auto add = [&](const Bytes& b) { out.insert(out.end(), b.begin(), b.end()); };
+  Bytes bad_lrc = wire(Frame{FrameKind::kCommand, '2', 0x31, {}});
+  bad_lrc.back() ^= 0x41;                                                      // bad LRC (parity kept: 0x41 has two bits)
+  add(bad_lrc);
+  add(wire(Frame{FrameKind::kCommand, 0x20, 0x31, {}}));                       // other address
+  add(wire(Frame{FrameKind::kCommand, '2', 0x3D, {0x01, '1'}}));               // control character in the body
+  add(wire(Frame{FrameKind::kCommand, '2', 0x3B, Bytes(400, '0')}));           // overrun
+  Bytes wrong_parity = add_even_parity(Bytes{0x02, '2', 0x31});
+  wrong_parity[1] ^= 0x80;
+  add(wrong_parity);                                                           // parity error: the address byte's bit 7
+  add(add_even_parity(Bytes{'h', 'e', 'l', 'l', 'o'}));                        // unknown bytes
+  add({0xC1, 0xC1});                                                           // parity error outside a frame
+  add(add_even_parity(Bytes{0x02, '2', 0x31}));                                // incomplete: a new start follows
+  add(wire(Frame{FrameKind::kCommand, '2', 0x30, {}}));                        // a frame: seq 2
+  for (int b = 0; b < 256; ++b) out.push_back(static_cast<std::uint8_t>(b));  // every byte value
+  return out;
+}
+
+// A session over TCP on both sides, the device side played by the test:
+// two clients, a frame each way, every kind of discard and every byte value
+// both ways, a frame cut short at the stop. Every line is one JSON object as
+// PROXY-LOG.md documents it, and the records the session must make are there.
+TEST(Proxy, ATcpSessionWithEveryDiscardAndEveryByteIsDocumentedJsonLines) {
+  auto device = TcpListener::listen("127.0.0.1", 0);
+  const std::string log = temp_path("tcp.jsonl");
+  Process proxy({SABUS_BIN, "proxy", "--listen-tcp", "127.0.0.1:0", "--tcp", "127.0.0.1:" + std::to_string(device->port()),
+                 "--log", log});
+  const std::string ready = proxy.line(5s);
+  ASSERT_EQ(ready.rfind("READY tcp 127.0.0.1:", 0), 0u) << ready;
+  const auto port = static_cast<std::uint16_t>(std::stoi(ready.substr(ready.rfind(':') + 1)));
+  auto dev = device->accept(5s);
+  ASSERT_TRUE(dev);
+  {
+    auto mc = TcpLine::connect("127.0.0.1", port, 2s);
+    ASSERT_EQ(wait_for_log(log, "\"client connected\""), 1);
+    mc->write(wire(Frame{FrameKind::kCommand, '2', 0x31, {}}));
+    ASSERT_EQ(wait_for_log(log, "\"seq\":1"), 1);
+    dev->write(add_even_parity(encode_reply(StatusReply{}, '2', 0x31).value()));
+    ASSERT_EQ(wait_for_log(log, "\"reply_to\":1"), 1);
+    mc->write(hostile_commands());
+    ASSERT_EQ(wait_for_log(log, "\"seq\":2"), 1);
+    Bytes replies = add_even_parity(encode_frame(Frame{FrameKind::kAck, '2', 0x30, {'3', 'K', '1', '.', '5', '9'}}));
+    for (int b = 0; b < 256; ++b) replies.push_back(static_cast<std::uint8_t>(b));
+    dev->write(replies);
+    ASSERT_GE(wait_for_log(log, "\"reply_to\":2"), 1);
+  }
+  ASSERT_EQ(wait_for_log(log, "\"client lost\""), 1);
+  auto second = TcpLine::connect("127.0.0.1", port, 2s);
+  ASSERT_EQ(wait_for_log(log, "\"client connected\"", 2), 2);
+  second->write(add_even_parity(Bytes{0x02, '2', 0x31}));  // cut short by the stop
+  ASSERT_EQ(wait_for_log(log, "\"hex\":\"82 b2 b1\",\"t_ms\""), 1) << "its chunk (a discard's hex is followed by length)";
+  EXPECT_EQ(proxy.interrupt(), 0);
+
+  const std::string text = test::slurp(log);
+  EXPECT_EQ(log_problems(text), "");
+  std::set<std::string> command_discards, reply_discards;
+  std::vector<std::string> events;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const auto r = nlohmann::json::parse(line);
+    if (r.value("type", "") == "discard") (r["dir"] == "mc->dev" ? command_discards : reply_discards).insert(r["reason"].get<std::string>());
+    if (r.value("type", "") == "event") events.push_back(r["what"]);
+  }
+  EXPECT_EQ(command_discards, (std::set<std::string>{"bad LRC", "other address", "control character in the body", "overrun",
+                                                     "parity error", "unknown bytes", "incomplete"}));
+  EXPECT_TRUE(reply_discards.count("parity error") && reply_discards.count("unknown bytes")) << text;
+  EXPECT_EQ(events, (std::vector<std::string>{"client connected", "client lost", "client connected", "stop"}));
+  fs::remove(log);
+}
+
+// A path that is not UTF-8 (a file name is any bytes but / and NUL) reaches
+// the header and the device-lost event: it is logged with U+FFFD, where
+// json's dump() threw type_error 316 and the proxy aborted (exit 134) before
+// its first line, leaving its link behind.
+TEST(Proxy, PathsThatAreNotUtf8AreLoggedNotThrownOn) {
+  const std::string a = temp_path("dev"), a_latin1 = a + "\xe9", b = temp_path("mc\xff"), log = temp_path("latin1.jsonl");
+  auto sim = std::make_unique<Process>(std::vector<std::string>{SABUS_BIN, "sim", "--pty", "--link", a});
+  ASSERT_EQ(sim->line(5s), "READY " + a);
+  fs::create_symlink(a, a_latin1);
+  Process proxy({SABUS_BIN, "proxy", "--listen-pty", b, "--port", a_latin1, "--log", log});
+  ASSERT_EQ(proxy.line(5s), "READY " + b);
+  sim.reset();
+  EXPECT_EQ(proxy.wait_exit_for(5s), 3) << "device lost, not an abort";
+  const std::string text = test::slurp(log);
+  EXPECT_EQ(log_problems(text), "");
+  const auto records = read_log(log);
+  ASSERT_EQ(records.size(), 2u) << text;
+  EXPECT_NE(records[0]["mc"].get<std::string>().find(temp_path("mc\xEF\xBF\xBD")), std::string::npos) << records[0];
+  EXPECT_NE(records[0]["device"].get<std::string>().find(a + "\xEF\xBF\xBD"), std::string::npos) << records[0];
+  EXPECT_EQ(records[1]["what"], "device lost");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(b))) << "the proxy's link is removed at its exit";
+  fs::remove(a_latin1);
+  fs::remove(a);  // the killed sim's link
+  fs::remove(log);
+}
+
+// A log that cannot be written (a full disk: /dev/full) is said once on
+// stderr; the proxy goes on forwarding, and a stop is still exit 0.
+TEST(Proxy, ALogThatCannotBeWrittenIsSaidOnceAndForwardingGoesOn) {
+  const std::string a = temp_path("full-dev"), b = temp_path("full-mc");
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", a});
+  ASSERT_EQ(sim.line(5s), "READY " + a);
+  Process proxy({"/bin/sh", "-c", "exec \"$0\" proxy --listen-pty \"$1\" --port \"$2\" --log /dev/full 2>&1", SABUS_BIN, b, a});
+  EXPECT_EQ(proxy.line(5s), "sabus proxy: the log cannot be written (No space left on device); forwarding goes on, unlogged");
+  ASSERT_EQ(proxy.line(5s), "READY " + b);
+  {
+    auto client = TermiosSerialLine::open(b, 9600);
+    EXPECT_EQ(ask(*client, encode_request(StatusPoll{}, '2')).size(), 52u) << "forwarded";
+  }
+  EXPECT_EQ(proxy.interrupt(), 0);
+  EXPECT_EQ(proxy.read_all(1s), "") << "said once";
+  EXPECT_EQ(sim.interrupt(), 0);
 }
 
 TEST(Proxy, UsageErrorsExitTwo) {
@@ -528,6 +681,133 @@ TEST(Record, AFileNamedWithALineBreakAndAByteThatIsNotUtf8) {
   EXPECT_EQ(test::yaml_text_problem(test::slurp(out)), "") << test::slurp(out);
   fs::remove(log);
   fs::remove(out);
+}
+
+// ---- the proxy log's records (capture.hpp) --------------------------------------
+
+// The checker itself fails on what PROXY-LOG.md does not document: it reads
+// the document's table, and a log that breaks it is named line by line.
+TEST(ProxyLogChecker, ReadsTheDocumentAndNamesEachBrokenLine) {
+  const auto spec = test::read_proxy_log_spec(test::slurp(SABUS_SOURCE_DIR "/tools/PROXY-LOG.md"));
+  EXPECT_EQ(spec.keys.at("frame"),
+            (std::set<std::string>{"type", "t_ms", "wall", "dir", "hex", "seq", "reply_to", "summary", "error", "fields"}));
+  EXPECT_EQ(spec.keys.at("(header)"), (std::set<std::string>{"schema", "version", "start", "mc", "device", "line"}));
+  EXPECT_EQ(spec.field_keys, (std::set<std::string>{"first", "last", "name", "raw", "meaning", "ok"}));
+  EXPECT_EQ(spec.events, (std::set<std::string>{"client connected", "client lost", "device lost", "error", "stop"}));
+  const std::string header = proxy_log_line(proxy_header("pty", "dev", "8N1"));
+  const std::string chunk = proxy_log_line(proxy_chunk(1, Direction::kToDevice, Bytes{0x82, 0xB2, 0xB1, 0x83, 0x82}));
+  const std::string frame = proxy_log_line(proxy_frame(1, Direction::kToDevice, Bytes{0x02, 0x32, 0x31, 0x03, 0x02}, 1, std::nullopt));
+  EXPECT_EQ(log_problems(header + chunk + frame), "");
+  auto edited = [](std::string line, const std::string& from, const std::string& to) {
+    return line.replace(line.find(from), from.size(), to);
+  };
+  const struct {
+    std::string log, problem;
+  } broken[] = {
+      {header + chunk + "{\"type\":\"chunk\"\n", "line 3: not a JSON object"},
+      {header + edited(chunk, "\"dir\"", "\"extra\":1,\"dir\""), "line 2: keys other than PROXY-LOG.md's for chunk"},
+      {header + chunk + edited(frame, "\"seq\":1", "\"seq\":2"), "line 3: a command frame's seq is not the next count"},
+      {header + chunk + edited(frame, "\"ok\":true", "\"ok\":1"), "line 3: a field not as PROXY-LOG.md gives it"},
+      {header + edited(chunk, "\"type\":\"chunk\"", "\"type\":\"bytes\""), "line 2: a record of type \"bytes\""},
+      {header + chunk.substr(0, chunk.size() - 1), "the log does not end with a newline"},
+  };
+  for (const auto& b : broken) EXPECT_NE(log_problems(b.log).find(b.problem), std::string::npos) << b.log << log_problems(b.log);
+}
+
+// A string that is not UTF-8 is written with U+FFFD on one line that
+// parses; json's own dump() throws on the same record.
+TEST(ProxyLogRecords, TextThatIsNotUtf8IsReplacedNotThrownOn) {
+  const auto header = proxy_header("pty /dev/pts/1 (link /tmp/mc\xff\xfe)", "serial /tmp/\xc3( 9600 8N1", "8N1");
+  EXPECT_THROW((void)header.dump(), nlohmann::json::type_error) << "the input is one json's default refuses";
+  const std::string log = proxy_log_line(header) +
+                          proxy_log_line(proxy_event(1, "device lost", "serial /tmp/\xc3(: end of file\n\x01\x80")) +
+                          proxy_log_line(proxy_event(2, "stop", "signal"));
+  EXPECT_EQ(log_problems(log), "");
+  std::istringstream lines(log);
+  std::string first;
+  std::getline(lines, first);
+  EXPECT_EQ(nlohmann::json::parse(first)["mc"], "pty /dev/pts/1 (link /tmp/mc\xEF\xBF\xBD\xEF\xBF\xBD)");
+}
+
+// Every discard reason, with every byte value as the deciding (and the
+// expected) byte and 8-bit wire bytes that are not UTF-8: one documented line
+// each, its message Discard::message() unchanged.
+TEST(ProxyLogRecords, EveryDiscardWithEveryByteIsOneDocumentedLine) {
+  std::string log = proxy_log_line(proxy_header("pty", "dev", "8N1"));
+  std::vector<std::string> messages;
+  const Bytes wire_bytes{0x80, 0xFF, 0xC3, 0x28, 0x02};
+  constexpr DiscardReason kReasons[] = {
+#define SABUS_X(id, name, description) DiscardReason::id,
+      SABUS_DISCARD_REASONS(SABUS_X)
+#undef SABUS_X
+  };
+  for (DiscardReason reason : kReasons) {
+    for (int b = 0; b < 256; ++b)
+      for (std::uint64_t at : {14u, 15u}) {  // kIncomplete's branches: the last byte of the run, one past it
+        const Discard d{reason, 10, 5, at, static_cast<std::uint8_t>(b), static_cast<std::uint8_t>(255 - b)};
+        log += proxy_log_line(proxy_discard(1, b % 2 ? Direction::kToDevice : Direction::kFromDevice, d, wire_bytes));
+        messages.push_back(d.message());
+      }
+  }
+  EXPECT_EQ(log_problems(log), "");
+  std::istringstream lines(log);
+  std::string line;
+  std::getline(lines, line);
+  for (const auto& m : messages) {
+    ASSERT_TRUE(std::getline(lines, line));
+    EXPECT_EQ(nlohmann::json::parse(line)["message"], m);
+  }
+}
+
+// The proxy's own records of a stream (ProxyLogger, tools/sabus/proxy.cpp),
+// made here from the same functions: a chunk, then each frame and discard
+// the direction's receiver finds in it, commands counted, replies paired.
+struct RecordLog : ReceiverSink {
+  std::string text = proxy_log_line(proxy_header("pty", "dev", "8N1"));
+  std::uint64_t seq = 0;
+  Direction dir = Direction::kToDevice;
+  Bytes stream;
+  double t = 0;
+  void on_frame(const FrameView& f) override {
+    const bool command = dir == Direction::kToDevice;
+    if (command) ++seq;
+    text += proxy_log_line(proxy_frame(t, dir, f.bytes, command ? std::optional(seq) : std::nullopt,
+                                       command || seq == 0 ? std::nullopt : std::optional(seq)));
+  }
+  void on_discard(const Discard& d) override {
+    text += proxy_log_line(proxy_discard(t, dir, d, ByteView(stream).subspan(d.offset, d.length)));
+  }
+  void chunk(Receiver& rx, Direction d, const Bytes& wire) {
+    dir = d;
+    t += 1;
+    stream.insert(stream.end(), wire.begin(), wire.end());
+    text += proxy_log_line(proxy_chunk(t, d, wire));
+    rx.feed(wire, *this);
+  }
+};
+
+// Every byte value in every position of a command and of a reply, as wire
+// bytes with the parity bit set right and wrong, through the proxy's
+// receivers: every record one documented line.
+TEST(ProxyLogRecords, EveryByteInEveryPositionOfAFrameMakesDocumentedLines) {
+  const Bytes command = encode_request(WriteTle{3, std::string(69, '1'), std::string(69, '2')}, '2');
+  const Bytes reply = encode_reply(StatusReply{}, '2', 0x31).value();
+  RecordLog commands, replies;
+  Receiver to_device(ReceiverOptions::slave_any_address()), from_device(ReceiverOptions::master());
+  std::size_t records = 0;
+  for (auto [frame, rx, log, dir] : {std::tuple{&command, &to_device, &commands, Direction::kToDevice},
+                                     std::tuple{&reply, &from_device, &replies, Direction::kFromDevice}}) {
+    for (std::size_t pos = 0; pos < frame->size(); ++pos)
+      for (int b = 0; b < 256; ++b) {
+        Bytes w = add_even_parity(*frame);
+        w[pos] = static_cast<std::uint8_t>(b);
+        log->chunk(*rx, dir, w);
+      }
+    rx->finish(*log);
+    EXPECT_EQ(log_problems(log->text), "") << to_string(dir);
+    records += static_cast<std::size_t>(std::count(log->text.begin(), log->text.end(), '\n'));
+  }
+  EXPECT_GT(records, 2 * (command.size() + reply.size()) * 256) << "a chunk and at least one frame or discard each";
 }
 
 // ---- the mask table -------------------------------------------------------------

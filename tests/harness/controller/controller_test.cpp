@@ -1038,7 +1038,17 @@ TEST(Controller, InvariantsSeeANameTwiceAnywhereInTheStoreList) {
 }  // namespace
 }  // namespace sabus::harness
 
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "sabus/harness/state_file.hpp"
+#include "temp_dir.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -1102,6 +1112,9 @@ TEST(StateFile, ABadValueNamesItsKeyAndChangesNothing) {
        "presets 3: not a record the Write Satellite Data command carries"},
       {"\"longitude\": 1250", "\"longitude\": 5e9", true, "presets 3.longitude: expected a whole number"},
       {"\"az\": ", "\"az\": 1e6, \"was\": ", false, "positions.az: 1000000.0 is outside the profile's range"},
+      {"\"name\": \"SBS 6\"", "\"name\": \"caf\u00e9\"", false, "store[0].name: not a name the Query Name reply carries"},
+      {"\"name\": \"SBS 6\"", "\"name\": \"ELEVEN CHAR\"", false, "store[0].name: not a name the Query Name reply carries"},
+      {"\"name\": \"SBS 6\"", "\"name\": \"GALAXY 19\"", false, "store[1].name: \"GALAXY 19\" is in the STORE list twice"},
   };
   for (const auto& c : cases) {
     Rig other;
@@ -1111,6 +1124,108 @@ TEST(StateFile, ABadValueNamesItsKeyAndChangesNothing) {
     EXPECT_NE(error.find("controller 50: " + c.error), std::string::npos) << error;
     EXPECT_EQ(save_state({&other.c}), before) << c.to;
   }
+}
+
+// The keys of one controller's state, as load_state reads them.
+const std::set<std::string> kStateKeys = {"positions", "store", "presets", "tles", "signposts", "navigation"};
+
+std::set<std::string> keys_of(const nlohmann::json& j) {
+  std::set<std::string> out;
+  for (const auto& [k, v] : j.items()) out.insert(k);
+  return out;
+}
+
+// save_state on every branch it writes: a controller holding something in
+// every list (a name with a quote and a backslash, navigation data with no
+// heading: null), beside one holding nothing. The
+// text parses, has the keys load_state reads, and reads back to the same
+// state (the same text again).
+TEST(StateFile, EveryListFullAndEmptyParsesAndReadsBack) {
+  Profile dvb = test_profile();
+  dvb.dvb_receiver = true;
+  Rig full(dvb);
+  ASSERT_FALSE(is_nak(full.send(WriteTle{2, std::string(69, '1'), std::string(69, '2')})));
+  ASSERT_FALSE(is_nak(full.send(preset_3())));
+  SignpostData sp;
+  sp.id = "a\"b\\";
+  ASSERT_FALSE(is_nak(full.send(WriteSignpost{4, sp})));
+  Profile bare = test_profile();
+  bare.address = 51;
+  bare.store.clear();
+  bare.presets.clear();
+  Rig empty(bare);
+
+  const std::string text = save_state({&full.c, &empty.c});
+  const auto doc = nlohmann::json::parse(text);  // throws on a text that is not JSON
+  EXPECT_EQ(doc["format"], "sabus-sim-state");
+  EXPECT_EQ(doc["version"], 1);
+  ASSERT_EQ(keys_of(doc["controllers"]), (std::set<std::string>{"50", "51"}));
+  const auto& f = doc["controllers"]["50"];
+  EXPECT_EQ(keys_of(f), kStateKeys);
+  ASSERT_EQ(f["store"].size(), 2u);
+  EXPECT_EQ(f["store"][1]["name"], "GALAXY 19");
+  ASSERT_EQ(f["presets"].size(), 2u);
+  EXPECT_EQ(f["presets"][1]["index"], 3);
+  EXPECT_EQ(f["presets"][1]["data"]["name"], "AMC 21");
+  ASSERT_EQ(f["tles"].size(), 1u);
+  EXPECT_EQ(f["tles"][0]["line2"], std::string(69, '2'));
+  ASSERT_EQ(f["signposts"].size(), 1u);
+  EXPECT_EQ(f["signposts"][0]["id"], sp.id);
+  EXPECT_EQ(f["signposts"][0]["frequency"], 10700);
+  EXPECT_TRUE(f["navigation"]["heading"].is_null());
+  const auto& e = doc["controllers"]["51"];
+  EXPECT_EQ(keys_of(e), kStateKeys);
+  for (const char* list : {"store", "presets", "tles", "signposts"}) EXPECT_EQ(e[list], nlohmann::json::array()) << list;
+
+  Rig full_again(dvb), empty_again(bare);
+  full_again.send(WriteSatellite{});  // something to be overwritten by the file
+  std::string error;
+  ASSERT_TRUE(load_state(text, {&full_again.c, &empty_again.c}, error)) << error;
+  EXPECT_EQ(save_state({&full_again.c, &empty_again.c}), text);
+}
+
+class StateFileOnDisk : public test::TempDirTest {
+ protected:
+  StateFileOnDisk() : TempDirTest("sabus-state-file-test") {}
+};
+
+// write_state_file replaces only its file: a folder in its place is refused
+// and left alone, a file named like the old temporary (PATH.tmp) is not
+// touched, and what it writes parses as the state.
+TEST_F(StateFileOnDisk, WritesOnlyItsFileWhole) {
+  Rig r;
+  std::string error;
+  std::filesystem::create_directory(path("dir.json"));
+  EXPECT_FALSE(write_state_file(path("dir.json"), {&r.c}, error));
+  EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+  EXPECT_TRUE(std::filesystem::is_empty(path("dir.json")));
+
+  std::ofstream(path("state.json.tmp")) << "someone else's";
+  ASSERT_TRUE(write_state_file(path("state.json"), {&r.c}, error)) << error;
+  EXPECT_EQ(test::slurp(path("state.json.tmp")), "someone else's");
+  EXPECT_EQ(test::slurp(path("state.json")), save_state({&r.c}));
+  EXPECT_EQ(keys_of(nlohmann::json::parse(test::slurp(path("state.json")))["controllers"]["50"]), kStateKeys);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), {}), 3) << "no temporary left";
+}
+
+// A state file that is there but cannot be read is an error, not a first
+// start (which would replace it with the defaults at the first change).
+TEST_F(StateFileOnDisk, AnUnreadableStateFileIsAnErrorNotAFirstStart) {
+  Rig r;
+  std::string error;
+  EXPECT_TRUE(read_state_file(path("none.json"), {&r.c}, error)) << "a missing file is a first start";
+  // A socket cannot be opened (ENXIO), even by root, for whom a file without
+  // read permission still opens.
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  const std::string sock = path("sock.json");
+  ASSERT_LT(sock.size(), sizeof addr.sun_path);
+  std::strcpy(addr.sun_path, sock.c_str());
+  ASSERT_EQ(::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  EXPECT_FALSE(read_state_file(sock, {&r.c}, error));
+  EXPECT_EQ(error, sock + ": cannot read: " + std::strerror(ENXIO));
+  ::close(fd);
 }
 
 }  // namespace

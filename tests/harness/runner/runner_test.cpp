@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
 
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/motion.hpp"
@@ -11,6 +14,7 @@
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "temp_dir.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -279,6 +283,99 @@ TEST(Runner, StoredDataIsBackedUpAndRestored) {
   EXPECT_NE(notes.find("preset satellite 5 was empty"), std::string::npos) << notes;
   EXPECT_NE(notes.find("STORE entry"), std::string::npos) << "the STORE list cannot be rebuilt remotely:\n" << notes;
   EXPECT_NE(r.backup.to_json().find("\"presets\""), std::string::npos);
+}
+
+// ---- the backup file (StoredDataBackup::to_json) ----------------------------------
+
+// The backup as its file gives it back, read with the JSON library: every
+// key, of its type, nothing else.
+StoredDataBackup read_backup(const std::string& text) {
+  const auto j = nlohmann::json::parse(text);  // throws on a text that is not JSON
+  std::set<std::string> keys;
+  for (const auto& [k, v] : j.items()) keys.insert(k);
+  EXPECT_EQ(keys, (std::set<std::string>{"store_names", "presets", "tles", "signposts", "navigation"})) << text;
+  StoredDataBackup b;
+  b.taken = true;
+  b.store_names = j.at("store_names").get<std::vector<std::string>>();
+  for (auto [list, slots] : {std::pair{"presets", &b.presets}, {"tles", &b.tles}, {"signposts", &b.signposts}})
+    for (const auto& [slot, hex] : j.at(list).items()) (*slots)[static_cast<std::uint8_t>(std::stoi(slot))] = parse_hex(hex.get<std::string>()).value();
+  if (!j.at("navigation").is_null()) b.navigation = parse_hex(j.at("navigation").get<std::string>()).value();
+  return b;
+}
+
+void expect_same(const StoredDataBackup& read, const StoredDataBackup& b) {
+  EXPECT_EQ(read.store_names, b.store_names);
+  EXPECT_EQ(read.presets, b.presets);
+  EXPECT_EQ(read.tles, b.tles);
+  EXPECT_EQ(read.signposts, b.signposts);
+  EXPECT_EQ(read.navigation, b.navigation);
+}
+
+// Every list full and empty, names with JSON's special characters, the
+// navigation data there and not (no reply): the file reads back as the
+// backup; a name that is not UTF-8 is written with U+FFFD, not thrown on.
+TEST(Backup, EveryListFullAndEmptyReadsBackAsTheBackup) {
+  StoredDataBackup full;
+  full.store_names = {"SBS 6", "a\"b\\c", "tab\there", ""};
+  full.presets = {{1, Bytes{'0', '1', 'G', '1', '9'}}, {20, Bytes{0x7F, 0x7F}}};
+  full.tles = {{10, Bytes(138, '1')}};
+  full.signposts = {{3, Bytes{'0', '3', ' '}}};
+  full.navigation = Bytes{'7', '+', '4', '0', '0', '0'};
+  StoredDataBackup empty;
+  for (const auto* b : {&full, &empty}) expect_same(read_backup(b->to_json()), *b);
+  EXPECT_EQ(read_backup(empty.to_json()).navigation, std::nullopt) << "null, not \"\"";
+
+  StoredDataBackup latin1;
+  latin1.store_names = {"caf\xe9"};
+  EXPECT_EQ(read_backup(latin1.to_json()).store_names, std::vector<std::string>{"caf\xEF\xBF\xBD"});
+}
+
+class BackupFile : public test::TempDirTest {
+ protected:
+  BackupFile() : TempDirTest("sabus-backup-test") {}
+  // A destructive run (one preset overwritten) against the in-process
+  // controller with the backup written to `backup_path`.
+  RunResult run(const std::string& backup_path, Controller** controller = nullptr) {
+    static const Profile p = load_profile_file(default_profile_path()).profile.value();
+    transport_ = make_in_process_transport({p}, {});
+    if (controller) *controller = &transport_->bus().controller(0);
+    RunOptions o;
+    o.allow_destructive = true;
+    o.backup_path = backup_path;
+    Runner runner(*transport_, p, o);
+    auto write1 = send_command("write_satellite", "", {{"index", "1"}, {"sat name", "OVERWRITE"}}, Expectation::Kind::kAck);
+    return runner.run({vector_with("3.10-overwrite", {write1}, {"destructive"})});
+  }
+  std::unique_ptr<InProcessTransport> transport_;
+};
+
+// A backup already there may be the only copy of what the device held
+// before an earlier run: the new one goes beside it, and reads back as
+// the backup the run took.
+TEST_F(BackupFile, NeverReplacesOneThereAndReadsBackAsTheBackup) {
+  std::ofstream(path("backup.json")) << "the earlier run's";
+  const RunResult r = run(path("backup.json"));
+  ASSERT_FALSE(r.aborted) << r.abort_reason;
+  EXPECT_EQ(test::slurp(path("backup.json")), "the earlier run's");
+  EXPECT_EQ(r.backup.file, path("backup-2.json"));
+  const StoredDataBackup read = read_backup(test::slurp(path("backup-2.json")));
+  expect_same(read, r.backup);
+  EXPECT_FALSE(read.presets.empty());
+  EXPECT_FALSE(read.store_names.empty());
+}
+
+// No file, no destructive vector: the run stops before the first one, saying why.
+TEST_F(BackupFile, ABackupThatCannotBeWrittenStopsTheRunBeforeTheDestructiveVector) {
+  Controller* c = nullptr;
+  const RunResult r = run(path("no/such/folder/backup.json"), &c);
+  EXPECT_TRUE(r.aborted);
+  EXPECT_NE(r.abort_reason.find("the stored-data backup cannot be written: " + path("no/such/folder/backup.json")),
+            std::string::npos) << r.abort_reason;
+  EXPECT_NE(r.abort_reason.find("no destructive vector runs without it"), std::string::npos) << r.abort_reason;
+  EXPECT_TRUE(r.backup.file.empty());
+  ASSERT_TRUE(c->state().presets[0].has_value());
+  EXPECT_NE(c->state().presets[0]->data.name, "OVERWRITE") << "the destructive vector did not run";
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), {}), 0) << "nothing written";
 }
 
 TEST(Runner, NoBackupWithoutDestructiveVectors) {

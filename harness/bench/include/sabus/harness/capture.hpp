@@ -41,6 +41,11 @@ nlohmann::json proxy_frame(double t_ms, Direction d, ByteView chars, std::option
                            std::optional<std::uint64_t> reply_to);
 nlohmann::json proxy_discard(double t_ms, Direction d, const Discard& discard, ByteView wire_bytes);
 nlohmann::json proxy_event(double t_ms, std::string_view what, const std::string& detail);
+// A record as one line of the log, its newline included. Text that is not
+// UTF-8 (a path given on the command line, an error naming it) has each
+// byte that is not replaced by U+FFFD: json's dump() throws type_error 316
+// on it, which ended the proxy before its first line.
+std::string proxy_log_line(const nlohmann::json& record);
 
 // ---- reading a capture -------------------------------------------------------------
 

@@ -17,7 +17,8 @@ std::string save_state(const std::vector<const Controller*>& controllers);
 // `error` set when the document is not a state file.
 bool load_state(const std::string& json, const std::vector<Controller*>& controllers, std::string& error);
 
-// Atomic: writes PATH.tmp and renames it over PATH.
+// Whole or not at all (replace_file, files.hpp): a reader finds the old
+// state or the new one, and no file beside PATH is replaced.
 bool write_state_file(const std::string& path, const std::vector<const Controller*>& controllers, std::string& error);
 // A missing file is not an error (first start); returns true.
 bool read_state_file(const std::string& path, const std::vector<Controller*>& controllers, std::string& error);

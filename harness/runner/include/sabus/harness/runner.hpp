@@ -116,7 +116,9 @@ struct RunOptions {
   // false: RunResult::vectors keep no transcripts (on_result has had them), so
   // a run of thousands of vectors does not hold every frame it exchanged.
   bool keep_transcripts = true;
-  std::string backup_path;                    // where the stored-data backup is written ("" : not written)
+  // Where the stored-data backup is written ("": not written); never over a
+  // file that is there (write_new_file: backup-2.json, ...).
+  std::string backup_path;
   // false: no backup and no restore, for a device that does not outlive the
   // run (the in-process reference controller).
   bool backup_stored_data = true;
@@ -131,6 +133,10 @@ struct StoredDataBackup {
   std::vector<std::string> store_names;
   std::map<std::uint8_t, Bytes> presets, tles, signposts;
   std::optional<Bytes> navigation;
+  std::string file;  // the file it was written to ("": none asked for)
+  // The backup file: {"store_names": [names], "presets" / "tles" /
+  // "signposts": {"slot": "hex of the reply's data"} (empty slots left out),
+  // "navigation": "hex" or null (no reply)}.
   std::string to_json() const;
 };
 
