@@ -7,8 +7,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <ext/stdio_filebuf.h>  // an ostream on the descriptor mkstemp opened (libstdc++, used with g++ and clang here)
-
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sabus/harness/files.hpp"
 #include "sabus/reports/journal.hpp"
 #include "sabus/reports/writers.hpp"
 
@@ -288,22 +287,11 @@ bool same_file(const struct stat& st, int fd) {
   return ::fstat(fd, &other) == 0 && other.st_dev == st.st_dev && other.st_ino == st.st_ino;
 }
 
-// Where a report at `path` is written: the path itself, or for a symbolic
-// link to a regular file the file it names (the link stays a link).
-std::string write_target(const std::string& path) {
-  struct stat st {};
-  if (::lstat(path.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return path;
-  std::error_code ec;
-  const auto resolved = std::filesystem::canonical(path, ec);
-  return ec ? path : resolved.string();
-}
-
-// Writes `fill` into a new file beside PATH (created exclusively, so no
-// link or device planted at a guessed name is written through), fsyncs it
-// and renames it over PATH, which must be a regular file or not exist: the
-// rename never replaces a link, a device, a pipe or a directory.
-template <class Fill>
-bool replace_file(const std::string& path, std::string& error, Fill&& fill) {
+// A report written whole or not at all (harness/files: a new file beside
+// PATH, flushed to the disk and renamed over it; a link is written through
+// and stays a link), after output_path_problem's refusals, which name what
+// the path is; "-" is standard output.
+bool replace_file(const std::string& path, std::string& error, const harness::Fill& fill) {
   if (path == kStandardOutput) {
     const bool ok = fill(std::cout, error);
     std::cout.flush();
@@ -314,38 +302,7 @@ bool replace_file(const std::string& path, std::string& error, Fill&& fill) {
     error = why;
     return false;
   }
-  const std::string target = write_target(path);
-  std::string tmp = target + ".tmp.XXXXXX";
-  const int fd = ::mkstemp(tmp.data());
-  if (fd < 0) {
-    error = target + ": cannot write a temporary file beside it: " + std::strerror(errno);
-    return false;
-  }
-  // mkstemp makes the file 0600; a report gets the mode any new file would.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  (void)::fchmod(fd, 0666 & ~mask);
-  auto fail = [&](std::string why) {
-    std::filesystem::remove(tmp);
-    error = std::move(why);
-    return false;
-  };
-  {
-    __gnu_cxx::stdio_filebuf<char> buf(fd, std::ios::out | std::ios::binary);  // closes fd
-    std::ostream out(&buf);
-    if (!fill(out, error)) return fail(error);
-    out.flush();
-    if (!out) return fail(tmp + ": write failed");
-    // The data reaches the disk before the name does: a power cut leaves the
-    // old file or the new one, never an empty one.
-    if (::fsync(fd) != 0) return fail(tmp + ": fsync failed: " + std::strerror(errno));
-  }
-  // Checked again just before the rename: the run may have lasted an hour.
-  struct stat st {};
-  if (::lstat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-    return fail(target + " is " + kind_of(st) + " now; not replaced (the report is lost)");
-  if (::rename(tmp.c_str(), target.c_str()) != 0) return fail(target + ": cannot replace: " + std::strerror(errno));
-  return true;
+  return harness::replace_file(path, fill, error);
 }
 
 }  // namespace

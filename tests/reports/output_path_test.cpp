@@ -132,7 +132,7 @@ TEST_F(OutputPath, ARenameNeverReplacesWhatBecameAnotherKindOfFile) {
   const bool written = write_run_json(path("run.json"), doc(), path("run.journal.jsonl"), error);
   swap.join();
   EXPECT_FALSE(written);
-  EXPECT_EQ(error, path("run.json") + " is a FIFO (named pipe) now; not replaced (the report is lost)");
+  EXPECT_EQ(error, path("run.json") + " is a FIFO (named pipe), not a regular file; not replaced (what was written is lost)");
   EXPECT_TRUE(fs::is_fifo(path("run.json")));
   EXPECT_EQ(entries(), (std::vector<std::string>{"run.journal.jsonl", "run.json"})) << "no temporary file left";
 }

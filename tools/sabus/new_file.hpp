@@ -12,8 +12,8 @@
 namespace sabus::cli {
 
 // Writes `text` to DIR/STEM.EXT, or to DIR/STEM-2.EXT, -3, ... when that name
-// is taken (the file is created exclusively, O_EXCL, so nothing at a name is
-// opened, followed or replaced), creating DIR first. Its path, or nullopt and
+// is taken (harness::write_new_file: nothing at a name is opened, followed or
+// replaced; whole or not at all), creating DIR first. Its path, or nullopt and
 // `error` ("cannot create the folder ...", "... : write failed: No space left
 // on device"), with no file left behind.
 std::optional<std::filesystem::path> write_new_file(const std::filesystem::path& dir, const std::string& stem,

@@ -35,7 +35,7 @@ TEST_F(Files, ReplaceRefusesAFolderAndLeavesItAlone) {
   fs::create_directory(path("d"));
   std::string error;
   EXPECT_FALSE(replace_file(path("d"), "x", error));
-  EXPECT_EQ(error, path("d") + " is not a regular file; not replaced");
+  EXPECT_EQ(error, path("d") + " is a directory, not a regular file; not replaced");
   EXPECT_TRUE(fs::is_directory(path("d")));
   EXPECT_EQ(names(), std::set<std::string>{"d"});
 }

@@ -5,6 +5,8 @@
 // naming the file, not a file that silently ends early.
 #pragma once
 
+#include <functional>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +20,11 @@ namespace sabus::harness {
 // false with `error` set otherwise, and when the folder is missing or not
 // writable, or the disk is full. On failure the old file is unchanged.
 bool replace_file(const std::string& path, std::string_view text, std::string& error);
+// The same with the text written by `fill` to a stream (a file too large to
+// hold as text: the run JSON made from its journal). `fill` returns false,
+// with its own `error`, to leave the old file as it is.
+using Fill = std::function<bool(std::ostream& out, std::string& error)>;
+bool replace_file(const std::string& path, const Fill& fill, std::string& error);
 
 // Writes `text` to a file that did not exist, and never replaces one: `path`
 // itself when no file has that name, else the first free of "STEM-2.EXT",
