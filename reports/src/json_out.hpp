@@ -16,33 +16,38 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "sabus/reports/document.hpp"
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::reports::json_out {
 
-// A RapidJSON output stream into a std::ostream, in pieces of 64 KiB.
+// A RapidJSON output stream into a std::ostream, in pieces of 64 KiB. Its
+// Put is a store and a compare: a run JSON is megabytes, copied a character
+// at a time by the writer.
 class OStreamBuffer {
  public:
   using Ch = char;
-  explicit OStreamBuffer(std::ostream& out) : out_(out) { buf_.reserve(kPiece); }
+  explicit OStreamBuffer(std::ostream& out) : out_(out), buf_(kPiece), at_(buf_.data()), end_(buf_.data() + kPiece) {}
   OStreamBuffer(const OStreamBuffer&) = delete;
   OStreamBuffer& operator=(const OStreamBuffer&) = delete;
   ~OStreamBuffer() { Flush(); }
   void Put(char c) {
-    buf_.push_back(c);
-    if (buf_.size() >= kPiece) Flush();
+    *at_++ = c;
+    if (at_ == end_) Flush();
   }
   void Flush() {
-    out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-    buf_.clear();
+    out_.write(buf_.data(), at_ - buf_.data());
+    at_ = buf_.data();
   }
 
  private:
   static constexpr std::size_t kPiece = 1 << 16;
   std::ostream& out_;
-  std::string buf_;
+  std::vector<char> buf_;
+  char* at_;
+  char* end_;
 };
 
 // One JSON text on one line (a journal record, a vector of the run JSON).

@@ -38,11 +38,12 @@ std::string journal_record_json(std::string_view record, const RunDocument& run)
 void write_run_json(std::ostream& out, const RunDocument& doc);
 std::string json_text(const RunDocument& doc);
 // The run JSON with the header of `header` (less its "journal") and the
-// vectors of a journal (JournalWriter), one line at a time: each line is read
-// by RapidJSON's Reader and written again by its Writer, so a line that is
-// not JSON stops the copy (false, `error` names the line) rather than reach
-// the file; records are left out, and so is a last line without its newline
-// (cut short by a kill). Nothing but the line being copied is held in memory.
+// vectors of a journal (JournalWriter, each line the serializer's text of one
+// vector), one line at a time: each line is read through by RapidJSON's
+// Reader before the Writer places it, so a line that is not one JSON text of
+// UTF-8 stops the copy (false, `error` names the line) rather than reach the
+// file; records are left out, and so is a last line without its newline (cut
+// short by a kill). Nothing but the line being copied is held in memory.
 bool write_run_json_from_journal(std::istream& journal, std::ostream& out, const RunDocument& header, std::string& error);
 
 // Writes the run JSON to a new temporary file beside PATH, fsyncs it and
