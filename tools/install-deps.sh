@@ -13,7 +13,7 @@ packages=(
   libyaml-cpp-dev                       # vectors and device profiles
   libcli11-dev                          # command-line parsing of the sabus CLI
   libfmt-dev                            # formatting
-  nlohmann-json3-dev                    # JSON: reading run files, profiles' state files, the proxy log
+  nlohmann-json3-dev                    # JSON: reading run files and journals, state files, the proxy log, --json output
   rapidjson-dev                         # JSON: the run JSON and journal writer (streaming) and strict reader
   libvalijson-dev                       # JSON Schema: the run JSON and journal checked against reports/run.schema.json
   libxml2-dev                           # JUnit: checked against reports/junit.xsd in-process (tests, gate, fuzz_record)

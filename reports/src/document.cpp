@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "sabus/protocol/catalog.hpp"
+#include "sabus/reports/writers.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/frame.hpp"
 
@@ -152,35 +153,43 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
 // ---- JSON ------------------------------------------------------------------------
 
 ordered_json header_json(const RunDocument& d) {
+  const auto text = [](const std::string& s) { return json_string(s); };
   ordered_json j = {{"schema", kSchemaName},
                     {"schema_version", d.schema_version},
-                    {"generator", d.generator},
-                    {"started_at", d.started_at},
-                    {"finished_at", d.finished_at},
-                    {"status", d.status},
-                    {"abort_reason", d.abort_reason}};
-  if (!d.journal.empty()) j["journal"] = d.journal;
-  j["device"] = d.device;
+                    {"generator", text(d.generator)},
+                    {"started_at", text(d.started_at)},
+                    {"finished_at", text(d.finished_at)},
+                    {"status", text(d.status)},
+                    {"abort_reason", text(d.abort_reason)}};
+  if (!d.journal.empty()) j["journal"] = text(d.journal);
+  j["device"] = text(d.device);
   j["identity"] = {{"ok", d.identity.ok},
-                   {"controller_type", d.identity.controller_type},
-                   {"firmware_version", d.identity.firmware_version},
-                   {"reply_hex", d.identity.reply_hex},
-                   {"error", d.identity.error}};
-  j["profile"] = d.profile;
+                   {"controller_type", text(d.identity.controller_type)},
+                   {"firmware_version", text(d.identity.firmware_version)},
+                   {"reply_hex", text(d.identity.reply_hex)},
+                   {"error", text(d.identity.error)}};
+  j["profile"] = text(d.profile);
   j["address"] = d.address;
-  j["faults"] = d.faults;
-  j["options"] = d.options;
+  ordered_json faults = ordered_json::array();
+  for (const auto& f : d.faults) faults.push_back(text(f));
+  j["faults"] = std::move(faults);
+  j["options"] = json_value(d.options);
   j["planned"] = d.planned;
-  if (d.summary)
+  if (d.summary) {
+    ordered_json causes = ordered_json::object();
+    for (const auto& [cause, n] : d.summary->skipped_by_cause) causes[valid_utf8(cause)] = n;
     j["summary"] = {{"passed", d.summary->passed},   {"failed", d.summary->failed},
                     {"skipped", d.summary->skipped}, {"known", d.summary->known},
                     {"unexpected", d.summary->unexpected}, {"exit_code", d.summary->exit_code},
-                    {"skipped_by_cause", d.summary->skipped_by_cause}};
+                    {"skipped_by_cause", std::move(causes)}};
+  }
   ordered_json live = ordered_json::array();
-  for (const auto& l : d.liveness) live.push_back({{"when", l.when}, {"alive", l.alive}, {"detail", l.detail}});
+  for (const auto& l : d.liveness) live.push_back({{"when", text(l.when)}, {"alive", l.alive}, {"detail", text(l.detail)}});
   j["liveness"] = live;
-  j["restore"] = d.restore;
-  j["traffic"] = d.traffic;
+  ordered_json restore = ordered_json::array();
+  for (const auto& r : d.restore) restore.push_back(text(r));
+  j["restore"] = std::move(restore);
+  j["traffic"] = json_value(d.traffic);
   return j;
 }
 

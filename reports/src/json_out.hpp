@@ -4,12 +4,7 @@
 // by hand or kept from one write to the next.
 #pragma once
 
-#include "sabus/reports/rapidjson_config.hpp"  // before RapidJSON's headers
-
-#include <rapidjson/prettywriter.h>
-#include <rapidjson/reader.h>
-#include <rapidjson/stringbuffer.h>
-#include <rapidjson/writer.h>
+#include "rapidjson_headers.hpp"
 
 #include <cmath>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 // The run JSON (reports/SCHEMA.md) and its journal's records, written by
 // RapidJSON's Writer from a document in memory or from a run's journal line
 // by line; and writing report files safely.
-#include "json_out.hpp"  // first: RapidJSON's configuration
+#include "json_out.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

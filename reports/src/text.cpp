@@ -8,6 +8,7 @@
 #include <cstring>
 #include <optional>
 
+#include "sabus/reports/document.hpp"
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::reports {
@@ -96,6 +97,25 @@ std::string valid_utf8(std::string_view s) {
     }
   }
   return out;
+}
+
+nlohmann::ordered_json json_string(std::string_view s) {
+  return is_valid_utf8(s) ? nlohmann::ordered_json(std::string(s)) : nlohmann::ordered_json(valid_utf8(s));
+}
+
+nlohmann::ordered_json json_value(const nlohmann::json& j) {
+  if (j.is_string()) return json_string(j.get_ref<const std::string&>());
+  if (j.is_array()) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const auto& item : j) out.push_back(json_value(item));
+    return out;
+  }
+  if (j.is_object()) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const auto& [key, value] : j.items()) out[valid_utf8(key)] = json_value(value);
+    return out;
+  }
+  return nlohmann::ordered_json(j);
 }
 
 std::string json_value_text(const nlohmann::json& value) {

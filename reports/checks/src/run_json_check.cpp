@@ -1,16 +1,19 @@
-// The run JSON and its journal read back: RapidJSON's parser (strict UTF-8),
-// the JSON Schema validator valijson with reports/run.schema.json (embedded
-// at build time), and the consistency a schema cannot state.
-#include "sabus/reports/rapidjson_config.hpp"  // before RapidJSON's headers
-
-#include <rapidjson/document.h>
-#include <rapidjson/error/en.h>
-#include <valijson/adapters/rapidjson_adapter.hpp>
+// The run JSON and its journal read back: nlohmann's parser (strict: one
+// JSON text, UTF-8), the JSON Schema validator valijson with
+// reports/run.schema.json (embedded at build time), and the consistency a
+// schema cannot state.
+// GCC 12 warns, falsely, of an overlapping memcpy in std::string::replace
+// as valijson's json_pointer.hpp inlines it (-Wrestrict; GCC bug 105329).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wrestrict"
+#endif
+#include <valijson/adapters/nlohmann_json_adapter.hpp>
 #include <valijson/schema.hpp>
 #include <valijson/schema_parser.hpp>
 #include <valijson/validator.hpp>
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
@@ -20,13 +23,17 @@
 namespace sabus::reports::checks {
 namespace {
 
-// JSON text parsed, or the parser's error with its offset.
-bool parse(std::string_view text, rapidjson::Document& doc, Problems& problems, const std::string& what) {
-  doc.Parse<rapidjson::kParseFullPrecisionFlag | rapidjson::kParseValidateEncodingFlag>(text.data(), text.size());
-  if (!doc.HasParseError()) return true;
-  problems.push_back(what + ": not JSON at offset " + std::to_string(doc.GetErrorOffset()) + ": " +
-                     rapidjson::GetParseError_En(doc.GetParseError()));
-  return false;
+using nlohmann::json;
+
+// JSON text parsed, or the parser's error (with where it is).
+bool parse(std::string_view text, json& doc, Problems& problems, const std::string& what) {
+  try {
+    doc = json::parse(text);
+    return true;
+  } catch (const json::parse_error& e) {
+    problems.push_back(what + ": not JSON: " + e.what());
+    return false;
+  }
 }
 
 // The schema of the run JSON, and of the two parts of a journal: the header
@@ -45,27 +52,18 @@ class Schemas {
 
  private:
   Schemas() {
-    rapidjson::Document source;
-    source.Parse(generated::kRunSchemaJson);
-    if (source.HasParseError()) throw std::logic_error("reports/run.schema.json is not JSON");
+    const json source = json::parse(generated::kRunSchemaJson);
     load(source, run_);
     load(only(source, "#/definitions/header"), header_);
     load(only(source, "#/definitions/vector"), vector_);
   }
-  static rapidjson::Document only(const rapidjson::Document& source, const char* ref) {
-    rapidjson::Document d;
-    d.CopyFrom(source, d.GetAllocator());
-    d.RemoveMember("allOf");
-    rapidjson::Value target(rapidjson::kObjectType);
-    target.AddMember("$ref", rapidjson::StringRef(ref), d.GetAllocator());
-    rapidjson::Value all(rapidjson::kArrayType);
-    all.PushBack(target, d.GetAllocator());
-    d.AddMember("allOf", all, d.GetAllocator());
+  static json only(json d, const char* ref) {
+    d["allOf"] = json::array({{{"$ref", ref}}});
     return d;
   }
-  static void load(const rapidjson::Document& d, valijson::Schema& schema) {
+  static void load(const json& d, valijson::Schema& schema) {
     valijson::SchemaParser parser(valijson::SchemaParser::kDraft4);
-    valijson::adapters::RapidJsonAdapter adapter(d);
+    valijson::adapters::NlohmannJsonAdapter adapter(d);
     parser.populateSchema(adapter, schema);
   }
   valijson::Schema run_, header_, vector_;
@@ -81,10 +79,10 @@ std::string where(const std::vector<std::string>& context) {
 }
 
 // The deepest place `value` breaks `schema`, with what it breaks there.
-void validate(const rapidjson::Value& value, const valijson::Schema& schema, Problems& problems, const std::string& what) {
+void validate(const json& value, const valijson::Schema& schema, Problems& problems, const std::string& what) {
   valijson::Validator validator;
   valijson::ValidationResults results;
-  if (validator.validate(schema, valijson::adapters::RapidJsonAdapter(value), &results)) return;
+  if (validator.validate(schema, valijson::adapters::NlohmannJsonAdapter(value), &results)) return;
   valijson::ValidationResults::Error e;
   if (!results.popError(e)) {
     problems.push_back(what + ": not valid against reports/run.schema.json");
@@ -103,77 +101,69 @@ bool hex_text(std::string_view hex) {
   return true;
 }
 
-std::size_t hex_bytes(const rapidjson::Value& frame) {
-  const auto& hex = frame["hex"];
-  const std::size_t n = hex.GetStringLength();
-  return n == 0 ? 0 : (n + 1) / 3;
-}
-
-// What the schema cannot say of one vector: each field's bytes lie within
-// its frame, in order.
-void check_vector(const rapidjson::Value& v, Problems& problems, const std::string& what) {
+// What the schema cannot say of one vector: each frame's hex is bytes, and
+// each field's bytes lie within its frame, in order.
+void check_vector(const json& v, Problems& problems, const std::string& what) {
   const auto& transcript = v["transcript"];
-  for (rapidjson::SizeType i = 0; i < transcript.Size(); ++i) {
+  for (std::size_t i = 0; i < transcript.size(); ++i) {
     const auto& frame = transcript[i];
-    if (!hex_text({frame["hex"].GetString(), frame["hex"].GetStringLength()})) {
-      problems.push_back(what + ": at /transcript/" + std::to_string(i) + "/hex: not bytes as hex: \"" +
-                         std::string(frame["hex"].GetString()).substr(0, 40) + "\"");
+    const std::string& hex = frame["hex"].get_ref<const std::string&>();
+    if (!hex_text(hex)) {
+      problems.push_back(what + ": at /transcript/" + std::to_string(i) + "/hex: not bytes as hex: \"" + hex.substr(0, 40) + "\"");
       continue;
     }
-    const std::size_t bytes = hex_bytes(frame);
+    const std::size_t bytes = hex.empty() ? 0 : (hex.size() + 1) / 3;
     const auto& fields = frame["fields"];
-    for (rapidjson::SizeType k = 0; k < fields.Size(); ++k) {
-      const auto first = fields[k]["first"].GetUint64(), last = fields[k]["last"].GetUint64();
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      const auto first = fields[k]["first"].get<std::uint64_t>(), last = fields[k]["last"].get<std::uint64_t>();
       if (first > last || last >= bytes)
         problems.push_back(what + ": transcript[" + std::to_string(i) + "] field " + std::to_string(k) + " (" +
-                           fields[k]["name"].GetString() + ") is bytes " + std::to_string(first) + "-" + std::to_string(last) +
-                           " of a frame of " + std::to_string(bytes));
+                           fields[k]["name"].get<std::string>() + ") is bytes " + std::to_string(first) + "-" +
+                           std::to_string(last) + " of a frame of " + std::to_string(bytes));
     }
   }
 }
 
 // The summary of an ended run against its vectors, and vector ids unique.
-void check_run(const rapidjson::Value& run, const std::vector<const rapidjson::Value*>& vectors, Problems& problems,
-               const std::string& what) {
-  const auto& reply = run["identity"]["reply_hex"];
-  if (!hex_text({reply.GetString(), reply.GetStringLength()}))
+void check_run(const json& run, const std::vector<const json*>& vectors, Problems& problems, const std::string& what) {
+  if (!hex_text(run["identity"]["reply_hex"].get_ref<const std::string&>()))
     problems.push_back(what + ": at /identity/reply_hex: not bytes as hex");
   std::set<std::string> ids;
   std::map<std::string, std::uint64_t> outcomes, causes;
   for (const auto* v : vectors) {
-    const std::string id = (*v)["id"].GetString();
+    const std::string& id = (*v)["id"].get_ref<const std::string&>();
     if (!ids.insert(id).second) problems.push_back(what + ": vector id \"" + id + "\" twice");
-    ++outcomes[(*v)["outcome"].GetString()];
-    if (std::string_view((*v)["outcome"].GetString()) == "skip") ++causes[(*v)["skip_cause"].GetString()];
+    const std::string& outcome = (*v)["outcome"].get_ref<const std::string&>();
+    ++outcomes[outcome];
+    if (outcome == "skip") ++causes[(*v)["skip_cause"].get<std::string>()];
   }
-  if (!run.HasMember("summary")) return;
+  if (!run.contains("summary")) return;
   const auto& s = run["summary"];
   const std::pair<const char*, const char*> counts[] = {
       {"passed", "pass"}, {"failed", "fail"}, {"skipped", "skip"}, {"known", "known failure"}, {"unexpected", "unexpected pass"}};
   for (const auto& [key, outcome] : counts)
-    if (s[key].GetUint64() != outcomes[outcome])
-      problems.push_back(what + ": summary." + key + " is " + std::to_string(s[key].GetUint64()) + ", the vectors have " +
+    if (s[key].get<std::uint64_t>() != outcomes[outcome])
+      problems.push_back(what + ": summary." + key + " is " + s[key].dump() + ", the vectors have " +
                          std::to_string(outcomes[outcome]) + " " + outcome);
-  for (auto it = s["skipped_by_cause"].MemberBegin(); it != s["skipped_by_cause"].MemberEnd(); ++it)
-    if (it->value.GetUint64() != causes[it->name.GetString()])
-      problems.push_back(what + ": summary.skipped_by_cause." + it->name.GetString() + " is " +
-                         std::to_string(it->value.GetUint64()) + ", the vectors have " +
-                         std::to_string(causes[it->name.GetString()]));
+  for (const auto& [cause, n] : s["skipped_by_cause"].items())
+    if (n.get<std::uint64_t>() != causes[cause])
+      problems.push_back(what + ": summary.skipped_by_cause." + cause + " is " + n.dump() + ", the vectors have " +
+                         std::to_string(causes[cause]));
 }
 
 }  // namespace
 
 Problems run_json_problems(std::string_view text) {
   Problems problems;
-  rapidjson::Document doc;
+  json doc;
   if (!parse(text, doc, problems, "run JSON")) return problems;
   validate(doc, Schemas::get().run(), problems, "run JSON");
   if (!problems.empty()) return problems;
-  std::vector<const rapidjson::Value*> vectors;
+  std::vector<const json*> vectors;
   const auto& list = doc["vectors"];
-  for (rapidjson::SizeType i = 0; i < list.Size(); ++i) {
+  for (std::size_t i = 0; i < list.size(); ++i) {
     vectors.push_back(&list[i]);
-    check_vector(list[i], problems, "run JSON: vectors[" + std::to_string(i) + "] (" + list[i]["id"].GetString() + ")");
+    check_vector(list[i], problems, "run JSON: vectors[" + std::to_string(i) + "] (" + list[i]["id"].get<std::string>() + ")");
   }
   check_run(doc, vectors, problems, "run JSON");
   return problems;
@@ -183,23 +173,22 @@ Problems journal_problems(std::string_view text) {
   Problems problems;
   if (text.empty()) return {"journal: empty"};
   if (text.back() != '\n') problems.push_back("journal: the last line has no newline (cut short)");
-  std::vector<rapidjson::Document> lines;
+  std::vector<json> lines;
   std::size_t start = 0;
   for (std::size_t line_no = 1; start < text.size(); ++line_no) {
     std::size_t end = text.find('\n', start);
     if (end == std::string_view::npos) end = text.size();
-    const std::string what = "journal line " + std::to_string(line_no);
-    rapidjson::Document& d = lines.emplace_back();
-    if (!parse(text.substr(start, end - start), d, problems, what)) return problems;
+    json& d = lines.emplace_back();
+    if (!parse(text.substr(start, end - start), d, problems, "journal line " + std::to_string(line_no))) return problems;
     start = end + 1;
   }
   const Schemas& schemas = Schemas::get();
-  std::vector<const rapidjson::Value*> vectors;
-  const rapidjson::Value* end_run = nullptr;
+  std::vector<const json*> vectors;
+  const json* end_run = nullptr;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string what = "journal line " + std::to_string(i + 1);
-    const rapidjson::Document& d = lines[i];
-    const bool record = d.IsObject() && d.HasMember("record");
+    const json& d = lines[i];
+    const bool record = d.is_object() && d.contains("record");
     const bool first = i == 0, last = i + 1 == lines.size();
     if (!record) {
       if (first) {
@@ -214,15 +203,15 @@ Problems journal_problems(std::string_view text) {
       continue;
     }
     const auto& type = d["record"];
-    const std::string kind = type.IsString() ? type.GetString() : "";
+    const std::string kind = type.is_string() ? type.get<std::string>() : "";
     const bool placed = (kind == "header" && first) || (kind == "end" && last && !first);
-    if (!placed || d.MemberCount() != 2 || !d.HasMember("run")) {
+    if (!placed || d.size() != 2 || !d.contains("run")) {
       problems.push_back(what + ": a record that is not {\"record\": \"header\"} first or {\"record\": \"end\"} last, each with its \"run\"");
       continue;
     }
     validate(d["run"], schemas.header(), problems, what + " (" + kind + " record)");
     if (kind == "end") end_run = &d["run"];
-    else if (d["run"].HasMember("summary")) problems.push_back(what + ": the header record has a summary");
+    else if (d["run"].contains("summary")) problems.push_back(what + ": the header record has a summary");
   }
   if (problems.empty() && end_run) check_run(*end_run, vectors, problems, "journal end record");
   return problems;

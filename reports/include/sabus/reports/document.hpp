@@ -126,8 +126,15 @@ void compact_for_reports(VectorRecord& v);
 // ---- JSON ------------------------------------------------------------------------
 
 // Members in the order of reports/SCHEMA.md; a vector's JSON is vector_json
-// (journal.hpp), written without a tree.
+// (journal.hpp).
 nlohmann::ordered_json header_json(const RunDocument& doc);  // everything except "vectors"
+// A string of the document as its JSON holds it: UTF-8, each byte that is not
+// replaced by U+FFFD (valid_utf8, writers.hpp), the same replacement every
+// report makes, so that the reports `sabus report` makes from the JSON are
+// the run's own. And a value of the document's own JSON (options, traffic)
+// with its keys and strings so.
+nlohmann::ordered_json json_string(std::string_view s);
+nlohmann::ordered_json json_value(const nlohmann::json& j);
 
 // Reads a run document; on a bad document sets `error` (what and where) and
 // returns nullopt. Accepts schema versions 1 to 3 (each lacks the fields the

@@ -1,10 +1,10 @@
 // Readers that prove what sabus writes: every file format of a run parsed
-// by a library that knows the format (RapidJSON and reports/run.schema.json
-// for the run JSON and its journal, libxml2 and reports/junit.xsd for JUnit,
-// Gumbo's HTML5 parser for the HTML report, cmark-gfm for the Markdown
-// summary), and held against what the run document says it must show. The
-// tests, the suite gate (tools/gates) and fuzz_record use them; sabus itself
-// does not.
+// by a library that knows the format (nlohmann, and valijson with
+// reports/run.schema.json, for the run JSON and its journal; libxml2 and
+// reports/junit.xsd for JUnit; Gumbo's HTML5 parser for the HTML report;
+// cmark-gfm for the Markdown summary), and held against what the run
+// document says it must show. The tests, the suite gate (tools/gates) and
+// fuzz_record use them; sabus itself does not.
 //
 // Each returns the problems found, one line each, empty when there are none.
 #pragma once
