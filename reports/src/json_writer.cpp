@@ -265,17 +265,6 @@ bool write_run_json_from_journal(std::istream& journal, std::ostream& out, const
 
 namespace {
 
-// What a path names, for the refusals of output_path_problem: "a directory",
-// "a character device", ...
-std::string kind_of(const struct stat& st) {
-  if (S_ISDIR(st.st_mode)) return "a directory";
-  if (S_ISCHR(st.st_mode)) return "a character device";
-  if (S_ISBLK(st.st_mode)) return "a block device";
-  if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(st.st_mode)) return "a socket";
-  return "not a regular file";
-}
-
 bool same_file(const struct stat& st, int fd) {
   struct stat other {};
   return ::fstat(fd, &other) == 0 && other.st_dev == st.st_dev && other.st_ino == st.st_ino;
@@ -343,7 +332,7 @@ std::string output_path_problem(const std::string& path) {
              ", which does not exist; not written through it";
   }
   if (!S_ISREG(st.st_mode))
-    return path + " is " + kind_of(st) + via + ": reports are written to regular files only (- for standard output)";
+    return path + " is " + harness::kind_of_file(st.st_mode) + via + ": reports are written to regular files only (- for standard output)";
   // `--json /dev/stdout > out.json`: the rename would replace the file the
   // shell opened, and what else goes to standard output would be lost.
   if (same_file(st, STDOUT_FILENO) || same_file(st, STDERR_FILENO))

@@ -55,23 +55,7 @@ FrameRecord frame(std::string dir, std::string hex, std::string note, std::vecto
 }
 
 VectorRecord vector(std::string id, std::string outcome) {
-  VectorRecord v;
-  v.id = std::move(id);
-  v.outcome = std::move(outcome);
-  v.paragraph = "3.2";
-  v.level = "must";
-  v.duration_ms = 3;
-  v.wall_ms = 0.5;
-  v.transcript = {frame("tx", "02 32 31 03 02", "status poll"),
-                  frame("rx", "06 32 31 03 04", "status reply", {{0, 0, "start", "0x06", "ACK", true}})};
-  if (v.outcome == "fail" || v.outcome == "known failure") v.failures = {"byte 3: expected 0x57, got 0x44"};
-  if (v.outcome == "known failure" || v.outcome == "unexpected pass") v.known_issue = "listed";
-  if (v.outcome == "skip") {
-    v.skip_reason = "needs --allow-motion";
-    v.skip_cause = "motion";
-    v.transcript.clear();
-  }
-  return v;
+  return test_documents::sample_vector(std::move(id), std::move(outcome));
 }
 
 // A finished run of one vector of each outcome, recorded as sabus run does.

@@ -99,17 +99,6 @@ std::optional<std::string> write_temporary(const std::string& target, std::strin
                          error);
 }
 
-// What a file that is not a regular one is: "a directory", "a FIFO (named
-// pipe)", ...
-std::string kind_of(const struct stat& st) {
-  if (S_ISDIR(st.st_mode)) return "a directory";
-  if (S_ISCHR(st.st_mode)) return "a character device";
-  if (S_ISBLK(st.st_mode)) return "a block device";
-  if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(st.st_mode)) return "a socket";
-  return "not a regular file";
-}
-
 // Where `path` is written: itself, or for a symbolic link the file it names.
 // "" with `error` set when that is not a regular file (or a link to none),
 // saying what it is ("... is a directory, not a regular file; not replaced").
@@ -131,7 +120,7 @@ std::string replace_target(const std::string& path, std::string& error) {
     target = resolved.string();
   }
   if (!S_ISREG(st.st_mode)) {
-    const std::string kind = kind_of(st);
+    const std::string kind = kind_of_file(st.st_mode);
     error = path + " is " + kind + (kind == "not a regular file" ? "" : ", not a regular file") + "; not replaced";
     return "";
   }
@@ -162,6 +151,15 @@ bool write_exclusively(const std::string& name, std::string_view text, std::stri
 }
 
 }  // namespace
+
+std::string kind_of_file(unsigned mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
 
 bool replace_file(const std::string& path, std::string_view text, std::string& error) {
   return replace_file(path, Fill([&](std::ostream& out, std::string&) {

@@ -13,6 +13,11 @@
 
 namespace sabus::harness {
 
+// What a file that is not a regular one is, by its st_mode: "a directory",
+// "a character device", "a block device", "a FIFO (named pipe)", "a socket";
+// "not a regular file" for anything else.
+std::string kind_of_file(unsigned mode);
+
 // Writes `text` to `path`, replacing the file there: a new file beside it
 // (mkstemp, with the mode a new file gets), flushed to the disk, renamed
 // over `path`. A symbolic link is written through (the file it names is
