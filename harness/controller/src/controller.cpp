@@ -443,7 +443,7 @@ StatusBlock Controller::status_block() const {
   auto limit_bits = [&](AxisId a) {
     return static_cast<std::uint8_t>((limit(a, +1) ? 4 : 0) | (limit(a, -1) ? 2 : 0) | (stow_limit(a) ? 1 : 0));
   };
-  b.az_limits = limit_bits(AxisId::kAz);
+  b.az_limits = faults_.has(Fault::kAzLimitBitsMissing) ? 0 : limit_bits(AxisId::kAz);
   b.el_limits = limit_bits(AxisId::kEl);
   b.pol_limits = profile_.pol_type == PolType::kCircular ? 0 : limit_bits(AxisId::kPol);
   const std::uint8_t feed = profile_.pol_type == PolType::kCircular ? 0 : profile_.pol_type == PolType::kSinglePort ? 1 : 2;

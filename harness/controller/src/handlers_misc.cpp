@@ -41,6 +41,7 @@ Outcome Handlers::extended_status(C& c) {
   }
   x.az_hundredths = c.hundredths_digit(AxisId::kAz);
   x.el_hundredths = c.hundredths_digit(AxisId::kEl);
+  if (c.faults_.has(Fault::kExtendedStatusSpeedBit)) x.status.az_status ^= 0x10;  // §3.2 byte 36 'S'
   return ack(c, 0x40, x);
 }
 

@@ -12,11 +12,6 @@
 namespace sabus::harness {
 namespace {
 
-std::string trim_right(std::string s) {
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 std::string range_text(const FieldDescription& f) {
   return f.first == f.last ? "byte " + std::to_string(f.first)
                            : "bytes " + std::to_string(f.first) + "-" + std::to_string(f.last);
@@ -75,11 +70,6 @@ std::optional<std::string> check_one_field(const FieldDescription& field, const 
 }
 
 }  // namespace
-
-std::string matcher_text(const FieldDescription& f) {
-  if (f.raw.size() >= 2 && f.raw.front() == '"' && f.raw.back() == '"') return trim_right(f.raw.substr(1, f.raw.size() - 2));
-  return f.raw;
-}
 
 std::optional<double> matcher_number(const FieldDescription& f) {
   // One-byte fields: the byte's value; text fields: a leading number in the

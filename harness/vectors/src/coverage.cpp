@@ -3,10 +3,15 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
+#include <regex>
+#include <variant>
 
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/frame.hpp"
+#include "sabus/protocol/lrc.hpp"
 
 namespace sabus::harness {
 
@@ -38,8 +43,114 @@ std::optional<CoveragePath> path_of(Expectation::Kind kind) {
 
 }  // namespace
 
+namespace {
+
+// A reply of each kind, as its codec encodes the defaults, to the first
+// command that answers with it.
+template <std::size_t... I>
+std::map<ReplyKind, Bytes> sample_replies(std::index_sequence<I...>) {
+  std::map<ReplyKind, Bytes> out;
+  auto one = [&]<class T>(std::type_identity<T>) {
+    if constexpr (requires { T::kKind; }) {
+      for (const CommandInfo& info : catalog()) {
+        if (info.reply != T::kKind) continue;
+        if (auto frame = reply_frame(Reply{T{}}, kAnyAddress, info.code)) out.emplace(T::kKind, encode_frame(frame.value()));
+        break;
+      }
+    }
+  };
+  (one(std::type_identity<std::variant_alternative_t<I, Reply>>{}), ...);
+  return out;
+}
+
+// The texts a one-byte field of a reply can hold (as a matcher reads them,
+// matcher_text): each 7-bit character put at its byte that the codec reads
+// as valid. Empty for a field of several bytes.
+std::vector<std::string> one_byte_values(ReplyKind reply, std::string_view field) {
+  static const auto samples = sample_replies(std::make_index_sequence<std::variant_size_v<Reply>>{});
+  const auto sample = samples.find(reply);
+  if (sample == samples.end()) return {};
+  std::optional<std::size_t> at;
+  for (const FieldDescription& f : describe_frame(sample->second).fields) {
+    if (f.name != field) continue;
+    if (f.first != f.last || (at && *at != f.first)) return {};  // several bytes, or two fields of the name
+    at = f.first;
+  }
+  if (!at) return {};
+  std::vector<std::string> out;
+  for (int c = 0x20; c < 0x7F; ++c) {
+    Bytes b = sample->second;
+    b[*at] = static_cast<std::uint8_t>(c);
+    b.back() = lrc(ByteView(b.data(), b.size() - 1));
+    for (const FieldDescription& f : describe_frame(b).fields)
+      if (f.first == *at && f.name == field && f.ok) out.push_back(matcher_text(f));
+  }
+  return out;
+}
+
+// Whether a regex picks some of a one-byte field's values and not all: a
+// check of its value (the bits of a status byte), not of its form.
+bool regex_narrows(const FieldMatcher& m, ReplyKind reply) {
+  static std::map<std::pair<ReplyKind, std::string>, std::vector<std::string>> cache;
+  auto [it, fresh] = cache.try_emplace({reply, m.field});
+  if (fresh) it->second = one_byte_values(reply, m.field);
+  const std::vector<std::string>& values = it->second;
+  if (values.empty() || m.values.empty()) return false;
+  try {
+    const std::regex re(m.values[0]);
+    const auto n = std::count_if(values.begin(), values.end(), [&](const std::string& v) { return std::regex_search(v, re); });
+    return n > 0 && static_cast<std::size_t>(n) < values.size();
+  } catch (const std::regex_error&) {
+    return false;  // the linter names it
+  }
+}
+
+}  // namespace
+
+bool checks_value(const FieldMatcher& m, ReplyKind reply) {
+  switch (m.kind) {
+    case FieldMatcher::Kind::kEq:
+    case FieldMatcher::Kind::kOneOf:
+    case FieldMatcher::Kind::kNear:
+    case FieldMatcher::Kind::kJogged:
+      return true;
+    case FieldMatcher::Kind::kRange:
+      // A range of constants is the field's form (0-999); one bounded by the
+      // profile or an earlier reading is its value.
+      return std::any_of(m.values.begin(), m.values.end(),
+                         [](const std::string& v) { return v.find('{') != std::string::npos || v.find('$') != std::string::npos; });
+    case FieldMatcher::Kind::kRegex:
+      return regex_narrows(m, reply);
+    case FieldMatcher::Kind::kAny:
+      return false;
+  }
+  return false;
+}
+
+namespace {
+
+// The fields of `reply` a step's ACK expectation checks the value of.
+void add_value_checks(CoverageMatrix& m, ReplyKind reply, const Step& s, const std::string& id) {
+  auto add = [&](FieldValueRow& row) {
+    if (std::find(row.ids.begin(), row.ids.end(), id) == row.ids.end()) row.ids.push_back(id);
+  };
+  for (FieldValueRow& row : m.fields) {
+    if (row.field->reply != reply) continue;
+    const bool whole = s.expect.bytes.has_value();
+    const bool record = !s.expect.from_profile.empty() &&
+                        (row.field->cls == FieldClass::kStored || row.field->cls == FieldClass::kEcho);
+    bool matched = false;
+    for (const auto* list : {&s.expect.fields, &s.until})
+      for (const FieldMatcher& fm : *list) matched = matched || (fm.field == row.field->field && checks_value(fm, reply));
+    if (whole || record || matched) add(row);
+  }
+}
+
+}  // namespace
+
 CoverageMatrix coverage(const std::vector<VectorFile>& files) {
   CoverageMatrix m;
+  for (const ReplyFieldClass& f : reply_field_classes()) m.fields.push_back({&f, {}});
   for (const CommandInfo& c : catalog()) {
     for (const FormInfo& f : c.forms) m.rows.push_back({&c, &f, {}});
     if (c.forms.size() > 1) m.rows.push_back({&c, nullptr, {}});
@@ -66,6 +177,7 @@ CoverageMatrix coverage(const std::vector<VectorFile>& files) {
           auto row = std::find_if(m.rows.begin(), m.rows.end(),
                                   [&](const CoverageRow& r) { return r.command == cf.info && r.form == cf.form; });
           if (row != m.rows.end()) add(row->ids[static_cast<std::size_t>(*path)], v.id);
+          if (*path == CoveragePath::kAck) add_value_checks(m, cf.info->reply, s, v.id);
         }
   return m;
 }
@@ -85,6 +197,17 @@ std::string row_label(const CoverageRow& r) {
     s.append(r.form ? r.form->id : std::string_view("(form unknown)"));
   }
   return s;
+}
+
+std::string field_label(const ReplyFieldClass& f) { return std::string(to_string(f.reply)) + " " + std::string(f.field); }
+
+std::vector<std::string> CoverageMatrix::missing_values() const {
+  std::vector<std::string> out;
+  for (const FieldValueRow& row : fields)
+    if (value_required(row.field->cls) && row.ids.empty())
+      out.push_back(field_label(*row.field) + " (" + std::string(to_string(row.field->cls)) + ", §" +
+                    std::string(row.field->paragraph) + ")");
+  return out;
 }
 
 std::vector<std::string> CoverageMatrix::missing() const {

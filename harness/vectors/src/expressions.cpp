@@ -98,6 +98,12 @@ struct Call {
   int integer(std::size_t i) const { return static_cast<int>(std::clamp(std::trunc(args[i].number), -1e9, 1e9)); }
 };
 
+// A value as text: a capture as it was read, a computed number formatted.
+std::string as_read_text(const Value& v) {
+  if (!v.is_number || !v.text.empty()) return v.text;
+  return format_number(v.number);
+}
+
 std::optional<motion::Axis> axis_arg(const Value& v) { return v.is_number ? std::nullopt : motion::axis_named(v.text); }
 
 Result with_axis(const Call& c, const std::function<Result(motion::Axis, const AxisProfile&)>& f) {
@@ -376,6 +382,8 @@ const Function kFunctions[] = {
        if (auto e = c.numbers({0, 1})) return error(*e);
        return number(std::max(c.args[0].number, c.args[1].number));
      }},
+    {{"text", "x", "x as text: a capture as the reply held it (\"0123\", \"180.0T\", where $x alone reads 123 and 180), a number as written"}, 1,
+     [](const Call& c) { return text(as_read_text(c.args[0])); }},
     {{"abs", "x", "the magnitude"}, 1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
@@ -568,7 +576,11 @@ class Parser {
     if (!cx_.captures) return number(0);  // static check: the value is known at run time only
     const auto it = cx_.captures->find(n);
     if (it == cx_.captures->end()) return error("no value captured as " + n);
-    if (auto v = captured_number(it->second)) return number(*v);
+    if (auto v = captured_number(it->second)) {
+      Result r = number(*v);
+      r.value.text = it->second;  // as read, for text(): only as_read_text() reads a number's text
+      return r;
+    }
     return text(it->second);
   }
 

@@ -26,4 +26,13 @@ std::string LoadError::text() const {
   return out + message;
 }
 
+std::string matcher_text(const FieldDescription& f) {
+  std::string text = f.raw;
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {
+    text = text.substr(1, text.size() - 2);
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+  }
+  return text;
+}
+
 }  // namespace sabus::harness

@@ -75,3 +75,59 @@ TEST(Coverage, TheShippedSuiteHasNoMissingCell) {
 
 }  // namespace
 }  // namespace sabus::harness
+
+namespace sabus::harness {
+namespace {
+
+const FieldValueRow& value_row(const CoverageMatrix& m, ReplyKind reply, std::string_view field) {
+  auto it = std::find_if(m.fields.begin(), m.fields.end(),
+                         [&](const FieldValueRow& r) { return r.field->reply == reply && r.field->field == field; });
+  if (it == m.fields.end()) throw std::runtime_error("no field " + std::string(field));
+  return *it;
+}
+
+bool value_missing(const CoverageMatrix& m, const std::string& line) {
+  const auto all = m.missing_values();
+  return std::find(all.begin(), all.end(), line) != all.end();
+}
+
+// The field-value matrix counts a matcher that compares a field with a
+// value, not one that checks its form only: the regex every legal value of
+// a status byte passes, a range of constants, `any`.
+TEST(CoverageValues, AMatcherThatChecksOnlyTheFormIsNotAValueCheck) {
+  const CoverageMatrix m = coverage(suite(
+      "      - send: {command: status}\n"
+      "        expect:\n          reply: ack\n          fields:\n"
+      "            az limits: {regex: \"^0x4[0-7]$\"}\n"  // every legal value of byte 32
+      "            el limits: {regex: \"^0x4[2367]$\"}\n"  // the down limit bit set: a value
+      "            agc: {range: [0, 999]}\n"
+      "            alarm code: any\n"
+      "            track: {eq: 0x10}\n"
+      "            azimuth: {range: [\"{min_deg(az)}\", \"{max_deg(az)}\"]}\n"));
+  EXPECT_TRUE(value_row(m, ReplyKind::kStatus, "az limits").ids.empty());
+  EXPECT_EQ(value_row(m, ReplyKind::kStatus, "el limits").ids, std::vector<std::string>{"3.2-x"});
+  EXPECT_TRUE(value_row(m, ReplyKind::kStatus, "alarm code").ids.empty());
+  EXPECT_EQ(value_row(m, ReplyKind::kStatus, "track").ids, std::vector<std::string>{"3.2-x"});
+  EXPECT_EQ(value_row(m, ReplyKind::kStatus, "azimuth").ids, std::vector<std::string>{"3.2-x"});
+  EXPECT_TRUE(value_row(m, ReplyKind::kExtendedStatus, "azimuth").ids.empty()) << "another reply's field";
+  EXPECT_TRUE(value_missing(m, "status az limits (motion, §3.2)"));
+  EXPECT_FALSE(value_missing(m, "status el limits (motion, §3.2)"));
+  EXPECT_FALSE(value_missing(m, "status agc (device, §3.2)")) << "a measured level is left to the device";
+  EXPECT_TRUE(value_missing(m, "pulse count azimuth count (motion, §3.16)"));
+}
+
+// A reply expected byte for byte checks every field; the profile's record
+// (from_profile) the stored and echoed ones; a NAK none.
+TEST(CoverageValues, WholeRepliesAndProfileRecordsCheckTheirFields) {
+  const CoverageMatrix m = coverage(suite(
+      "      - send: {command: device_type}\n        expect: {reply: ack, bytes: \"06 {addr} 30 33 4B 31 2E 35 39 03 {lrc}\"}\n"
+      "      - send: {command: read_satellite, fields: {index: 1}}\n        expect: {reply: ack, from_profile: 1}\n"
+      "      - send: {command: read_tle, fields: {index: 99}}\n        expect: {reply: nak, rule: TleIndex}\n"));
+  EXPECT_EQ(value_row(m, ReplyKind::kDeviceType, "version").ids, std::vector<std::string>{"3.2-x"});
+  EXPECT_EQ(value_row(m, ReplyKind::kSatelliteData, "pol offset").ids, std::vector<std::string>{"3.2-x"});
+  EXPECT_EQ(value_row(m, ReplyKind::kSatelliteData, "index").ids, std::vector<std::string>{"3.2-x"});
+  EXPECT_TRUE(value_row(m, ReplyKind::kTleData, "tle line 1").ids.empty());
+}
+
+}  // namespace
+}  // namespace sabus::harness

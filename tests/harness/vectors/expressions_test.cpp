@@ -64,6 +64,23 @@ TEST(Expressions, CapturesAreNumbersWhenTheyReadAsNumbers) {
   EXPECT_EQ(expand("{$other}", p, &captures).kind, Kind::kError);
 }
 
+// text(): a capture as the reply held it, for a matcher that compares two
+// readings character for character (a name "0123", a heading "180.0T", a
+// right-justified position), where $x alone is read as a number.
+TEST(Expressions, TextGivesACaptureAsItWasRead) {
+  const Profile p;
+  const std::map<std::string, std::string> captures{
+      {"$name", "0123"}, {"$heading", "180.0T"}, {"$az", "   0.0"}, {"$byte", "0x47"}, {"$sat", "SBS 6"}};
+  EXPECT_EQ(expand("{$name}", p, &captures).text, "123");
+  EXPECT_EQ(expand("{text($name)}", p, &captures).text, "0123");
+  EXPECT_EQ(expand("{text($heading)}", p, &captures).text, "180.0T");
+  EXPECT_EQ(expand("{text($az)}", p, &captures).text, "   0.0");
+  EXPECT_EQ(expand("{text($byte)}", p, &captures).text, "0x47");
+  EXPECT_EQ(expand("{text($sat)}", p, &captures).text, "SBS 6");
+  EXPECT_EQ(expand("{text($name + 1)}", p, &captures).text, "124") << "a computed number has no text of its own";
+  EXPECT_EQ(expand("{text(2.50)}", p, &captures).text, "2.5");
+}
+
 TEST(Expressions, ACaptureIsANumberOnlyWhenAllOfItIsOne) {
   const Profile p;
   const std::map<std::string, std::string> captures{

@@ -30,6 +30,9 @@ namespace sabus::harness {
   X(kNoStxStxRestart, "no-stx-stx-restart", "an STX where the address belongs does not restart reception")          \
   X(kReplyAddressZero, "reply-address-0x30", "replies carry address 0x30 instead of the controller's")              \
   X(kExtendedStatus52, "extended-status-52", "the extended status reply is 52 bytes, as the text's count says")    \
+  X(kExtendedStatusSpeedBit, "extended-status-speed-bit",                                                           \
+    "the extended status reply's azimuth status byte has its speed bit S inverted (31h's is right)")                 \
+  X(kAzLimitBitsMissing, "az-limit-bits-missing", "the azimuth limit byte (§3.2 byte 32) never shows a limit")         \
   X(kQueryNameZeroBased, "query-name-zero-based", "query name counts indexes from 0")                               \
   X(kWriteNavKeepsStore, "write-nav-keeps-store", "a valid Write Navigation Data keeps the STORE list")            \
   X(kCircularPolAcked, "circular-pol-acked", "polarization movement is ACKed with a circular feed")                \

@@ -19,9 +19,7 @@ namespace sabus::harness {
 
 // ---- matching replies (pure; used by the engine and its tests) --------------
 
-// The text a matcher compares for a described field: one-byte fields as
-// "0x47", text fields without their quotes and trailing blanks.
-std::string matcher_text(const FieldDescription& field);
+// matcher_text (the text a matcher compares) is vector.hpp's.
 // The number a range matcher compares, when the field has one: positions in
 // degrees, counts, digits, a binary byte's data bits.
 std::optional<double> matcher_number(const FieldDescription& field);

@@ -1,7 +1,9 @@
-// The coverage matrix of a vector suite: catalog command x form x path
+// The coverage matrices of a vector suite: catalog command x form x path
 // (ack / nak / offline / ignore) -> the vectors that send such a frame and
-// expect such an answer. `sabus vectors coverage` prints it and fails when a
-// cell the spec defines has no vector.
+// expect such an answer; and reply field -> the vectors that check its
+// value. `sabus vectors coverage` prints them and fails when a cell the spec
+// defines has no vector, or a field whose value rests on the device has no
+// vector that checks it.
 #pragma once
 
 #include <array>
@@ -11,6 +13,7 @@
 
 #include "sabus/harness/vector.hpp"
 #include "sabus/protocol/catalog.hpp"
+#include "sabus/protocol/field_classes.hpp"
 
 namespace sabus::harness {
 
@@ -28,6 +31,17 @@ struct CoverageRow {
   std::array<std::vector<std::string>, 4> ids;  // by CoveragePath, each id once
 };
 
+// One field of one reply (field_classes.hpp) and the vectors that check its
+// value: a step sending a command the reply answers, expecting that reply
+// (ACK), with a matcher on the field that compares it with a value
+// (checks_value), or expecting the whole reply's bytes, or the profile's
+// record (`from_profile`, its stored and echoed fields). `any`, a range of
+// constants or a regex that every legal value passes checks only the form.
+struct FieldValueRow {
+  const ReplyFieldClass* field = nullptr;
+  std::vector<std::string> ids;
+};
+
 struct CoverageMatrix {
   std::vector<CoverageRow> rows;            // catalog order, then the unclassified row of a command
   std::vector<std::string> unknown_codes;   // vectors sending codes outside the catalog (§3 NAK, E-9)
@@ -43,14 +57,27 @@ struct CoverageMatrix {
   // and a NAK vector for a code outside the catalog; and, for every NAK rule
   // of the reference controller, a vector naming it.
   std::vector<std::string> missing() const;
+  // The field-value matrix: every field of every reply, in reply and byte order.
+  std::vector<FieldValueRow> fields;
+  // The fields whose value a suite must check (value_required) that no
+  // vector checks, one line each: "status azimuth (motion, §3.2)".
+  std::vector<std::string> missing_values() const;
 };
 
 // Every send and poll step of every vector (setup, steps, teardown) that
-// expects ack, nak, offline or silence; `any` counts nowhere.
+// expects ack, nak, offline or silence; `any` counts nowhere. The
+// field-value matrix counts the steps that expect an ACK.
 CoverageMatrix coverage(const std::vector<VectorFile>& files);
 
 // "32h auto_move" and "32h auto_move 2A" (the form when the command has several).
 std::string command_label(const CommandInfo& command);
 std::string row_label(const CoverageRow& row);
+// "status azimuth" (the reply's name, the field's).
+std::string field_label(const ReplyFieldClass& field);
+// Whether a matcher on a field of `reply` compares the field with a value,
+// not only its form: eq, one_of, near, jogged; a range bounded by a profile
+// expression or a capture; a regex that picks some of a one-byte field's
+// values and not all (the bits of a status byte).
+bool checks_value(const FieldMatcher& m, ReplyKind reply);
 
 }  // namespace sabus::harness

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sabus/protocol/bytes.hpp"
+#include "sabus/protocol/codec.hpp"
 
 namespace sabus::harness {
 
@@ -78,6 +79,10 @@ struct Modifiers {
 // Values may hold profile expressions ("{home(az)}", expressions.hpp): the
 // runner resolves such a matcher against the device's profile and the
 // vector's captures before it checks it (resolve_matcher, runner.hpp).
+// The text a matcher compares for a described field: one-byte fields as
+// "0x47", text fields without their quotes and trailing blanks.
+std::string matcher_text(const FieldDescription& field);
+
 struct FieldMatcher {
   enum class Kind : std::uint8_t {
     kEq, kOneOf, kRegex, kRange, kAny,
