@@ -110,11 +110,16 @@ TEST_F(JsonOutputs, VectorsCoverageWithAndWithoutMissingCellsIsJson) {
     const Output o = sabus(args);
     EXPECT_EQ(o.status, status) << o.out;
     const auto j = parsed(o);
-    EXPECT_EQ(keys_of(j), (std::set<std::string>{"rows", "unknown_codes", "nak_rules", "missing"}));
+    EXPECT_EQ(keys_of(j), (std::set<std::string>{"rows", "unknown_codes", "nak_rules", "missing", "fields", "missing_values"}));
     EXPECT_EQ(j["missing"].empty(), status == 0) << j["missing"];
     ASSERT_TRUE(j["rows"].is_array() && !j["rows"].empty());
     for (const auto& row : j["rows"])
       EXPECT_EQ(keys_of(row), (std::set<std::string>{"command", "key", "paragraph", "form", "cells"})) << row;
+    ASSERT_TRUE(j["fields"].is_array() && !j["fields"].empty());
+    for (const auto& field : j["fields"])
+      EXPECT_EQ(keys_of(field), (std::set<std::string>{"reply", "field", "class", "paragraph", "required", "vectors"}))
+          << field;
+    EXPECT_TRUE(j["missing_values"].is_array());
   }
 }
 
