@@ -943,8 +943,10 @@ TEST(vectors, NeverThrowsOnMutatedFiles) {
   }
 }
 
+// A hang here is caught by the test's ctest TIMEOUT (tests/CMakeLists.txt),
+// not by a clock in the test: under the sanitizers on a loaded machine the
+// same inputs took from 17 to 45 s.
 TEST(vectors, NeverThrowsOrHangsOnHostileInputs) {
-  const auto start = std::chrono::steady_clock::now();
   EXPECT_FALSE(load_vector_text(std::string(100000, '['), "deep.yaml").ok());
   EXPECT_FALSE(load_vector_text(std::string(2 << 20, ' '), "big.yaml").ok());
   EXPECT_NO_THROW(load_vector_text(std::string("paragraph: \0x", 13), "nul.yaml"));
@@ -958,7 +960,6 @@ TEST(vectors, NeverThrowsOrHangsOnHostileInputs) {
   LoadResult r = load_vector_text(bomb, "bomb.yaml");
   ASSERT_EQ(r.errors.size(), 1u) << all_errors(r.errors);
   EXPECT_NE(r.errors[0].message.find("more than 100000"), std::string::npos) << r.errors[0].text();
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
 }
 
 }  // namespace
