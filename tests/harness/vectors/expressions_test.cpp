@@ -178,6 +178,30 @@ TEST(Expressions, AMissingCapabilityIsUnavailableWithItsReason) {
   EXPECT_EQ(expand("{first_filled_upto(presets, 10)}", p).text, "1");
 }
 
+// other_address: another valid address (§1: 31h-6Fh) on either side of the
+// device's, one no controller on the line has (issue 22: at 111 it is 110).
+TEST(Expressions, AnotherAddressIsTakenOnEitherSide) {
+  Profile p;
+  p.address = 50;
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "51");
+  p.address = 0x6F;
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "110") << "the one below at the highest address";
+  p.address = 0x31;
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "50");
+  p.address = 50;
+  p.bus_peers = {51};
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "49") << "the one above answers: the one below";
+  p.bus_peers = {49, 51};
+  const Expansion both = expand("{other_address(1)}", p);
+  EXPECT_EQ(both.kind, Kind::kUnavailable);
+  EXPECT_NE(both.text.find("address 51 free on the line"), std::string::npos) << both.text;
+  p.address = 0x31;
+  p.bus_peers = {0x32};
+  const Expansion edge = expand("{other_address(1)}", p);
+  EXPECT_EQ(edge.kind, Kind::kUnavailable);
+  EXPECT_NE(edge.text.find("address 50 free on the line"), std::string::npos) << edge.text;
+}
+
 TEST(Expressions, ErrorsNameTheProblem) {
   const Profile p;
   EXPECT_NE(expand("{nope(az)}", p).text.find("unknown function nope()"), std::string::npos);
