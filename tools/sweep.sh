@@ -1,22 +1,27 @@
 #!/usr/bin/env bash
-# The legal-profile sweep at scale (issue 13): the whole suite against the
-# reference controller on N random legal profiles (default 1,000), every
-# vector passing or skipped for a capability the profile lacks. Failing
-# profiles are written, with their seeds, to sweep-failures/.
-#   tools/sweep.sh [PROFILES] [SEED]      (builds sabus first if needed)
+# The legal-profile sweep at scale (issues 13, 22): the whole suite against
+# the reference controller on N random legal profiles (default 10,000), every
+# vector passing or skipped for a capability the profile lacks. The seed is
+# drawn fresh unless given, and printed; failing profiles are written, with
+# their seeds, to sweep-failures/ (reproduce: sabus vectors sweep
+# --profile-seed SEED). Prints the seed, the time, the failures and the
+# skips by cause.
+#   tools/sweep.sh [PROFILES] [SEED|fresh]      (builds sabus first if needed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-profiles="${1:-1000}"
-seed="${2:-1}"
+profiles="${1:-10000}"
+seed="${2:-fresh}"
 bin=build/tools/sabus
 [ -x "$bin" ] || bash tools/build.sh >/dev/null
-log=sweep-failures/sweep-$seed-$profiles.log
 mkdir -p sweep-failures
+log=$(mktemp sweep-failures/sweep-XXXXXX.log)
 status=0
 /usr/bin/time -f 'peak memory %M KiB, %e s wall' \
   "$bin" vectors sweep --profiles "$profiles" --seed "$seed" --out sweep-failures >"$log" || status=$?
-# The per-profile lines are in the log; here the failures and the figures.
+# The per-profile lines are in the log; here the seed, the failures and the figures.
+grep -E '^sweep seed ' "$log" || true
 grep -E '^(  FAIL|  ABORTED|  profile written)' "$log" | head -n 50 || true
-tail -n 1 "$log"
+grep -E '^sweep: ' "$log" || true
+grep -E '^sweep skips by cause' "$log" | sed 's/; /\n  /g' || true
 echo "per-profile lines: $log"
 exit "$status"

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "process.hpp"
@@ -98,6 +99,46 @@ TEST_F(SweepFiles, EveryProfileWrittenWithWriteProfilesLoadsBackEqual) {
   }
   EXPECT_EQ(n, 4u) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "failed"));
+}
+
+// A fresh seed each run, printed first, and the same profiles again from
+// the printed seed (issue 22: a gate that keeps exploring); a seed that is
+// neither a number nor "fresh" is refused.
+TEST_F(SweepFiles, AFreshSeedIsPrintedAndReproducesItsProfiles) {
+  const std::string file = "--vectors '" SABUS_SOURCE_DIR "/vectors/3.1-device-type.yaml' --profiles 3 --out '" +
+                           (dir_ / "failed").string() + "' ";
+  const auto r = sweep(file + "--seed fresh");
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("^sweep seed (\\d+) \\(fresh\\): 3 profiles"))) << r.out;
+  const auto again = sweep(file + "--seed " + m[1].str());
+  ASSERT_EQ(again.status, 0) << again.out;
+  const std::regex seed_line("profile \\d+ seed \\d+");
+  auto seeds = [&](const std::string& out) {
+    std::multiset<std::string> s;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), seed_line); it != std::sregex_iterator(); ++it)
+      s.insert(it->str());
+    return s;
+  };
+  EXPECT_EQ(seeds(r.out).size(), 3u) << r.out;
+  EXPECT_EQ(seeds(r.out), seeds(again.out)) << r.out << again.out;
+  const auto bad = sweep(file + "--seed banana");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--seed banana: a whole number below 2^64, or fresh"), std::string::npos) << bad.out;
+}
+
+// A skip's cause ends at the first ':' outside parentheses: the TLE slot's
+// reason keeps its closing parenthesis in the per-profile and summary lines.
+TEST_F(SweepFiles, ASkipCauseKeepsItsParenthesisClosed) {
+  const auto r = sweep("--vectors '" SABUS_SOURCE_DIR "/vectors/3.12-write-tle.yaml' --profiles 30 --seed 3 --out '" +
+                       (dir_ / "failed").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("filled in the profile (a write there could not be undone: a slot cannot be emptied)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("could not be undone;"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("could not be undone\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("sweep skips by cause (vector runs): "), std::string::npos) << r.out;
 }
 
 TEST_F(SweepFiles, AProfileThatCannotBeWrittenIsSaidToBe) {

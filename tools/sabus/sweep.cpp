@@ -9,11 +9,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <random>
 #include <thread>
 
 #include "commands.hpp"
@@ -42,14 +45,39 @@ std::uint64_t profile_seed(std::uint64_t seed, std::uint64_t i) {
 
 // Why a vector was skipped, as a cause: "requires <key>" for a requirement,
 // the capability for a profile expression ("needs a filled TLE slot"), the
-// gate's words otherwise.
+// gate's words otherwise. The cause ends at the first ':' outside
+// parentheses: "needs TLE 10 filled in the profile (a write there could not
+// be undone: a slot cannot be emptied)" is one cause, its parenthesis closed.
 std::string skip_cause(const std::string& reason) {
   if (reason.rfind("requires: ", 0) == 0) {
     const auto space = reason.find(' ', 10);
     return "requires " + reason.substr(10, space == std::string::npos ? std::string::npos : space - 10);
   }
-  const auto colon = reason.find(':');
-  return colon == std::string::npos ? reason : reason.substr(0, colon);
+  int depth = 0;
+  for (std::size_t i = 0; i < reason.size(); ++i) {
+    if (reason[i] == '(') ++depth;
+    else if (reason[i] == ')' && depth > 0) --depth;
+    else if (reason[i] == ':' && depth == 0) return reason.substr(0, i);
+  }
+  return reason;
+}
+
+// A seed for `--seed fresh`: a new one each run, printed, so that a sweep
+// keeps exploring and what it finds reproduces (with --seed or --profile-seed).
+std::uint64_t fresh_seed() {
+  std::random_device device;
+  return (std::uint64_t{device()} << 32) ^ device() ^
+         static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+}
+
+// "1234", or "fresh" for a seed drawn now; nullopt for anything else.
+std::optional<std::uint64_t> sweep_seed(const std::string& text) {
+  if (text == "fresh") return fresh_seed();
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 20) return std::nullopt;
+  errno = 0;
+  const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) return std::nullopt;
+  return v;
 }
 
 struct ProfileOutcome {
@@ -129,10 +157,18 @@ int run_sweep(const SweepOptions& opts) {
   for (auto& f : suite.files)
     for (auto& v : f.vectors) vectors.push_back(std::move(v));
 
+  const std::optional<std::uint64_t> seed = sweep_seed(opts.seed);
+  if (!seed) {
+    std::cerr << "sabus vectors sweep: --seed " << opts.seed << ": a whole number below 2^64, or fresh\n";
+    return kExitUsage;
+  }
   std::vector<std::uint64_t> seeds;
   if (opts.profile_seed) seeds.push_back(*opts.profile_seed);
-  else
-    for (std::uint64_t i = 0; i < opts.profiles; ++i) seeds.push_back(profile_seed(opts.seed, i));
+  else {
+    for (std::uint64_t i = 0; i < opts.profiles; ++i) seeds.push_back(profile_seed(*seed, i));
+    std::cout << fmt::format("sweep seed {}{}: {} profiles (reproduce: --seed {} --profiles {})\n", *seed,
+                             opts.seed == "fresh" ? " (fresh)" : "", seeds.size(), *seed, seeds.size());
+  }
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<ProfileOutcome> outcomes(seeds.size());
@@ -165,10 +201,12 @@ int run_sweep(const SweepOptions& opts) {
 
   std::vector<std::size_t> ran, skipped;
   std::size_t failed_profiles = 0;
+  ProfileOutcome all;  // the skips of every profile, by cause
   for (const auto& o : outcomes) {
     ran.push_back(o.ran);
     skipped.push_back(o.skipped);
     failed_profiles += !o.failures.empty() || !o.aborted.empty();
+    for (const auto& [cause, n] : o.skips) all.skips[cause] += n;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << fmt::format(
@@ -176,6 +214,7 @@ int run_sweep(const SweepOptions& opts) {
       "{} vectors; {:.1f} s\n",
       outcomes.size(), failed_profiles, percentile(ran, 0), percentile(ran, 0.5), percentile(ran, 1),
       percentile(skipped, 0), percentile(skipped, 0.5), percentile(skipped, 1), vectors.size(), seconds);
+  std::cout << "sweep skips by cause (vector runs): " << (all.skips.empty() ? "none" : skip_line(all)) << "\n";
   return failed_profiles == 0 ? kExitOk : kExitFailed;
 }
 
@@ -183,7 +222,8 @@ void add_sweep_subcommand(CLI::App& vectors, std::shared_ptr<SweepOptions> o) {
   CLI::App* sub = vectors.add_subcommand(
       "sweep", "Run the suite against the reference controller on random legal profiles; exit 1 when a vector fails");
   sub->add_option("--profiles", o->profiles, "How many random profiles (default 50)")->check(CLI::Range(1, 1000000));
-  sub->add_option("--seed", o->seed, "Seed of the sweep: the same seed draws the same profiles");
+  sub->add_option("--seed", o->seed,
+                  "Seed of the sweep: the same seed draws the same profiles; 'fresh' draws a new one, printed (default 1)");
   sub->add_option("--profile-seed", o->profile_seed, "Run only the profile of this seed (as a sweep prints it)");
   sub->add_option("--vectors", o->vectors, "Vector files or folders (default vectors/)")->check(CLI::ExistingPath);
   sub->add_option("--out", o->out, "Where failing profiles are written (default sweep-failures/)");

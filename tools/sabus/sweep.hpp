@@ -13,7 +13,7 @@ namespace sabus::cli {
 
 struct SweepOptions {
   std::uint64_t profiles = 50;
-  std::uint64_t seed = 1;
+  std::string seed = "1";  // a number, or "fresh": one drawn for this run and printed
   std::optional<std::uint64_t> profile_seed;
   std::vector<std::string> vectors;
   std::string out = "sweep-failures";

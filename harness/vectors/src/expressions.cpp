@@ -407,15 +407,22 @@ const Function kFunctions[] = {
     {{"address", "", "the device's address byte (49-111, §1)"}, 0,
      [](const Call& c) { return number(c.cx.profile.address); }},
     {{"other_address", "step",
-      "the address `step` away from the device's (+1 the one above, -1 below) when it is a valid address (31h-6Fh) "
-      "no controller on the line has"},
+      "a valid address (31h-6Fh) `step` away from the device's that no controller on the line has: the one above, "
+      "else the one below (at 6Fh, 6Eh)"},
      1,
      [](const Call& c) {
        if (auto e = c.numbers({0})) return error(*e);
-       const int a = c.cx.profile.address + c.integer(0);
-       if (a < 0x31 || a > 0x6F) return unavailable("a valid address " + format_number(c.args[0].number) + " away from the device's");
-       if (on_the_line(c.cx.profile, a)) return unavailable("address " + std::to_string(a) + " free on the line: a controller there answers");
-       return number(a);
+       // Either side serves: a vector needs another valid address, not one
+       // above (§1: any of 31h-6Fh), so a device at 111 (6Fh) takes 110.
+       const int step = c.integer(0);
+       std::string taken;
+       for (const int a : {c.cx.profile.address + step, c.cx.profile.address - step}) {
+         if (a < 0x31 || a > 0x6F) continue;
+         if (!on_the_line(c.cx.profile, a)) return number(a);
+         if (taken.empty()) taken = std::to_string(a);
+       }
+       if (!taken.empty()) return unavailable("address " + taken + " free on the line: a controller there answers");
+       return unavailable("a valid address " + format_number(c.args[0].number) + " away from the device's");
      }},
     {{"peer", "n", "the address of the profile's n-th bus peer (§1 multi-drop), from 1"}, 1,
      [](const Call& c) {

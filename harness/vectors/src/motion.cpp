@@ -44,6 +44,61 @@ std::string range_text(const AxisProfile& a, std::string_view axis_name) {
   return "the " + std::string(axis_name) + " range (" + number(a.min_deg) + " to " + number(a.max_deg) + ")";
 }
 
+// ---- readings ------------------------------------------------------------------
+
+// A number of display units this close to a whole one is that one: the
+// representation error of a position computed in doubles (0.3 * 10 is
+// 2.9999999999999996), never a distance a mount can resolve.
+constexpr double kWhole = 1e-9;
+// Numbers of units beyond any position (360 deg in hundredths is 36000): a
+// bound from a vector's expression can be any number, and casting 1e300 to
+// an integer is undefined.
+constexpr double kMostUnits = 1e15;
+
+std::int64_t whole_up(double units) { return static_cast<std::int64_t>(std::ceil(std::clamp(units, -kMostUnits, kMostUnits) - kWhole)); }
+std::int64_t whole_down(double units) { return static_cast<std::int64_t>(std::floor(std::clamp(units, -kMostUnits, kMostUnits) + kWhole)); }
+double snapped(double units) { return std::abs(units - std::round(units)) < kWhole ? std::round(units) : units; }
+
+// The hundredths readings whose tenths field (truncated toward zero, E-30)
+// shows `tenths`.
+Readings hundredths_shown_as(std::int64_t tenths) {
+  if (tenths > 0) return {tenths * 10, tenths * 10 + 9};
+  if (tenths < 0) return {tenths * 10 - 9, tenths * 10};
+  return {-9, 9};
+}
+
+// The positions, in display units, that a controller showing positions
+// `how` reads as `r`: closed at both ends (a tie of rounding either way).
+Interval positions_read_as(std::int64_t r, Shown how) {
+  const double x = static_cast<double>(r);
+  switch (how) {
+    case Shown::kRounded: return {x - 0.5, x + 0.5};
+    case Shown::kTruncated: return r > 0 ? Interval{x, x + 1} : r < 0 ? Interval{x - 1, x} : Interval{-1, 1};
+    case Shown::kTruncatedDown: return {x, x + 1};
+  }
+  return {x - 1, x + 1};
+}
+
+// The readings of the positions in `x` (display units) shown `how`.
+Readings readings_at(Interval x, Shown how) {
+  switch (how) {
+    case Shown::kRounded: return {whole_up(x.low - 0.5), whole_down(x.high + 0.5)};
+    case Shown::kTruncated:
+      return {static_cast<std::int64_t>(std::trunc(snapped(std::clamp(x.low, -kMostUnits, kMostUnits)))),
+              static_cast<std::int64_t>(std::trunc(snapped(std::clamp(x.high, -kMostUnits, kMostUnits))))};
+    case Shown::kTruncatedDown:
+      return {static_cast<std::int64_t>(std::floor(snapped(std::clamp(x.low, -kMostUnits, kMostUnits)))),
+              static_cast<std::int64_t>(std::floor(snapped(std::clamp(x.high, -kMostUnits, kMostUnits))))};
+  }
+  return {whole_up(x.low - 1), whole_down(x.high + 1)};
+}
+
+// A window of readings in `per_degree` units, and in tenths.
+PositionReadings in_tenths_and_finer(Readings r, int per_degree) {
+  if (per_degree != kHundredths) return {r, std::nullopt};
+  return {{tenths_of(r.low, per_degree), tenths_of(r.high, per_degree)}, r};
+}
+
 // Stays this far inside a limit beyond the arrival tolerance: limits stop
 // an axis (§3.2 bytes 32-34) and would cut a jog short.
 constexpr double kLimitMargin = 0.5;
@@ -90,12 +145,72 @@ Interval jog_travel(const AxisProfile& a, char speed, int ms) {
   return {travel_ramp_inside(v, a.accel_dps2, seconds(shortest)), travel_ramp_after(v, a.accel_dps2, seconds(longest))};
 }
 
-Interval jog_end(const AxisProfile& a, double from, int sign, char speed, int ms) {
-  const Interval t = jog_travel(a, speed, ms);
-  Interval end = sign > 0 ? Interval{from + t.low, from + t.high} : Interval{from - t.high, from - t.low};
-  end.low = std::clamp(end.low, a.min_deg, a.max_deg);
-  end.high = std::clamp(end.high, a.min_deg, a.max_deg);
-  return {end.low - kDisplayResolution, end.high + kDisplayResolution};
+int display_units(const Profile& p) { return p.hundredths ? kHundredths : kTenths; }
+
+std::string_view name_of(Shown how) {
+  switch (how) {
+    case Shown::kRounded: return "rounded";
+    case Shown::kTruncated: return "truncated";
+    case Shown::kTruncatedDown: return "truncated down";
+  }
+  return "?";
+}
+
+std::int64_t shown(double deg, int per_degree, Shown how) {
+  const double u = std::clamp(deg * per_degree, -kMostUnits, kMostUnits);
+  const double nearest = std::round(u);
+  if (std::abs(u - nearest) < kWhole) return static_cast<std::int64_t>(nearest);
+  switch (how) {
+    case Shown::kRounded: return static_cast<std::int64_t>(nearest);  // std::round: a tie away from zero
+    case Shown::kTruncated: return static_cast<std::int64_t>(std::trunc(u));
+    case Shown::kTruncatedDown: return static_cast<std::int64_t>(std::floor(u));
+  }
+  return static_cast<std::int64_t>(nearest);
+}
+
+std::int64_t tenths_of(std::int64_t reading, int per_degree) {
+  return per_degree == kHundredths ? reading / 10 : reading;  // '/' truncates toward zero
+}
+
+PositionReadings near_readings(double target, double tolerance, int per_degree) {
+  const double t = std::round(std::clamp(target, -kMostUnits, kMostUnits) * 100) / 100;
+  const Readings r{whole_up((t - tolerance) * per_degree), whole_down((t + tolerance) * per_degree)};
+  return in_tenths_and_finer(r, per_degree);
+}
+
+PositionReadings jog_readings(const AxisProfile& a, int per_degree, std::int64_t from_tenths, int sign, char speed,
+                              int ms) {
+  const Interval travel = jog_travel(a, speed, ms);
+  const double shortest = travel.low * per_degree, longest = travel.high * per_degree;
+  const double min_units = a.min_deg * per_degree, max_units = a.max_deg * per_degree;
+  // The readings the start can have been: a tenths field shows one reading
+  // of a tenths display, or ten of a hundredths display (E-30).
+  const Readings start = per_degree == kHundredths ? hundredths_shown_as(from_tenths) : Readings{from_tenths, from_tenths};
+  const std::int64_t most = whole_up(longest);  // units the longest travel spans
+  std::optional<Readings> all;
+  for (const Shown how : kEveryWayShown) {
+    const double from_low = positions_read_as(start.low, how).low, from_high = positions_read_as(start.high, how).high;
+    Interval end = sign > 0 ? Interval{from_low + shortest, from_high + longest}
+                            : Interval{from_low - longest, from_high - shortest};
+    end.low = std::clamp(end.low, min_units, max_units);
+    end.high = std::clamp(end.high, min_units, max_units);
+    Readings r = readings_at(end, how);
+    // The same display read twice: a reading never moves against the jog
+    // (each way shown is monotonic), nor by more units than the travel spans.
+    if (sign > 0) {
+      r.low = std::max(r.low, start.low);
+      r.high = std::min(r.high, start.high + most);
+    } else {
+      r.high = std::min(r.high, start.high);
+      r.low = std::max(r.low, start.low - most);
+    }
+    all = all ? Readings{std::min(all->low, r.low), std::max(all->high, r.high)} : r;
+  }
+  return in_tenths_and_finer(*all, per_degree);
+}
+
+Readings readings_between(double low, double high, int per_degree) {
+  return {whole_up(low * per_degree), whole_down(high * per_degree)};
 }
 
 double home(const AxisProfile& a) { return at(a, 0.5); }

@@ -459,8 +459,13 @@ TEST(Matchers, JoggedIsWhereTheJogCanEndAndAHeadingIsModulo360) {
   m.speed = 'F';
   const ResolvedMatcher r = resolve_matcher(m, ExprContext{p});
   ASSERT_EQ(r.kind, Expansion::Kind::kValue) << r.problem;
-  EXPECT_NEAR(r.matcher.low, 10 + 1.9 - 0.1, 1e-9);
-  EXPECT_NEAR(r.matcher.high, 10 + 2.1 + 0.1, 1e-9);
+  // 1.9 to 2.1 deg from a reading of 10.0 (a position of 9.95 to 10.1 as
+  // rounded or truncated): a reading of 11.8 to 12.1, never more than the
+  // 21 tenths of the longest travel above the start's reading.
+  EXPECT_EQ(r.matcher.readings.tenths, (motion::Readings{118, 121}));
+  EXPECT_FALSE(r.matcher.readings.hundredths) << "a tenths display";
+  EXPECT_DOUBLE_EQ(r.matcher.low, 11.8);
+  EXPECT_DOUBLE_EQ(r.matcher.high, 12.1);
   EXPECT_NE(r.matcher.expected.find("'W' jog at fast speed"), std::string::npos) << r.matcher.expected;
   // A fluxgate heading of 359.9 is -0.1 next to a window around 0.
   p.az_sensor = AzSensor::kFluxgate;
@@ -471,15 +476,56 @@ TEST(Matchers, JoggedIsWhereTheJogCanEndAndAHeadingIsModulo360) {
   EXPECT_FALSE(check_field(d, resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kNear, {"0"}), ExprContext{p}).matcher, c));
 }
 
+FrameDescription extended_status_reply(std::int32_t az_tenths, std::uint32_t az_digit) {
+  ExtendedStatusReply r;
+  r.status.azimuth = {fields::AzimuthReading::Kind::kPosition, az_tenths, 0};
+  r.status.elevation = 300;
+  r.az_hundredths = az_digit;
+  return describe_frame(encode_reply(r, '2', 0x40).value());
+}
+
+// §3.17 bytes 49-50 (E-30): on a mount with 0.01 deg feedback a 40h
+// position is read with its hundredths digit, which extends the magnitude;
+// a tenths field of 0.0 leaves the digit's sign to either.
+TEST(Matchers, APositionIsReadWithItsHundredthsDigitOnAMountThatHasThem) {
+  Profile p;
+  p.hundredths = true;
+  p.az.tolerance_deg = 0.1;
+  Captures c;
+  auto near = [&](const FrameDescription& d, const std::string& target) {
+    return check_field(d, resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kNear, {target}), ExprContext{p}).matcher, c);
+  };
+  const FrameDescription d = extended_status_reply(-4, 7);  // -0.47
+  EXPECT_FALSE(near(d, "-0.47"));
+  EXPECT_FALSE(near(d, "-0.57"));
+  const auto off = near(d, "-0.3");  // -0.40 to -0.20: the tenths alone (-0.4) would pass
+  ASSERT_TRUE(off);
+  EXPECT_NE(off->find("-0.40 to -0.20, read with the hundredths digit as -0.47"), std::string::npos) << *off;
+  EXPECT_FALSE(near(status_reply(), "-152.47")) << "31h has no digit: its tenths, -152.5, truncated from -152.37 to -152.57";
+  EXPECT_FALSE(near(extended_status_reply(0, 4), "-0.04")) << "0.0 and 4: -0.04 or 0.04";
+  EXPECT_FALSE(near(extended_status_reply(0, 4), "0.04"));
+  EXPECT_TRUE(near(extended_status_reply(0, 4), "0.2"));
+  FieldMatcher range = matcher("azimuth", FieldMatcher::Kind::kRange, {"-0.48", "-0.46"});
+  EXPECT_FALSE(check_field(d, resolve_matcher(range, ExprContext{p}).matcher, c));
+  range.values = {"-0.46", "-0.40"};
+  EXPECT_TRUE(check_field(d, resolve_matcher(range, ExprContext{p}).matcher, c));
+  p.hundredths = false;  // the digit is '0' there (E-30) and not read: the tenths are the reading
+  EXPECT_FALSE(near(d, "-0.3"));
+}
+
 // A heading's turn is taken at most twice: from 1e300 a loop of turns never
 // ended (1e300 - 360 is 1e300), and a poll's derived timeout is at most an hour.
 TEST(Matchers, HugeNumbersOnAFluxgateAxisResolveAndTimeOutInAnHour) {
   Profile p;
   p.az_sensor = AzSensor::kFluxgate;
-  FieldMatcher jogged = matcher("azimuth", FieldMatcher::Kind::kJogged, {"1e300", "1000"});
+  FieldMatcher jogged = matcher("azimuth", FieldMatcher::Kind::kJogged, {"1e9", "1000"});
   jogged.jog = 'W';
   jogged.speed = 'F';
   EXPECT_EQ(resolve_matcher(jogged, ExprContext{p}).kind, Expansion::Kind::kValue);
+  jogged.values[0] = "1e300";  // no reading in tenths: said so, at once
+  const ResolvedMatcher huge = resolve_matcher(jogged, ExprContext{p});
+  EXPECT_EQ(huge.kind, Expansion::Kind::kError);
+  EXPECT_NE(huge.problem.find("not a reading in tenths"), std::string::npos) << huge.problem;
   const ResolvedMatcher range = resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kRange, {"1e300", "0"}), ExprContext{p});
   EXPECT_EQ(range.kind, Expansion::Kind::kValue);
   EXPECT_GT(range.matcher.low, range.matcher.high) << "left as written: no position is in it";

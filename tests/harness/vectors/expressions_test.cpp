@@ -178,6 +178,30 @@ TEST(Expressions, AMissingCapabilityIsUnavailableWithItsReason) {
   EXPECT_EQ(expand("{first_filled_upto(presets, 10)}", p).text, "1");
 }
 
+// other_address: another valid address (§1: 31h-6Fh) on either side of the
+// device's, one no controller on the line has (issue 22: at 111 it is 110).
+TEST(Expressions, AnotherAddressIsTakenOnEitherSide) {
+  Profile p;
+  p.address = 50;
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "51");
+  p.address = 0x6F;
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "110") << "the one below at the highest address";
+  p.address = 0x31;
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "50");
+  p.address = 50;
+  p.bus_peers = {51};
+  EXPECT_EQ(expand("{other_address(1)}", p).text, "49") << "the one above answers: the one below";
+  p.bus_peers = {49, 51};
+  const Expansion both = expand("{other_address(1)}", p);
+  EXPECT_EQ(both.kind, Kind::kUnavailable);
+  EXPECT_NE(both.text.find("address 51 free on the line"), std::string::npos) << both.text;
+  p.address = 0x31;
+  p.bus_peers = {0x32};
+  const Expansion edge = expand("{other_address(1)}", p);
+  EXPECT_EQ(edge.kind, Kind::kUnavailable);
+  EXPECT_NE(edge.text.find("address 50 free on the line"), std::string::npos) << edge.text;
+}
+
 TEST(Expressions, ErrorsNameTheProblem) {
   const Profile p;
   EXPECT_NE(expand("{nope(az)}", p).text.find("unknown function nope()"), std::string::npos);
@@ -233,17 +257,65 @@ TEST(Motion, ARampShortensTheShortestTravelAndNeverTheLongest) {
   EXPECT_DOUBLE_EQ(short_jog.high, 20 * 0.25 * 0.25);
 }
 
-TEST(Motion, AJogEndsWithinTheLimitsAndTheDisplayResolution) {
+TEST(Motion, AJogEndsWithinTheLimitsAsReadRoundedOrTruncated) {
   AxisProfile a;
   a.min_deg = 0;
   a.max_deg = 90;
   a.fast_dps = 20;
-  const auto end = motion::jog_end(a, 10.0, -1, 'F', 1000);  // 19-21 deg down from 10: the limit at 0
-  EXPECT_DOUBLE_EQ(end.low, -0.1);
-  EXPECT_DOUBLE_EQ(end.high, 0.1);
-  const auto up = motion::jog_end(a, 45.0, +1, 'F', 100);
-  EXPECT_NEAR(up.low, 45.0 + 1.0 - 0.1, 1e-9);
-  EXPECT_NEAR(up.high, 45.0 + 3.0 + 0.1, 1e-9);
+  // 19-21 deg down from a reading of 10.0: the limit at 0, read 0.0 however shown.
+  EXPECT_EQ(motion::jog_readings(a, motion::kTenths, 100, -1, 'F', 1000).tenths, (motion::Readings{0, 0}));
+  // 1-3 deg up from a reading of 45.0, a position of 44.95 to 45.1: a
+  // reading of 45.9 (44.95 + 1 rounded down at the tie) to 48.0 (the start's
+  // reading and the 30 tenths of the longest travel).
+  EXPECT_EQ(motion::jog_readings(a, motion::kTenths, 450, +1, 'F', 100).tenths, (motion::Readings{459, 480}));
+  // '0000' does not move: the start's reading, whatever way it is shown.
+  EXPECT_EQ(motion::jog_readings(a, motion::kTenths, 450, +1, 'F', 0).tenths, (motion::Readings{450, 450}));
+  EXPECT_EQ(motion::jog_readings(a, motion::kHundredths, 450, +1, 'F', 0),
+            (motion::PositionReadings{{450, 450}, motion::Readings{4500, 4509}}))
+      << "45.0 on a hundredths display is 45.00 to 45.09 (E-30)";
+}
+
+TEST(Motion, AReadingAcrossZeroAllowsTheTruncationOfBothEnds) {
+  // The profile of sweep seed 463807582702990695: a 1750 ms 'W' jog at
+  // 0.36 deg/s from a reading of -0.4 on a hundredths display. The start
+  // can be -0.49 (truncated toward zero, E-30) and the end 0.19 after
+  // 0.612-0.648 deg: a reading of 0.1, which a bound of -0.4 + 0.612 - 0.1
+  // in doubles (0.112) failed.
+  AxisProfile a;
+  a.min_deg = -10;
+  a.max_deg = 10;
+  a.fast_dps = 0.36;
+  const auto r = motion::jog_readings(a, motion::kHundredths, -4, +1, 'F', 1750);
+  EXPECT_TRUE(r.tenths.contains(1)) << r.tenths.low << " to " << r.tenths.high;
+  EXPECT_FALSE(r.tenths.contains(-1)) << "0.612 deg at least: never still below zero";
+  ASSERT_TRUE(r.hundredths);
+  EXPECT_TRUE(r.hundredths->contains(12)) << "-0.49 + 0.612, truncated";
+  EXPECT_FALSE(r.hundredths->contains(10));
+}
+
+TEST(Motion, AReadingIsShownRoundedOrTruncatedAndItsTenthsAreTruncated) {
+  using motion::Shown;
+  EXPECT_EQ(motion::shown(-0.47, 100, Shown::kRounded), -47);
+  EXPECT_EQ(motion::shown(-0.47, 10, Shown::kRounded), -5);
+  EXPECT_EQ(motion::shown(-0.47, 10, Shown::kTruncated), -4);
+  EXPECT_EQ(motion::shown(-0.47, 10, Shown::kTruncatedDown), -5);
+  EXPECT_EQ(motion::shown(0.3, 10, Shown::kTruncated), 3) << "0.3 * 10 is 2.9999999999999996 in doubles";
+  EXPECT_EQ(motion::shown(0.25, 10, Shown::kRounded), 3) << "a tie away from zero";
+  EXPECT_EQ(motion::tenths_of(-47, 100), -4) << "E-30: the hundredths digit extends the magnitude";
+  EXPECT_EQ(motion::tenths_of(47, 100), 4);
+  EXPECT_EQ(motion::tenths_of(-47, 10), -47);
+}
+
+TEST(Motion, NearIsAReadingWithinTheToleranceInTheDisplaysUnits) {
+  // Form 2C to 12.25 with a tolerance of 0.1: 12.15 to 12.35 as read.
+  EXPECT_EQ(motion::near_readings(12.25, 0.1, motion::kHundredths),
+            (motion::PositionReadings{{121, 123}, motion::Readings{1215, 1235}}));
+  EXPECT_EQ(motion::near_readings(-12.25, 0.1, motion::kHundredths),
+            (motion::PositionReadings{{-123, -121}, motion::Readings{-1235, -1215}}));
+  // In doubles -0.4 + 0.1 is -0.30000000000000004: still 3 tenths.
+  EXPECT_EQ(motion::near_readings(-0.4, 0.1, motion::kTenths), (motion::PositionReadings{{-5, -3}, std::nullopt}));
+  EXPECT_EQ(motion::readings_between(-0.4 + 0.1, 0.3, motion::kTenths), (motion::Readings{-3, 3}));
+  EXPECT_EQ(motion::readings_between(1e300, -1e300, motion::kTenths).low > 0, true) << "an empty window, not an overflow";
 }
 
 TEST(Motion, AMeasurableJogMovesAtLeastHalfADegreeAndStaysOffTheLimits) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sabus/harness/motion.hpp"
 #include "sabus/protocol/bytes.hpp"
 #include "sabus/protocol/codec.hpp"
 
@@ -103,6 +104,13 @@ struct FieldMatcher {
   // Resolved for a compass heading (§3.2 NOTE: a fluxgate azimuth reads
   // 0.0-359.9): the reading is taken modulo 360, nearest the window.
   bool angular = false;
+  // near and jogged, once resolved: the readings that hold, in whole display
+  // units (motion.hpp, ERRATA E-76); low and high are their tenths in degrees.
+  motion::PositionReadings readings;
+  // Resolved on a mount with 0.01 deg feedback: a position read from a reply
+  // that carries its hundredths digit (40h, §3.17 bytes 49-50) is read with
+  // it, in hundredths (E-30).
+  bool hundredths = false;
 };
 
 struct Expectation {
