@@ -125,16 +125,16 @@ TEST(Run, AFilterThatMatchesNothingExits5AndSaysWhy) {
 TEST(Run, EverythingSkippedExits5WithTheSkipsByCause) {
   const auto r = shell(kSabus + " run --filter '3.4-*' --json " + temp_path("skipped.json") + " 2>&1");
   EXPECT_EQ(r.status, 5) << r.out;
-  EXPECT_NE(r.out.find("\n0 passed, 0 failed, 35 skipped (4 need another profile, 31 need --allow-motion)\n"),
+  EXPECT_NE(r.out.find("\n0 passed, 0 failed, 36 skipped (4 need another profile, 32 need --allow-motion)\n"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("\nNOTHING RAN: all 35 vectors selected were skipped (4 need another profile, 31 need "
+  EXPECT_NE(r.out.find("\nNOTHING RAN: all 36 vectors selected were skipped (4 need another profile, 32 need "
                        "--allow-motion); a run that checked nothing is not a success (exit 5)\n"),
             std::string::npos)
       << r.out;
   const auto doc = read_json(temp_path("skipped.json"));
   EXPECT_EQ(doc["summary"]["exit_code"], 5);
-  EXPECT_EQ(doc["summary"]["skipped_by_cause"], nlohmann::json({{"motion", 31}, {"profile", 4}}));
+  EXPECT_EQ(doc["summary"]["skipped_by_cause"], nlohmann::json({{"motion", 32}, {"profile", 4}}));
   EXPECT_EQ(doc["vectors"][0]["skip_cause"], "motion");
   fs::remove(temp_path("skipped.json"));
   // With motion allowed the same selection runs, and passes.

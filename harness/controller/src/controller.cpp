@@ -376,7 +376,13 @@ std::optional<std::int32_t> Controller::reading(AxisId a) const {
   if (axis_profile(a).ad_error) return std::nullopt;  // '*' (§3.2 bytes 14-31, E-42)
   if (a == AxisId::kPol && profile_.pol_type == PolType::kCircular) return std::nullopt;  // no rotating feed
   if (a == AxisId::kAz && profile_.az_sensor == AzSensor::kFluxgate) {
-    // §3.2 NOTE: the compass reads a heading 0.0-359.9 (ERRATA E-72).
+    // §3.2 NOTE: the compass reads a heading 0.0-359.9 (ERRATA E-72). With
+    // 0.01 deg feedback the heading's tenths, truncated as its hundredths
+    // digit extends them (E-87): -2.63 deg reads 357.3, not 357.4.
+    if (profile_.hundredths) {
+      const long h100 = ((std::lround(axis(a).position * 100) % 36000) + 36000) % 36000;
+      return static_cast<std::int32_t>(h100 / 10);
+    }
     const std::int32_t h = tenths(a) % 3600;
     return h < 0 ? h + 3600 : h;
   }
@@ -384,17 +390,28 @@ std::optional<std::int32_t> Controller::reading(AxisId a) const {
 }
 
 std::uint32_t Controller::hundredths_digit(AxisId a) const {
-  if (!profile_.hundredths || axis_profile(a).ad_error) return 0;
-  return static_cast<std::uint32_t>(std::labs(std::lround(axis(a).position * 100)) % 10);
+  if (!profile_.hundredths || axis_profile(a).ad_error || faults_.has(Fault::kHundredthsAlwaysZero)) return 0;
+  long h = std::lround(axis(a).position * 100);
+  // A fluxgate heading's own hundredths: -2.63 deg is heading 357.37, read
+  // 357.3 and '7' (§3.2 NOTE, E-72; ERRATA E-87), not the position's '3'.
+  if (a == AxisId::kAz && profile_.az_sensor == AzSensor::kFluxgate) h = ((h % 36000) + 36000) % 36000;
+  return static_cast<std::uint32_t>(std::labs(h) % 10);
 }
 
+// §3.16 (ERRATA E-85): the counts of the position, count_offset at 0 deg and
+// counts_per_degree more for each degree; five digits.
 std::uint32_t Controller::counts(AxisId a) const {
-  const double c = profile_.count_offset + axis(a).position * profile_.counts_per_degree;
+  const double position = faults_.has(Fault::kPulseCountStale) ? axis_profile(a).initial_deg : axis(a).position;
+  const double offset = faults_.has(Fault::kPulseCountNoOffset) ? 0.0 : profile_.count_offset;
+  const double c = offset + position * profile_.counts_per_degree;
   return static_cast<std::uint32_t>(std::clamp(std::lround(c), 0L, 99999L));
 }
 
 double Controller::position_of_counts(std::uint32_t count) const {
-  return (static_cast<double>(count) - profile_.count_offset) / profile_.counts_per_degree;
+  double from_zero = static_cast<double>(count) - profile_.count_offset;
+  // Fault form2b-negative-mirrored: a count below the offset taken as as far above it.
+  if (faults_.has(Fault::kForm2BMirrored)) from_zero = std::abs(from_zero);
+  return from_zero / profile_.counts_per_degree;
 }
 
 // §3.2 bytes 36-38: S<<4 | XXXX; higher codes have priority.

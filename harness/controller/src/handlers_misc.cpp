@@ -131,7 +131,8 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
   }
   if (key == '0')
     for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) c.axis(a).fast = !c.axis(a).fast;
-  if (key == 'A') c.stop_all();
+  // Fault stop-key-ignored-in-remote: the Stop key leaves a remote auto move running.
+  if (key == 'A' && !(c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE"))) c.stop_all();
   if (key == 'C' && !c.in_mode("MANUAL_MODE")) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE");
   Outcome o = ack(c, 0x48, AckReply{}, "key " + meanings::key_code(key));
   return o;

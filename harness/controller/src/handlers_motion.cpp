@@ -95,7 +95,8 @@ Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveCounts& m) {
 Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveAxis& m) {
   if (!c.profile_.hundredths) return nak(c, 0x32, NakRule::kNoHundredths);
   const AxisId a = m.axis == 'A' ? AxisId::kAz : AxisId::kEl;
-  const double target = m.target / 100.0;
+  // Fault form2c-sign-dropped: the digits without their '-'.
+  const double target = (c.faults_.has(Fault::kForm2CSignDropped) ? std::abs(m.target) : m.target) / 100.0;
   if (!target_ok(c, a, target)) return nak(c, 0x32, NakRule::kTargetOutOfRange);
   take_remote_control(c);
   c.start_move(a, target, true);
@@ -137,6 +138,8 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   }
   // 'X': stop all movement (speed and duration are still required, READING-NOTES 14).
   if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
+  // Fault x-reenters-remote: REMOTE mode is entered again (ERRATA E-88).
+  if (c.faults_.has(Fault::kXReentersRemote) && c.in_mode("REMOTE_MODE")) c.set_state("INITIALIZING_MODE");
   take_remote_control(c);
   c.stop_all();  // from the next update on
   if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46

@@ -215,6 +215,83 @@ std::optional<Bytes> frame_with_check(std::uint8_t address, std::uint8_t check) 
 Result maybe(const motion::Maybe<double>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
 Result maybe(const motion::Maybe<int>& m) { return m.value ? number(*m.value) : unavailable(m.reason); }
 
+// ---- value checks of state-dependent fields -------------------------------------
+// The functions of the block "values the state gives" of kFunctions: where a
+// field's value follows from the profile and the commands before it (a pulse
+// count, a hundredths digit).
+
+// A position reading at its display resolution (tenths, §3.2 bytes 14-31)
+// stands for a position within this of it, whether the controller rounds
+// or truncates (with 0.01 deg feedback the tenths are truncated, E-30).
+constexpr double kReadingSpan = 0.1;
+// The highest 5-digit pulse count (§3.16 bytes 3-7).
+constexpr double kMaxCount = 99999;
+
+// count_low / count_high (axis, deg): the counts a controller at a position
+// read as `deg` can report (§3.16; ERRATA E-85): count_offset + position x
+// counts_per_degree for every position the reading stands for, one count
+// either way for the sensor's own rounding, held to 0-99999.
+Result count_bound(const Call& c, int side) {
+  // An axis without a reading ('*', E-42) gives no capture to count from.
+  return with_read_axis(c, [&](motion::Axis, const AxisProfile&) {
+    if (auto e = c.numbers({1})) return error(*e);
+    const Profile& p = c.cx.profile;
+    const double at = p.count_offset + (c.args[1].number + side * kReadingSpan) * p.counts_per_degree;
+    const double bound = side < 0 ? std::floor(at) - 1 : std::ceil(at) + 1;
+    return number(std::clamp(bound, 0.0, kMaxCount));
+  });
+}
+
+// positive(axis): the mirror of negative(): a position above 0 inside the
+// range, clear of 0 and of the limits by the tolerance and half a degree.
+Result positive_position(const Call& c) {
+  return with_read_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+    const double bottom = std::max(a.min_deg, 0.0) + a.tolerance_deg + 0.5, top = a.max_deg - a.tolerance_deg - 0.5;
+    if (top - bottom < 0.1) return unavailable("a positive " + std::string(motion::name_of(axis)) + " inside its range");
+    return number(std::ceil((top + bottom) / 2 * 10) / 10);
+  });
+}
+
+// The hundredths digit of §3.17 bytes 49-50 after a form 2C move (ERRATA
+// E-86, E-87): the digits d (0-9) for which the tenths reading `reading`
+// (bytes 14-25, captured) extended by d lies within the axis's arrival
+// window at 0.01 deg of `target`. The window is tolerance_deg with the
+// display's 0.1 deg allowance at the hundredths' 0.01 (E-86). A positive
+// reading extended is reading + d/100; a negative (or zero) one may be read
+// either way the spec's "added to the rest of the position" allows (E-87):
+// the magnitude extended (-12.3 and 4 is -12.34, tenths truncated) or the
+// digit added (-12.4 and 6 is -12.34, tenths rounded down). A fluxgate
+// heading is compared modulo 360 (§3.2 NOTE). Both readings together give
+// one run of digits; when no digit fits (the tenths are already out), the
+// nearest digit, so that the failure names the digit the reading wanted.
+Result hundredths_bound(const Call& c, bool low) {
+  return with_read_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+    if (auto e = c.numbers({1, 2})) return error(*e);
+    const double reading = c.args[1].number, target = c.args[2].number;
+    const double window = std::max(0.01, a.tolerance_deg - kReadingSpan + 0.01);
+    const bool heading = axis == motion::Axis::kAz && c.cx.profile.az_sensor == AzSensor::kFluxgate;
+    auto off = [&](double full) {
+      double d = full - target;
+      if (heading) d -= 360.0 * std::round(d / 360.0);
+      return std::abs(d);
+    };
+    auto miss = [&](int digit) {
+      double best = off(reading + digit / 100.0);
+      if (reading <= 0 && !heading) best = std::min(best, off(reading - digit / 100.0));
+      return best;
+    };
+    int first = -1, last = -1, nearest = 0;
+    for (int d = 0; d <= 9; ++d) {
+      if (miss(d) < miss(nearest)) nearest = d;
+      if (miss(d) > window + 1e-9) continue;
+      if (first < 0) first = d;
+      last = d;
+    }
+    if (first < 0) return number(nearest);
+    return number(low ? first : last);
+  });
+}
+
 // ---- the function table ---------------------------------------------------------
 
 struct Function {
@@ -489,6 +566,22 @@ const Function kFunctions[] = {
        std::snprintf(buf, sizeof buf, "%02d", static_cast<int>(n));
        return text(buf);
      }},
+    // ---- values the state gives: value checks of state-dependent fields --------
+    {{"positive", "axis", "a positive position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
+     positive_position},
+    {{"count_low", "axis, deg",
+      "the lowest pulse count a position read as deg can give: the reading's 0.1 deg and one count below (§3.16, E-85)"},
+     2, [](const Call& c) { return count_bound(c, -1); }},
+    {{"count_high", "axis, deg",
+      "the highest pulse count a position read as deg can give: the reading's 0.1 deg and one count above (§3.16, E-85)"},
+     2, [](const Call& c) { return count_bound(c, +1); }},
+    {{"hundredths_min", "axis, reading, target",
+      "the lowest hundredths digit (§3.17 bytes 49-50) that puts the tenths reading within the arrival window of a "
+      "form 2C target (E-86, E-87)"},
+     3, [](const Call& c) { return hundredths_bound(c, true); }},
+    {{"hundredths_max", "axis, reading, target",
+      "the highest hundredths digit that puts the tenths reading within the arrival window of a form 2C target"},
+     3, [](const Call& c) { return hundredths_bound(c, false); }},
 };
 
 const Function* find_function(std::string_view name) {

@@ -935,6 +935,7 @@ TEST(Faults, EveryFaultChangesTheWire) {
     Fault fault;
     std::function<void(Profile&)> profile;
     Bytes input;  // on the wire, even parity
+    Bytes after{};  // sent 1 s after the input (default: a status poll)
   };
   const Bytes poll = wire(StatusPoll{}, '2');
   Bytes bad_lrc = encode_request(StatusPoll{}, '2');
@@ -992,6 +993,23 @@ TEST(Faults, EveryFaultChangesTheWire) {
       {Fault::kExtendedStatusSpeedBit, none, wire(ExtendedStatusPoll{}, '2')},
       // Resting on the counterclockwise limit: §3.2 byte 32 shows it.
       {Fault::kAzLimitBitsMissing, [](Profile& p) { p.az.initial_deg = p.az.min_deg; }, poll},
+      // Issue 22, value checks (VAL): 1 s of a move later the counts follow the mount.
+      {Fault::kPulseCountStale, [](Profile& p) { p.az.initial_deg = 0; }, wire(AutoMove{AutoMoveAzEl{15, 450}}, '2'),
+       wire(PulseCountQuery{}, '2')},
+      {Fault::kPulseCountNoOffset, none, wire(PulseCountQuery{}, '2')},
+      {Fault::kHundredthsAlwaysZero, [](Profile& p) { p.hundredths = true; p.az.initial_deg = 12.34; },
+       wire(ExtendedStatusPoll{}, '2')},
+      // -1.5 deg of azimuth at 2 deg/s: there after 1 s, or at +1.5.
+      {Fault::kForm2CSignDropped, [](Profile& p) { p.hundredths = true; p.az.initial_deg = 0; },
+       wire(AutoMove{AutoMoveAxis{'A', -150}}, '2')},
+      // The default scale (10000 at 0 deg, 100 a degree): -1.5 deg of azimuth, the elevation where it is.
+      {Fault::kForm2BMirrored, [](Profile& p) { p.az_sensor = AzSensor::kPulse; p.az.initial_deg = 0; },
+       wire(AutoMove{AutoMoveCounts{9850, 14500}}, '2')},
+      // A move of 1.5 deg stopped at once by the Stop key, or run on to its end.
+      {Fault::kStopKeyIgnoredInRemote, [](Profile& p) { p.az.initial_deg = 0; },
+       cat({wire(AutoMove{AutoMoveAzEl{15, 450}}, '2'), wire(RemoteKeypress{'A'}, '2')})},
+      {Fault::kXReentersRemote, none, cat({wire(AutoMove{AutoMoveAzEl{15, 450}}, '2'), wire(Jog{{'X', 'F', 0}}, '2')}),
+       wire(ExtendedStatusPoll{}, '2')},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {
@@ -1005,7 +1023,7 @@ TEST(Faults, EveryFaultChangesTheWire) {
       bus.receive(probe.input, out);
       clock.advance(std::chrono::seconds(1));
       bus.tick();
-      bus.receive(wire(StatusPoll{}, '2'), out);
+      bus.receive(probe.after.empty() ? wire(StatusPoll{}, '2') : probe.after, out);
       return out;
     };
     EXPECT_NE(run({}), run({probe.fault})) << all_faults()[static_cast<std::size_t>(probe.fault)].name;

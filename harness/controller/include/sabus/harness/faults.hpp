@@ -49,7 +49,14 @@ namespace sabus::harness {
   X(kDeviceTypeNoDot, "device-type-no-dot", "the device type reply writes the version as \"159 \"")                \
   X(kRemoteDisabledAnswers, "remote-disabled-answers", "with remote control disabled, commands are executed")        \
   X(kDriveResetKeepsAlarm, "drive-reset-keeps-alarm", "a drive reset ('R') ACKs but leaves the axis alarm active")  \
-  X(kMoveStopsShort, "move-stops-short", "auto moves stop 1 degree short of their target")
+  X(kMoveStopsShort, "move-stops-short", "auto moves stop 1 degree short of their target")                        \
+  X(kPulseCountStale, "pulse-count-stale", "pulse counts stay those of the power-on position: they do not follow the mount") \
+  X(kPulseCountNoOffset, "pulse-count-no-offset", "pulse counts leave out count_offset: position x counts_per_degree") \
+  X(kHundredthsAlwaysZero, "hundredths-always-zero", "extended status bytes 49-50 are '0' on a mount with 0.01 deg feedback") \
+  X(kForm2CSignDropped, "form2c-sign-dropped", "auto move form 2C ignores the target's sign: -2.57 moves to 2.57")   \
+  X(kForm2BMirrored, "form2b-negative-mirrored", "auto move form 2B takes a count below count_offset as as far above it") \
+  X(kStopKeyIgnoredInRemote, "stop-key-ignored-in-remote", "the Stop key (36h 'K', 48h) does not stop a remote auto move") \
+  X(kXReentersRemote, "x-reenters-remote", "'X' in REMOTE mode enters it again: the state reads INITIALIZING_MODE")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,
