@@ -49,7 +49,15 @@ namespace sabus::harness {
   X(kDeviceTypeNoDot, "device-type-no-dot", "the device type reply writes the version as \"159 \"")                \
   X(kRemoteDisabledAnswers, "remote-disabled-answers", "with remote control disabled, commands are executed")        \
   X(kDriveResetKeepsAlarm, "drive-reset-keeps-alarm", "a drive reset ('R') ACKs but leaves the axis alarm active")  \
-  X(kMoveStopsShort, "move-stops-short", "auto moves stop 1 degree short of their target")
+  X(kMoveStopsShort, "move-stops-short", "auto moves stop 1 degree short of their target")                         \
+  /* LOCATE geometry (§3.18, §3.23; ERRATA E-80, E-81) */                                                         \
+  X(kLocateIgnoresHeading, "locate-ignores-heading", "LOCATE takes mount azimuth 0.0 as true north, whatever the heading") \
+  X(kLocateAzimuthCounterclockwise, "locate-azimuth-counterclockwise",                                            \
+    "LOCATE turns the azimuth the wrong way: heading less the true azimuth")                                        \
+  X(kLocateNorthernLatitude, "locate-northern-latitude", "LOCATE takes a southern latitude as northern")          \
+  X(kLocateEasternLongitude, "locate-eastern-longitude", "LOCATE takes a western site longitude as eastern")      \
+  X(kLocateMovesOutOfRange, "locate-moves-out-of-range",                                                         \
+    "LOCATE to a satellite outside the axis ranges moves to the limits instead of a range error")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,
