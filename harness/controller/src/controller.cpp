@@ -199,10 +199,14 @@ void Controller::set_state(std::string_view state) {
 
 void Controller::enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old) {
   if (mode.value != state_.mode.mode) {
+    // A LOCATE that another mode takes over has not completed (ERRATA E-82).
+    const std::string locate_changed =
+        exit_of_old.empty() && in_mode("LOCATE_MODE") ? locate_exit(false) : std::string(exit_of_old);
     state_.mode.last_mode = state_.mode.mode;
     const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
-    state_.mode.exit_status = exits ? enum_value(exits, exit_of_old.empty() ? normal_exit_name(*exits) : exit_of_old)
-                                    : enums::kFirstValue;
+    state_.mode.exit_status =
+        exits ? enum_value(exits, locate_changed.empty() ? normal_exit_name(*exits) : std::string_view(locate_changed))
+              : enums::kFirstValue;
     state_.mode.mode = mode.value;
     if (mode != enums::Mode("TRACK_MODE")) state_.track.active = false;
   }
@@ -210,6 +214,21 @@ void Controller::enter_mode(enums::Mode mode, std::string_view state, std::strin
 }
 
 bool Controller::in_mode(enums::Mode mode) const { return state_.mode.mode == mode.value; }
+
+// ERRATA E-82: a LOCATE left before it completes exits with the STOP_KEY or
+// MODE_CHANGED entry of the movement it is in (§3.17 locate_exit_conditions
+// pair one with each movement state); one left before its first movement
+// (waiting for navigation data, or in a range error, E-81) with the entry of
+// the movement it was to begin with, the first elevation movement.
+std::string Controller::locate_exit(bool stop_key) const {
+  std::string movement = "LOCATE_FIRST_ELEV_MOVEMENT";
+  if (const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading()))
+    if (const auto name = states->name_of(state_.mode.state))
+      for (std::string_view m : {"LOCATE_FIRST_ELEV_MOVEMENT", "LOCATE_POL_MOVEMENT", "LOCATE_AZIM_MOVEMENT",
+                                 "LOCATE_SECOND_ELEV_MOVEMENT"})
+        if (*name == m) movement = m;
+  return movement + (stop_key ? "_STOP_KEY" : "_MODE_CHANGED");
+}
 
 // ---- motion ------------------------------------------------------------------
 
@@ -355,8 +374,13 @@ void Controller::update() {
 
 // A mode that drives the antenna ends when the antenna arrives.
 void Controller::on_motion_done() {
-  if (in_mode("LOCATE_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
-  else if (in_mode("STOW_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
+  // A LOCATE completes when its movement arrives: not in a range error or
+  // while it waits for data (E-81), where a stop may still be ramping down.
+  const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
+  const bool locate_moving = states && states->name_of(state_.mode.state) == "LOCATE_AZIM_MOVEMENT";
+  if (in_mode("LOCATE_MODE")) {
+    if (locate_moving) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
+  } else if (in_mode("STOW_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
   else if (in_mode("DEPLOY_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "DEPLOY_FINISHED_NORMALLY");
   else if (in_mode("RECALL_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "RECALL_NORMAL_EXIT");
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "handlers.hpp"
+#include "sabus/harness/look_angles.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -18,15 +19,22 @@ Duration jog_duration(std::uint32_t ms) {
   return std::chrono::duration_cast<Duration>(kJogTick * ticks);
 }
 
-// Geostationary look angles from the mount's position, for LOCATE (§3.18).
-std::pair<double, double> look_angles(double site_lat_deg, double site_lon_deg, double sat_lon_deg) {
-  constexpr double kPi = 3.14159265358979323846;
-  constexpr double kRatio = 0.1513;  // earth radius / geostationary orbit radius
-  const double lat = site_lat_deg * kPi / 180, dlon = (sat_lon_deg - site_lon_deg) * kPi / 180;
-  const double c = std::cos(lat) * std::cos(dlon);
-  const double el = std::atan2(c - kRatio, std::sqrt(std::max(0.0, 1 - c * c))) * 180 / kPi;
-  double az = std::atan2(std::tan(dlon), std::sin(lat)) * 180 / kPi;  // from south
-  return {std::clamp(az, -180.0, 180.0), el};
+// The navigation data a LOCATE computes with, bent by the LOCATE faults
+// (faults.hpp): each a realistic misreading of §3.22/§3.23.
+Navigation locate_navigation(Navigation n, const FaultSet& faults) {
+  if (faults.has(Fault::kLocateIgnoresHeading) && n.heading_tenths) n.heading_tenths = 0;
+  if (faults.has(Fault::kLocateNorthernLatitude) && n.latitude_min) n.latitude_min = std::abs(*n.latitude_min);
+  if (faults.has(Fault::kLocateEasternLongitude) && n.longitude_min) n.longitude_min = std::abs(*n.longitude_min);
+  return n;
+}
+
+// §3.17 locate_states that wait for what the site lacks (look_angles.hpp).
+std::string_view waiting_state(look::Missing m) {
+  switch (m) {
+    case look::Missing::kLatLon: return "LOCATE_WAITING_FOR_LAT_LON";
+    case look::Missing::kHeading: return "LOCATE_WAITING_FOR_HEADING";
+    default: return "LOCATE_CALCULATING_MAGNETIC_VARIATION";
+  }
 }
 
 }  // namespace
@@ -140,6 +148,8 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
   // Fault x-reenters-remote: REMOTE mode is entered again (ERRATA E-88).
   if (c.faults_.has(Fault::kXReentersRemote) && c.in_mode("REMOTE_MODE")) c.set_state("INITIALIZING_MODE");
+  // A LOCATE stopped before it completes exits as by the Stop key (E-82).
+  if (c.in_mode("LOCATE_MODE")) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", c.locate_exit(true));
   take_remote_control(c);
   c.stop_all();  // from the next update on
   if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46
@@ -192,15 +202,34 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
   c.state_.displayed_sat = capitals(sat.name);  // §3.2 bytes 3-12, ERRATA E-68
   c.state_.last_located = sat;
-  const Navigation& nav = c.state_.navigation;
-  if (!nav.latitude_min || !nav.longitude_min) {
-    c.set_state("LOCATE_WAITING_FOR_LAT_LON");
-    return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": waiting for lat/lon");
+  // ERRATA E-59, E-80: the site and how a true azimuth becomes the mount's.
+  const look::SiteOf site =
+      look::site_of(locate_navigation(c.state_.navigation, c.faults_), c.profile_.az_sensor, c.profile_.fluxgate_heading);
+  if (!site.site) {
+    c.set_state(waiting_state(site.missing));
+    return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": waiting for " + look::describe(site.missing));
   }
-  const auto [az, el] = look_angles(*nav.latitude_min / 60.0, *nav.longitude_min / 60.0, *sat.longitude / 10.0);
+  look::Pointing to = look::pointing(*site.site, *sat.longitude / 10.0);
+  if (c.faults_.has(Fault::kLocateAzimuthCounterclockwise)) to.azimuth_deg = -to.azimuth_deg;
+  const auto az = look::azimuth_position(c.profile_.az, to.azimuth_deg, c.state_.az.position);
+  // ERRATA E-81: a satellite the mount cannot reach (below the horizon,
+  // where the earth is in the way whatever the elevation axis allows, or
+  // outside a range) is a range error the remote must act on (§3.17
+  // locate_states: "if commanded remotely, action required"): the
+  // antenna does not move, and what an earlier command moved stops.
+  const bool el_ok = to.elevation_deg >= 0 && target_ok(c, AxisId::kEl, to.elevation_deg);
+  const std::string_view error = !az      ? "LOCATE_AZIMUTH_RANGE_ERROR"
+                                 : !el_ok ? "LOCATE_ELEVATION_RANGE_ERROR"
+                                          : "";
+  if (!error.empty() && !c.faults_.has(Fault::kLocateMovesOutOfRange)) {
+    c.stop_all();
+    c.set_state(error);
+    c.state_.last_located.reset();  // no LOCATE performed for 42h 'C' (E-83)
+    return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": " + std::string(error));
+  }
   c.set_state("LOCATE_AZIM_MOVEMENT");
-  c.start_move(AxisId::kAz, az, false);
-  c.start_move(AxisId::kEl, el, false);
+  c.start_move(AxisId::kAz, az.value_or(to.azimuth_deg), false);  // clamped at the limits under the fault
+  c.start_move(AxisId::kEl, to.elevation_deg, false);
   if (!c.moving()) c.on_motion_done();
   return ack(c, 0x41, AckReply{}, "locate " + sat.name);
 }

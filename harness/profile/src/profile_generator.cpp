@@ -125,10 +125,15 @@ Range az_range(Draw& d, AzSensor sensor) {
   }
 }
 
-// Elevation with and without negative positions.
+// Elevation with and without negative positions; an upper limit past the
+// zenith, near it, or short of it (a mount that leaves the high sky out of
+// reach: a LOCATE there is a range error, ERRATA E-81).
 Range el_range(Draw& d) {
   const double lo = d.chance(0.5) ? d.stepped(-15, -0.1, 0.1) : d.stepped(0, 30, 0.1);
-  const double hi = d.chance(0.8) ? d.stepped(std::max(lo + 10, 60.0), 90, 0.1) : d.stepped(90, 180, 0.1);
+  const double roll = d.real(0, 1);
+  const double hi = roll < 0.6   ? d.stepped(std::max(lo + 10, 60.0), 90, 0.1)
+                    : roll < 0.8 ? d.stepped(90, 180, 0.1)
+                                 : d.stepped(lo + 10, 60, 0.1);
   return {lo, hi};
 }
 

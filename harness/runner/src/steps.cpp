@@ -262,7 +262,12 @@ std::chrono::milliseconds Session::poll_timeout(const Step& s, const FrameDescri
     const auto now_at = matcher_number(*field);
     if (!now_at || r.matcher.kind == FieldMatcher::Kind::kRegex || r.matcher.kind == FieldMatcher::Kind::kAny) continue;
     const double target = (r.matcher.low + r.matcher.high) / 2;
-    longest = std::max(longest, motion::longest_move(motion::profile_of(profile, *axis), target - *now_at));
+    const AxisProfile& a = motion::profile_of(profile, *axis);
+    // A fluxgate azimuth reads a heading, modulo 360 (§3.2 NOTE): two
+    // readings do not tell how far apart the positions are on a mount whose
+    // range passes 360, so the poll allows the whole range.
+    const bool heading = *axis == motion::Axis::kAz && profile.az_sensor == AzSensor::kFluxgate;
+    longest = std::max(longest, motion::longest_move(a, heading ? a.max_deg - a.min_deg : target - *now_at));
     named = true;
   }
   if (!named)

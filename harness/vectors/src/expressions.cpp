@@ -16,7 +16,9 @@
 #include <cstdlib>
 #include <functional>
 
+#include "sabus/harness/locate_targets.hpp"
 #include "sabus/harness/motion.hpp"
+#include "sabus/protocol/enumerations.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/lrc.hpp"
 
@@ -290,6 +292,19 @@ Result hundredths_bound(const Call& c, bool low) {
     if (first < 0) return number(nearest);
     return number(low ? first : last);
   });
+}
+
+// ---- LOCATE (locate_targets.hpp; §3.18, §3.17; ERRATA E-80 to E-82) -----------
+
+// The mount's reading of the satellite at the longitude argument 1.
+Result locate_reading(const Call& c, motion::Axis axis) {
+  if (auto e = c.numbers({0})) return error(*e);
+  const double lon = c.args[0].number;
+  if (lon < -179.9 - 1e-9 || lon > 179.9 + 1e-9)
+    return error(std::string(c.name) + ": " + format_number(lon) + " is not a satellite longitude -179.9 to 179.9");
+  const auto to = locate::pointing(c.cx.profile, lon);
+  if (!to.value) return unavailable(to.reason);
+  return number(axis == motion::Axis::kAz ? to.value->azimuth_deg : to.value->elevation_deg);
 }
 
 // ---- the function table ---------------------------------------------------------
@@ -582,6 +597,58 @@ const Function kFunctions[] = {
     {{"hundredths_max", "axis, reading, target",
       "the highest hundredths digit that puts the tenths reading within the arrival window of a form 2C target"},
      3, [](const Call& c) { return hundredths_bound(c, false); }},
+    // ---- LOCATE: satellites from the profile's site, heading and ranges ----
+    {{"locate_visible", "",
+      "the longitude of a geostationary satellite in view and inside both axis ranges (a LOCATE that moves there, E-80)"},
+     0, [](const Call& c) { return maybe(locate::visible(c.cx.profile)); }},
+    {{"locate_any", "",
+      "locate_visible(); on a profile without the site, where any LOCATE waits for it (E-59) and moves nowhere, 0.0: "
+      "for vectors that check what a LOCATE's ACK or name shows, not where it goes"},
+     0,
+     [](const Call& c) {
+       const auto missing = look::site_of(c.cx.profile.navigation, c.cx.profile.az_sensor, c.cx.profile.fluxgate_heading);
+       return missing.site ? maybe(locate::visible(c.cx.profile)) : number(0.0);
+     }},
+    {{"locate_below_horizon", "",
+      "the longitude of a satellite below the horizon and the elevation's lower limit, its azimuth inside the azimuth "
+      "range (LOCATE_ELEVATION_RANGE_ERROR, E-81)"},
+     0, [](const Call& c) { return maybe(locate::below_horizon(c.cx.profile)); }},
+    {{"locate_outside_az", "",
+      "the longitude of a satellite in view outside the azimuth range (LOCATE_AZIMUTH_RANGE_ERROR, E-81); unavailable "
+      "when the range takes in the whole sky in view"},
+     0, [](const Call& c) { return maybe(locate::outside_azimuth(c.cx.profile)); }},
+    {{"locate_above_el", "",
+      "the longitude of a satellite in view above the elevation's upper limit, its azimuth inside the azimuth range "
+      "(LOCATE_ELEVATION_RANGE_ERROR, E-81)"},
+     0, [](const Call& c) { return maybe(locate::above_elevation(c.cx.profile)); }},
+    {{"locate_az", "longitude",
+      "the azimuth reading of the mount pointed at the satellite at that longitude: position = true azimuth - heading, "
+      "a heading on a fluxgate mount (E-80)"},
+     1, [](const Call& c) { return locate_reading(c, motion::Axis::kAz); }},
+    {{"locate_el", "longitude", "the elevation of the satellite at that longitude from the profile's site (E-80)"}, 1,
+     [](const Call& c) { return locate_reading(c, motion::Axis::kEl); }},
+    {{"locate_slack", "az|el",
+      "how far a LOCATE's arrival may read from locate_az/locate_el: two controllers' earth models, tolerance_deg and "
+      "the display's 0.1 deg"},
+     1,
+     [](const Call& c) {
+       return with_axis(c, [&](motion::Axis axis, const AxisProfile&) {
+         if (axis == motion::Axis::kPol) return error("locate_slack: argument 1 must be az or el");
+         return number(locate::slack(c.cx.profile, axis));
+       });
+     }},
+    {{"locate_exit", "'NAME'",
+      "the value of a §3.17 locate_exit_conditions name, under the profile's reading of the lost entry "
+      "(errata.restore_lost_locate_exit, E-28)"},
+     1,
+     [](const Call& c) {
+       if (c.args[0].is_number) return error("locate_exit: argument 1 must be a name in quotes: 'LOCATE_FUNCTION_COMPLETED'");
+       const auto* exits = enums::exit_list_for_mode(enums::Mode("LOCATE_MODE").value,
+                                                     enums::EnumReading{c.cx.profile.restore_lost_locate_exit});
+       const auto v = exits ? exits->value_of(c.args[0].text) : std::nullopt;
+       if (!v) return error("locate_exit: " + c.args[0].text + " is not in locate_exit_conditions");
+       return number(*v);
+     }},
 };
 
 const Function* find_function(std::string_view name) {

@@ -23,6 +23,10 @@ Profile test_profile() {
   p.navigation.latlon_source = 7;
   p.navigation.latitude_min = 40 * 60;
   p.navigation.longitude_min = -75 * 60;
+  // Mount azimuth 0.0 points true north (§3.23), so a LOCATE's azimuth is
+  // its true azimuth (ERRATA E-80).
+  p.navigation.heading_source = 7;
+  p.navigation.heading_tenths = 0;
   return p;
 }
 
@@ -629,6 +633,91 @@ TEST(Controller, StoreWithCalculatedPolarizationNeedsTheLocateImmediatelyBefore)
   EXPECT_FALSE(is_nak(r.send(s))) << "a new LOCATE";
 }
 
+// ERRATA E-80: from 40 N 75 W a satellite on the site's meridian is due
+// south (true azimuth 180) at the plane triangle's elevation; mount azimuth
+// 0.0 heading 030.0 true puts it at position 150.
+TEST(Controller, LocatePointsAtTheLookAnglesLessTheHeading) {
+  Profile p = test_profile();
+  p.navigation.heading_tenths = 300;
+  Rig r(p);
+  RemoteLocate l;
+  l.preset.preset = false;
+  l.sat = {"ON MERIDIAN", -750, 0, '1', '0', 0};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(600s);
+  const auto s = r.status();
+  EXPECT_EQ(s.azimuth.tenths, 1500);
+  EXPECT_EQ(s.elevation, 437) << "atan((cos 40 - R/r) / sin 40) = 43.7";
+  const auto x = r.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FUNCTION_COMPLETED");
+}
+
+// ERRATA E-84: a mount whose azimuth the compass does not read needs the
+// heading; without it the LOCATE waits for it.
+TEST(Controller, LocateWithoutAHeadingWaitsForIt) {
+  Profile p = test_profile();
+  p.navigation.heading_tenths.reset();
+  Rig r(p);
+  RemoteLocate l;
+  l.preset.preset = false;
+  l.sat = {"ON MERIDIAN", -750, 0, '1', '0', 0};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(600s);
+  EXPECT_EQ(meanings::state_name(r.extended().mode, r.extended().state), "LOCATE_WAITING_FOR_HEADING");
+  EXPECT_EQ(r.status().azimuth.tenths, 0);
+}
+
+// ERRATA E-81: a satellite below the horizon, or outside the azimuth range,
+// is ACKed and ends in the range error, the antenna where it was; E-82 a
+// stop then exits with a STOP_KEY entry; E-83 'C' after it is NAKed.
+TEST(Controller, LocateToAnUnreachableSatelliteIsARangeError) {
+  Profile p = test_profile();
+  p.az.min_deg = -90;
+  p.az.max_deg = 90;  // the southern sky, true 90-270, out of reach
+  Rig r(p);
+  RemoteLocate l;
+  l.preset = {true, 1};  // GALAXY 19 at 97.1 W: in view, south-west
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(600s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "LOCATE_MODE");
+  EXPECT_EQ(meanings::state_name(x.mode, x.state), "LOCATE_AZIMUTH_RANGE_ERROR");
+  EXPECT_EQ(r.status().azimuth.tenths, 0) << "the antenna did not move";
+  EXPECT_EQ(r.status().elevation, 450);
+  RemoteStore st;
+  st.preset = {true, 1};
+  st.pol_selection = 'C';
+  EXPECT_EQ(r.send(st).nak, NakRule::kStoreNeedsLocate) << "E-83: no LOCATE performed";
+
+  l.preset.preset = false;
+  l.sat = {"FAR SIDE", 1050, 0, '1', '0', 0};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(600s);
+  x = r.extended();
+  EXPECT_EQ(meanings::state_name(x.mode, x.state), "LOCATE_ELEVATION_RANGE_ERROR");
+  EXPECT_EQ(r.status().elevation, 450);
+  ASSERT_FALSE(is_nak(r.send(Jog{{'X', 'S', 0}})));
+  x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.last_mode), "LOCATE_MODE");
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FIRST_ELEV_MOVEMENT_STOP_KEY");
+}
+
+// The model refuses a satellite below the horizon even where the elevation
+// axis could point there (E-81): the earth is in the way.
+TEST(Controller, LocateBelowTheHorizonIsARangeErrorOnAnyMount) {
+  Profile p = test_profile();
+  p.el.min_deg = -90;
+  Rig r(p);
+  RemoteLocate l;
+  l.preset.preset = false;
+  // From 40 N 75 W, 81.3 deg of longitude away is below the horizon.
+  l.sat = {"LOW", 100, 0, '1', '0', 0};
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(600s);
+  const auto x = r.extended();
+  EXPECT_EQ(meanings::state_name(x.mode, x.state), "LOCATE_ELEVATION_RANGE_ERROR");
+}
+
 // ---- offline, unknown, length --------------------------------------------------------------
 
 TEST(Controller, OfflineReplyForEveryValidCommandWhileDisabled) {
@@ -953,6 +1042,16 @@ TEST(Faults, EveryFaultChangesTheWire) {
   auto raw = [](std::uint8_t code, std::string_view data) {
     return add_even_parity(encode_frame({FrameKind::kCommand, '2', code, Bytes(data.begin(), data.end())}));
   };
+  auto fast_locating = [](Profile& p) {
+    for (AxisProfile* a : {&p.az, &p.el}) a->fast_dps = a->slow_dps = 1000;
+    p.navigation.heading_tenths = 300;
+  };
+  auto locate_to = [](std::int32_t longitude_tenths) {
+    RemoteLocate l;
+    l.preset.preset = false;
+    l.sat = {"PROBE", longitude_tenths, 0, '1', '0', 0};
+    return wire(l, '2');
+  };
   const std::vector<Probe> probes = {
       {Fault::kLrcSkipsByte0, none, poll},
       {Fault::kNakBadCheckByte, none, add_even_parity(bad_lrc)},
@@ -1010,6 +1109,20 @@ TEST(Faults, EveryFaultChangesTheWire) {
        cat({wire(AutoMove{AutoMoveAzEl{15, 450}}, '2'), wire(RemoteKeypress{'A'}, '2')})},
       {Fault::kXReentersRemote, none, cat({wire(AutoMove{AutoMoveAzEl{15, 450}}, '2'), wire(Jog{{'X', 'F', 0}}, '2')}),
        wire(ExtendedStatusPoll{}, '2')},
+      // LOCATEs on a mount fast enough to arrive within the probe's second,
+      // from 40 N 75 W with mount azimuth 0.0 heading 030.0 (true az 180 of
+      // the satellite on the site's meridian is position 150, ERRATA E-80).
+      {Fault::kLocateIgnoresHeading, fast_locating, locate_to(-750)},
+      {Fault::kLocateAzimuthCounterclockwise, fast_locating, locate_to(-750)},
+      {Fault::kLocateEasternLongitude, fast_locating, locate_to(-750)},
+      {Fault::kLocateNorthernLatitude,
+       [&](Profile& p) {
+         fast_locating(p);
+         p.navigation.latitude_min = -40 * 60;  // due north, position -30
+       },
+       locate_to(-750)},
+      // The satellite on the far side of the earth: a range error, not a move.
+      {Fault::kLocateMovesOutOfRange, fast_locating, locate_to(1050)},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {
@@ -1164,6 +1277,7 @@ std::set<std::string> keys_of(const nlohmann::json& j) {
 TEST(StateFile, EveryListFullAndEmptyParsesAndReadsBack) {
   Profile dvb = test_profile();
   dvb.dvb_receiver = true;
+  dvb.navigation.heading_tenths.reset();
   Rig full(dvb);
   ASSERT_FALSE(is_nak(full.send(WriteTle{2, std::string(69, '1'), std::string(69, '2')})));
   ASSERT_FALSE(is_nak(full.send(preset_3())));

@@ -128,6 +128,13 @@ TEST(ProfileGenerator, ManySeedsCoverEveryValueAndShape) {
       if (a->initial_deg == a->min_deg || a->initial_deg == a->max_deg) mark("initial at a limit");
     }
     mark(std::string("elevation ") + (p.el.min_deg < 0 ? "below 0" : "not below 0"));
+    // LOCATE geometry (E-80, E-81): sites in every quarter of the globe and
+    // mounts that leave part of the sky out of reach.
+    if (p.el.max_deg < 60) mark("elevation short of the high sky");
+    if (p.az.max_deg - p.az.min_deg < 180) mark("azimuth under half a turn");
+    if (p.navigation.latitude_min && p.navigation.longitude_min)
+      mark(std::string("site ") + (*p.navigation.latitude_min < 0 ? "south" : "north") +
+           (*p.navigation.longitude_min < 0 ? " west" : " east"));
     mark(std::string("store ") + size_shape(p.store.size(), 50));
     mark(std::string("presets ") + size_shape(p.presets.size(), 20));
     mark(std::string("tles ") + size_shape(p.tles.size(), 10));
@@ -157,6 +164,8 @@ TEST(ProfileGenerator, ManySeedsCoverEveryValueAndShape) {
   for (int s : {1, 2, 3, 4, 5, 7}) want.insert("navigation latlon_source " + std::to_string(s));
   for (int s = 1; s <= 7; ++s) want.insert("navigation heading_source " + std::to_string(s));
   for (const char* w : {"tolerance wide", "tolerance 0.1", "power_on_speed fast", "power_on_speed slow",
+                        "elevation short of the high sky", "azimuth under half a turn", "site north east",
+                        "site north west", "site south east", "site south west",
                         "initial at a limit", "elevation below 0", "elevation not below 0", "magvar ready",
                         "magvar not ready", "axis alarm", "alarm code", "display.satellite blank",
                         "display.satellite named"})

@@ -55,6 +55,64 @@ TEST(Expressions, PositionsComeFromTheProfile) {
   EXPECT_EQ(expand("{pace_ms()}", p).text, "1000");
 }
 
+// ERRATA E-80, E-81: LOCATE satellites from the site, heading and ranges. A
+// site at 33 52' S 151 12' E, mount azimuth 0.0 heading 030.0, azimuth -170
+// to 20 (true 200 to 50 through north), elevation 0 to 45.
+Profile southern_site() {
+  Profile p;
+  p.navigation.latitude_min = -(33 * 60 + 52);
+  p.navigation.longitude_min = 151 * 60 + 12;
+  p.navigation.heading_tenths = 300;
+  p.az.min_deg = -170;
+  p.az.max_deg = 20;
+  p.el.min_deg = 0;
+  p.el.max_deg = 45;
+  return p;
+}
+
+double number_of(std::string_view t, const Profile& p) {
+  const Expansion e = expand(t, p);
+  EXPECT_EQ(e.kind, Kind::kValue) << t << ": " << e.text;
+  return std::stod(e.text);
+}
+
+TEST(Expressions, LocateSatellitesComeFromTheSiteHeadingAndRanges) {
+  const Profile p = southern_site();
+  const double visible = number_of("{locate_visible()}", p);
+  const double el = number_of("{locate_el(locate_visible())}", p);
+  const double az = number_of("{locate_az(locate_visible())}", p);
+  EXPECT_GE(el, 5.0);
+  EXPECT_LE(el, 43.0) << "2 deg inside the upper limit";
+  EXPECT_GE(az, -168.0);
+  EXPECT_LE(az, 18.0);
+  EXPECT_EQ(number_of("{locate_any()}", p), visible);
+  EXPECT_LT(number_of("{locate_el(locate_below_horizon())}", p), -3.0);
+  const double wide = number_of("{locate_az(locate_outside_az())}", p);
+  EXPECT_TRUE(wide > 23.0 && wide < 190.0) << wide;
+  EXPECT_GT(number_of("{locate_el(locate_above_el())}", p), 48.0);
+  // 97.0 W, issue 22's fixed longitude, is below the horizon here.
+  EXPECT_LT(number_of("{locate_el(-97.0)}", p), 0.0);
+  // The heading turns the mount: true azimuth less 030.0.
+  Profile north = p;
+  north.navigation.heading_tenths = 0;
+  EXPECT_NEAR(number_of("{locate_az(150)}", north) - 30.0, number_of("{locate_az(150)}", p), 1e-6);
+
+  // A mount that sees the whole sky has no satellite outside its ranges.
+  Profile whole = p;
+  whole.az.min_deg = -180;
+  whole.az.max_deg = 180;
+  whole.el.max_deg = 90;
+  EXPECT_EQ(expand("{locate_outside_az()}", whole).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{locate_above_el()}", whole).kind, Kind::kUnavailable);
+  // Without the site nothing can be chosen, but locate_any() still sends one.
+  Profile lost = p;
+  lost.navigation.latitude_min.reset();
+  EXPECT_EQ(expand("{locate_visible()}", lost).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{locate_any()}", lost).text, "0");
+  EXPECT_EQ(expand("{locate_az(100.0)}", lost).kind, Kind::kUnavailable);
+  EXPECT_EQ(expand("{locate_az(180.1)}", p).kind, Kind::kError);
+}
+
 TEST(Expressions, CapturesAreNumbersWhenTheyReadAsNumbers) {
   const Profile p;
   const std::map<std::string, std::string> captures{{"$az0", "  30.0"}, {"$name", "SBS 6"}};

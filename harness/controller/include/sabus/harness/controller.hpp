@@ -116,6 +116,9 @@ class Controller {
   void enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old = {});
   void set_state(std::string_view state);
   bool in_mode(enums::Mode mode) const;
+  // The §3.17 locate_exit_conditions entry of a LOCATE left before it
+  // completes, by a stop (`stop_key`) or by another mode (ERRATA E-82).
+  std::string locate_exit(bool stop_key) const;
 
   bool stow_limit(AxisId a) const;
   bool moving() const;

@@ -56,7 +56,15 @@ namespace sabus::harness {
   X(kForm2CSignDropped, "form2c-sign-dropped", "auto move form 2C ignores the target's sign: -2.57 moves to 2.57")   \
   X(kForm2BMirrored, "form2b-negative-mirrored", "auto move form 2B takes a count below count_offset as as far above it") \
   X(kStopKeyIgnoredInRemote, "stop-key-ignored-in-remote", "the Stop key (36h 'K', 48h) does not stop a remote auto move") \
-  X(kXReentersRemote, "x-reenters-remote", "'X' in REMOTE mode enters it again: the state reads INITIALIZING_MODE")
+  X(kXReentersRemote, "x-reenters-remote", "'X' in REMOTE mode enters it again: the state reads INITIALIZING_MODE") \
+  /* LOCATE geometry (§3.18, §3.23; ERRATA E-80, E-81) */                                                         \
+  X(kLocateIgnoresHeading, "locate-ignores-heading", "LOCATE takes mount azimuth 0.0 as true north, whatever the heading") \
+  X(kLocateAzimuthCounterclockwise, "locate-azimuth-counterclockwise",                                            \
+    "LOCATE turns the azimuth the wrong way: heading less the true azimuth")                                        \
+  X(kLocateNorthernLatitude, "locate-northern-latitude", "LOCATE takes a southern latitude as northern")          \
+  X(kLocateEasternLongitude, "locate-eastern-longitude", "LOCATE takes a western site longitude as eastern")      \
+  X(kLocateMovesOutOfRange, "locate-moves-out-of-range",                                                         \
+    "LOCATE to a satellite outside the axis ranges moves to the limits instead of a range error")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,
