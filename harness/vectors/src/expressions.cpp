@@ -244,13 +244,19 @@ Result count_bound(const Call& c, int side) {
   });
 }
 
-// positive(axis): the mirror of negative(): a position above 0 inside the
-// range, clear of 0 and of the limits by the tolerance and half a degree.
-Result positive_position(const Call& c) {
-  return with_read_axis(c, [](motion::Axis axis, const AxisProfile& a) {
-    const double bottom = std::max(a.min_deg, 0.0) + a.tolerance_deg + 0.5, top = a.max_deg - a.tolerance_deg - 0.5;
-    if (top - bottom < 0.1) return unavailable("a positive " + std::string(motion::name_of(axis)) + " inside its range");
-    return number(std::ceil((top + bottom) / 2 * 10) / 10);
+// negative(axis) and positive(axis): a position of that sign inside the
+// range, in the middle of the part clear of 0 and of the limits by the
+// tolerance and half a degree, in tenths rounded away from 0.
+Result position_of_sign(const Call& c, int sign) {
+  return with_read_axis(c, [sign](motion::Axis axis, const AxisProfile& a) {
+    const double margin = a.tolerance_deg + 0.5;
+    const double bottom = (sign > 0 ? std::max(a.min_deg, 0.0) : a.min_deg) + margin;
+    const double top = (sign > 0 ? a.max_deg : std::min(a.max_deg, 0.0)) - margin;
+    if (top - bottom < 0.1)
+      return unavailable(std::string(sign > 0 ? "a positive " : "a negative ") + std::string(motion::name_of(axis)) +
+                         " inside its range");
+    const double middle_tenths = (top + bottom) / 2 * 10;
+    return number((sign > 0 ? std::ceil(middle_tenths) : std::floor(middle_tenths)) / 10);
   });
 }
 
@@ -457,13 +463,7 @@ const Function kFunctions[] = {
        return unavailable("navigation data (latitude, longitude and heading) in the profile, to write back after 46h");
      }},
     {{"negative", "axis", "a negative position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
-     [](const Call& c) {
-       return with_read_axis(c, [](motion::Axis axis, const AxisProfile& a) {
-         const double top = std::min(a.max_deg, 0.0) - a.tolerance_deg - 0.5, bottom = a.min_deg + a.tolerance_deg + 0.5;
-         if (top - bottom < 0.1) return unavailable("a negative " + std::string(motion::name_of(axis)) + " inside its range");
-         return number(std::floor((top + bottom) / 2 * 10) / 10);
-       });
-     }},
+     [](const Call& c) { return position_of_sign(c, -1); }},
     {{"min", "a, b", "the smaller number"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({0, 1})) return error(*e);
@@ -583,7 +583,7 @@ const Function kFunctions[] = {
      }},
     // ---- values the state gives: value checks of state-dependent fields --------
     {{"positive", "axis", "a positive position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
-     positive_position},
+     [](const Call& c) { return position_of_sign(c, 1); }},
     {{"count_low", "axis, deg",
       "the lowest pulse count a position read as deg can give: the reading's 0.1 deg and one count below (§3.16, E-85)"},
      2, [](const Call& c) { return count_bound(c, -1); }},

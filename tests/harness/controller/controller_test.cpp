@@ -30,6 +30,15 @@ Profile test_profile() {
   return p;
 }
 
+// A LOCATE (§3.18) of a satellite given by its name and longitude in tenths,
+// west negative: not a preset.
+RemoteLocate locate_satellite(std::string name, std::int32_t longitude_tenths) {
+  RemoteLocate l;
+  l.preset.preset = false;
+  l.sat = {std::move(name), longitude_tenths, 0, '1', '0', 0};
+  return l;
+}
+
 struct Rig {
   explicit Rig(Profile p = test_profile(), FaultSet f = {}) : profile(std::move(p)), c(profile, clock, f) {}
   VirtualClock clock;
@@ -495,9 +504,7 @@ TEST(Controller, PowerOnStatusFieldsFromTheProfile) {
 // ERRATA E-68: a lower-case name is shown and stored in capitals.
 TEST(Controller, SatelliteNamesAreShownAndStoredInCapitals) {
   Rig r;
-  RemoteLocate l;
-  l.preset.preset = false;
-  l.sat = {"probe loc", -971, 0, '1', '0', 0};
+  RemoteLocate l = locate_satellite("probe loc", -971);
   ASSERT_FALSE(is_nak(r.send(l)));
   EXPECT_EQ(r.status().sat_name, "PROBE LOC");
   RemoteStore st;
@@ -640,9 +647,7 @@ TEST(Controller, LocatePointsAtTheLookAnglesLessTheHeading) {
   Profile p = test_profile();
   p.navigation.heading_tenths = 300;
   Rig r(p);
-  RemoteLocate l;
-  l.preset.preset = false;
-  l.sat = {"ON MERIDIAN", -750, 0, '1', '0', 0};
+  RemoteLocate l = locate_satellite("ON MERIDIAN", -750);
   ASSERT_FALSE(is_nak(r.send(l)));
   r.wait(600s);
   const auto s = r.status();
@@ -658,9 +663,7 @@ TEST(Controller, LocateWithoutAHeadingWaitsForIt) {
   Profile p = test_profile();
   p.navigation.heading_tenths.reset();
   Rig r(p);
-  RemoteLocate l;
-  l.preset.preset = false;
-  l.sat = {"ON MERIDIAN", -750, 0, '1', '0', 0};
+  RemoteLocate l = locate_satellite("ON MERIDIAN", -750);
   ASSERT_FALSE(is_nak(r.send(l)));
   r.wait(600s);
   EXPECT_EQ(meanings::state_name(r.extended().mode, r.extended().state), "LOCATE_WAITING_FOR_HEADING");
@@ -689,8 +692,7 @@ TEST(Controller, LocateToAnUnreachableSatelliteIsARangeError) {
   st.pol_selection = 'C';
   EXPECT_EQ(r.send(st).nak, NakRule::kStoreNeedsLocate) << "E-83: no LOCATE performed";
 
-  l.preset.preset = false;
-  l.sat = {"FAR SIDE", 1050, 0, '1', '0', 0};
+  l = locate_satellite("FAR SIDE", 1050);
   ASSERT_FALSE(is_nak(r.send(l)));
   r.wait(600s);
   x = r.extended();
@@ -708,10 +710,8 @@ TEST(Controller, LocateBelowTheHorizonIsARangeErrorOnAnyMount) {
   Profile p = test_profile();
   p.el.min_deg = -90;
   Rig r(p);
-  RemoteLocate l;
-  l.preset.preset = false;
   // From 40 N 75 W, 81.3 deg of longitude away is below the horizon.
-  l.sat = {"LOW", 100, 0, '1', '0', 0};
+  RemoteLocate l = locate_satellite("LOW", 100);
   ASSERT_FALSE(is_nak(r.send(l)));
   r.wait(600s);
   const auto x = r.extended();
@@ -1046,12 +1046,7 @@ TEST(Faults, EveryFaultChangesTheWire) {
     for (AxisProfile* a : {&p.az, &p.el}) a->fast_dps = a->slow_dps = 1000;
     p.navigation.heading_tenths = 300;
   };
-  auto locate_to = [](std::int32_t longitude_tenths) {
-    RemoteLocate l;
-    l.preset.preset = false;
-    l.sat = {"PROBE", longitude_tenths, 0, '1', '0', 0};
-    return wire(l, '2');
-  };
+  auto locate_to = [](std::int32_t longitude_tenths) { return wire(locate_satellite("PROBE", longitude_tenths), '2'); };
   const std::vector<Probe> probes = {
       {Fault::kLrcSkipsByte0, none, poll},
       {Fault::kNakBadCheckByte, none, add_even_parity(bad_lrc)},
