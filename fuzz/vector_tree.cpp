@@ -552,6 +552,7 @@ void put_lists(Container& root, Container& group, Container& vector, const Vecto
   if (setup_in_group) put(group, "setup", steps_text(v.setup, 0, setup_in_group));
   if (own_teardown < v.teardown.size()) put(group, "teardown", steps_text(v.teardown, own_teardown, v.teardown.size()));
   if (setup_in_group < v.setup.size()) put(vector, "setup", steps_text(v.setup, setup_in_group, v.setup.size()));
+  if (!v.each_slot.empty()) put(vector, "each_slot", quoted(v.each_slot));
   put(vector, "steps", steps_text(v.steps, 0, v.steps.size()));
   if (own_teardown) put(vector, "teardown", steps_text(v.teardown, 0, own_teardown));
 }

@@ -199,9 +199,9 @@ void Controller::set_state(std::string_view state) {
 
 void Controller::enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old) {
   if (mode.value != state_.mode.mode) {
-    // A LOCATE that another mode takes over has not completed (ERRATA E-82).
-    const std::string locate_changed =
-        exit_of_old.empty() && in_mode("LOCATE_MODE") ? locate_exit(false) : std::string(exit_of_old);
+    // A LOCATE, STOW or DEPLOY that another mode takes over has not
+    // completed (ERRATA E-82, E-89).
+    const std::string locate_changed = exit_of_old.empty() ? moving_exit(false) : std::string(exit_of_old);
     state_.mode.last_mode = state_.mode.mode;
     const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
     state_.mode.exit_status =
@@ -215,12 +215,32 @@ void Controller::enter_mode(enums::Mode mode, std::string_view state, std::strin
 
 bool Controller::in_mode(enums::Mode mode) const { return state_.mode.mode == mode.value; }
 
+// ERRATA E-89: stow_exit_conditions and deploy_exit_conditions pair a
+// MOVE_STOPPED and a MODE_CHANGED (once spelled MODE_CHANGE) entry with each
+// moving state: the one of the state the STOW or DEPLOY is in.
+std::string Controller::moving_exit(bool stopped) const {
+  if (in_mode("LOCATE_MODE")) return locate_exit(stopped);
+  if (!in_mode("STOW_MODE") && !in_mode("DEPLOY_MODE")) return "";
+  if (stopped && in_mode("STOW_MODE") && faults_.has(Fault::kStowStopExitFinished)) return "STOW_FINISHED_NORMALLY";
+  const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
+  const auto* exits = enums::exit_list_for_mode(state_.mode.mode, enum_reading());
+  const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
+  if (!state || !exits) return "";
+  for (std::string_view suffix : stopped ? std::vector<std::string_view>{"_MOVE_STOPPED"}
+                                         : std::vector<std::string_view>{"_MODE_CHANGED", "_MODE_CHANGE"}) {
+    std::string name = std::string(*state) + std::string(suffix);
+    if (exits->value_of(name)) return name;
+  }
+  return "";
+}
+
 // ERRATA E-82: a LOCATE left before it completes exits with the STOP_KEY or
 // MODE_CHANGED entry of the movement it is in (§3.17 locate_exit_conditions
 // pair one with each movement state); one left before its first movement
 // (waiting for navigation data, or in a range error, E-81) with the entry of
 // the movement it was to begin with, the first elevation movement.
 std::string Controller::locate_exit(bool stop_key) const {
+  if (stop_key && faults_.has(Fault::kLocateStopExitCompleted)) return "LOCATE_FUNCTION_COMPLETED";
   std::string movement = "LOCATE_FIRST_ELEV_MOVEMENT";
   if (const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading()))
     if (const auto name = states->name_of(state_.mode.state))

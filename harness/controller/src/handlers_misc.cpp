@@ -131,11 +131,17 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
   }
   if (key == '0')
     for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) c.axis(a).fast = !c.axis(a).fast;
-  if (key == 'A') {
-    // Fault stop-key-ignored-in-remote: the Stop key leaves a remote auto move running.
-    if (!(c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE"))) c.stop_all();
-    // The Stop key ends a LOCATE where it is, back in MANUAL mode (E-82).
-    if (c.in_mode("LOCATE_MODE")) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", c.locate_exit(true));
+  // Faults stop-key-ignored-in-remote, locate-ignores-stop and
+  // stow-ignores-stop: the Stop key leaves a remote auto move, a LOCATE or a
+  // STOW running.
+  const bool ignored = (c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE")) ||
+                       (c.faults_.has(Fault::kLocateIgnoresStop) && c.in_mode("LOCATE_MODE")) ||
+                       (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE"));
+  if (key == 'A' && !ignored) {
+    c.stop_all();
+    // The Stop key ends a LOCATE, STOW or DEPLOY where it is, back in MANUAL
+    // mode (E-82, E-89).
+    if (const std::string exit = c.moving_exit(true); !exit.empty()) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", exit);
   }
   if (key == 'C' && !c.in_mode("MANUAL_MODE")) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE");
   Outcome o = ack(c, 0x48, AckReply{}, "key " + meanings::key_code(key));

@@ -28,15 +28,6 @@ Navigation locate_navigation(Navigation n, const FaultSet& faults) {
   return n;
 }
 
-// §3.17 locate_states that wait for what the site lacks (look_angles.hpp).
-std::string_view waiting_state(look::Missing m) {
-  switch (m) {
-    case look::Missing::kLatLon: return "LOCATE_WAITING_FOR_LAT_LON";
-    case look::Missing::kHeading: return "LOCATE_WAITING_FOR_HEADING";
-    default: return "LOCATE_CALCULATING_MAGNETIC_VARIATION";
-  }
-}
-
 }  // namespace
 
 // ---- §3.3 Auto Move -----------------------------------------------------------
@@ -148,8 +139,14 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
   // Fault x-reenters-remote: REMOTE mode is entered again (ERRATA E-88).
   if (c.faults_.has(Fault::kXReentersRemote) && c.in_mode("REMOTE_MODE")) c.set_state("INITIALIZING_MODE");
-  // A LOCATE stopped before it completes exits as by the Stop key (E-82).
-  if (c.in_mode("LOCATE_MODE")) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", c.locate_exit(true));
+  // Faults locate-ignores-stop, stow-ignores-stop: the LOCATE or STOW goes on.
+  if ((c.faults_.has(Fault::kLocateIgnoresStop) && c.in_mode("LOCATE_MODE")) ||
+      (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE")))
+    return status(c, code, "stop ignored (fault)");
+  // A LOCATE, STOW or DEPLOY stopped before it completes exits as by the
+  // Stop key (E-82, E-89).
+  if (const std::string exit = c.moving_exit(true); !exit.empty())
+    c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", exit);
   take_remote_control(c);
   c.stop_all();  // from the next update on
   if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46
@@ -206,7 +203,12 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
   const look::SiteOf site =
       look::site_of(locate_navigation(c.state_.navigation, c.faults_), c.profile_.az_sensor, c.profile_.fluxgate_heading);
   if (!site.site) {
-    c.set_state(waiting_state(site.missing));
+    // Fault locate-without-site-completes: no waiting; the LOCATE "completes" where it is.
+    if (c.faults_.has(Fault::kLocateWithoutSiteCompletes)) {
+      c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
+      return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": completed without a site (fault)");
+    }
+    c.set_state(look::waiting_state(site.missing));
     return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": waiting for " + look::describe(site.missing));
   }
   look::Pointing to = look::pointing(*site.site, *sat.longitude / 10.0);

@@ -33,6 +33,13 @@ auto reply_to_read(const Controller& c, const std::optional<Slot>& slot, Make ma
   return reply;
 }
 
+// The slot a read of `index` answers from: `index` itself, or with
+// kSlotReadShiftedInMiddle (an index table off by one except at its ends)
+// the next one, for every slot but the first and last of a list of `slots`.
+std::size_t slot_read(const Controller& c, Fault fault, std::size_t index, std::size_t slots) {
+  return c.faults().has(fault) && index > 1 && index < slots ? index + 1 : index;
+}
+
 }  // namespace
 
 // ---- §3.6 Query Name --------------------------------------------------------------
@@ -44,7 +51,7 @@ Outcome Handlers::query_name(C& c, const QueryName& q) {
   QueryNameReply r;
   r.index = q.index;
   r.total = static_cast<std::uint32_t>(c.state_.store.size()) + (c.faults_.has(Fault::kStoreCountOffByOne) ? 1 : 0);
-  r.name = c.state_.store[q.index - first].name;
+  r.name = c.state_.store[slot_read(c, Fault::kStoreEntryShiftedInMiddle, q.index - first + 1, c.state_.store.size()) - 1].name;
   return ack(c, 0x35, r);
 }
 
@@ -78,7 +85,9 @@ Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
 }
 Outcome Handlers::read_satellite(C& c, const ReadSatellite& r) {
   if (r.index < 1 || r.index > 20) return nak(c, 0x3A, NakRule::kSatelliteIndex, "index " + std::to_string(r.index));
-  return ack(c, 0x3A, reply_to_read(c, c.state_.presets[r.index - 1], satellite_reply));
+  auto reply = reply_to_read(c, c.state_.presets[slot_read(c, Fault::kSlotReadShiftedInMiddle, r.index, 20) - 1], satellite_reply);
+  if (reply.index) reply.index = static_cast<std::uint8_t>(r.index);
+  return ack(c, 0x3A, reply);
 }
 std::optional<std::uint8_t> Handlers::empty_index(const C& c) {
   // READING-NOTES 18: 7Fh in both index bytes.
@@ -95,7 +104,9 @@ Outcome Handlers::write_tle(C& c, const WriteTle& w) {
 }
 Outcome Handlers::read_tle(C& c, const ReadTle& r) {
   if (r.index < 1 || r.index > 10) return nak(c, 0x3C, NakRule::kTleIndex, "index " + std::to_string(r.index));
-  return ack(c, 0x3C, reply_to_read(c, c.state_.tles[r.index - 1], tle_reply));
+  auto reply = reply_to_read(c, c.state_.tles[slot_read(c, Fault::kSlotReadShiftedInMiddle, r.index, 10) - 1], tle_reply);
+  if (reply.index) reply.index = static_cast<std::uint8_t>(r.index);
+  return ack(c, 0x3C, reply);
 }
 
 // ---- §3.19 Remote Store ----------------------------------------------------------------
@@ -164,7 +175,9 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
 Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
   if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
   if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
-  return ack(c, 0x44, reply_to_read(c, c.state_.signposts[r.index - 1], signpost_reply));
+  auto reply = reply_to_read(c, c.state_.signposts[slot_read(c, Fault::kSlotReadShiftedInMiddle, r.index, 20) - 1], signpost_reply);
+  if (reply.index) reply.index = static_cast<std::uint8_t>(r.index);
+  return ack(c, 0x44, reply);
 }
 
 // ---- §3.22 / §3.23 Navigation data ---------------------------------------------------

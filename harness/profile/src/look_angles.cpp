@@ -75,6 +75,16 @@ std::string describe(Missing m) {
   return "";
 }
 
+std::string_view waiting_state(Missing m) {
+  switch (m) {
+    case Missing::kLatLon: return "LOCATE_WAITING_FOR_LAT_LON";
+    case Missing::kHeading: return "LOCATE_WAITING_FOR_HEADING";
+    case Missing::kMagvar: return "LOCATE_CALCULATING_MAGNETIC_VARIATION";
+    case Missing::kNothing: break;
+  }
+  return "";
+}
+
 double mount_azimuth(const Site& s, double true_azimuth_deg) { return half_turn(true_azimuth_deg - s.azimuth_offset_deg); }
 
 Pointing pointing(const Site& s, double satellite_longitude_deg) {

@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <fnmatch.h>
+#include <functional>
 
 #include "backup.hpp"
+#include "sabus/harness/expressions.hpp"
 #include "sabus/harness/profile_records.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "session.hpp"
@@ -84,7 +86,7 @@ std::optional<std::string> missing_record(const StructuredCommand& c, const Expr
   std::uint32_t index = 0;
   if (c.from_profile != "navigation") {
     const Number n = expand_number(c.from_profile, cx);
-    const Count slot = count_in(n.value, 1, kMaxRecordIndex);
+    const Count slot = count_in(n.value, 1, max_record_index(info->code));
     if (n.kind != Expansion::Kind::kValue || slot.error) return std::nullopt;  // the step reports it
     index = static_cast<std::uint32_t>(slot.value);
   }
@@ -148,12 +150,38 @@ std::optional<Skip> skip_reason(const Vector& v, const RunOptions& o, const Prof
     if (auto why = unmet_requirement(profile, req)) return Skip{SkipCause::kProfile, "requires: " + *why};
   if (auto why = missing_capability(v, ExprContext{profile, nullptr, o.pace}))
     return Skip{SkipCause::kProfile, "needs " + *why};
+  if (!v.each_slot.empty() && filled_slots(profile, v.each_slot).value_or(std::vector<int>{}).empty())
+    return Skip{SkipCause::kProfile, "needs " + std::string(v.each_slot == "store" ? "an entry of the STORE list" : "a filled slot of " + v.each_slot) + " in the profile: it stores none"};
   if (v.has_tag("motion") && !o.allow_motion) return Skip{SkipCause::kMotion, "moves the antenna: needs --allow-motion"};
   if (v.has_tag("destructive") && !o.allow_destructive)
     return Skip{SkipCause::kDestructive, "changes stored data: needs --allow-destructive"};
   if (v.has_tag("parity") && !transport.can_send_parity_errors())
     return Skip{SkipCause::kParity, "sends parity errors: the port is a true 7E1 port (--line 7E1)"};
   return std::nullopt;
+}
+
+// "preset slot 2", "STORE entry 2": where a failure of an each_slot vector was.
+std::string slot_name(const std::string& list, int index) {
+  const std::string what = list == "store" ? "STORE entry" : list == "presets" ? "preset slot"
+                           : list == "tles"  ? "TLE slot"    : "signpost slot";
+  return what + " " + std::to_string(index);
+}
+
+// The steps, once, or once for each slot of the list `each_slot` names that
+// the profile fills, its index captured as $slot: a failing step ends its
+// slot's pass and the next slot is read, so one run names every slot that
+// differs.
+void run_steps(Session& s, const Vector& v, std::vector<std::string>& failures) {
+  const auto slots = v.each_slot.empty() ? std::optional<std::vector<int>>(std::vector<int>{0})
+                                         : filled_slots(s.profile, v.each_slot);
+  for (const int slot : slots.value_or(std::vector<int>{})) {
+    if (!v.each_slot.empty()) s.captures["$slot"] = std::to_string(slot);
+    for (const Step& step : v.steps)
+      if (auto e = s.run_step(step)) {
+        failures.push_back(v.each_slot.empty() ? *e : slot_name(v.each_slot, slot) + ": " + *e);
+        break;
+      }
+  }
 }
 
 // Setup, steps and teardown of one attempt; the failures, one line each. A
@@ -169,12 +197,7 @@ std::vector<std::string> attempt(Session& s, const Vector& v, std::vector<Transc
       failures.push_back("setup: " + *e);
       break;
     }
-  if (failures.empty())
-    for (const Step& step : v.steps)
-      if (auto e = s.run_step(step)) {
-        failures.push_back(*e);
-        break;
-      }
+  if (failures.empty()) run_steps(s, v, failures);
   for (const Step& step : v.teardown) {
     if (is_stop(step) && s.track_governs()) continue;  // as the runner's own stop (Session::stop_motion)
     if (auto e = s.run_step(step)) failures.push_back("teardown: " + *e);
@@ -250,6 +273,16 @@ void abort_run(RunResult& result, std::string why) {
   result.abort_reason = std::move(why);
 }
 
+// The order the vectors run in: as given, except that `as-found` vectors
+// come first. They read stored data as the profile describes it, which a
+// destructive vector may change for good (46h deletes the STORE list, which
+// the protocol cannot write back: §3.23).
+std::vector<std::reference_wrapper<const Vector>> run_order(const std::vector<Vector>& vectors) {
+  std::vector<std::reference_wrapper<const Vector>> order(vectors.begin(), vectors.end());
+  std::stable_partition(order.begin(), order.end(), [](const Vector& v) { return v.has_tag("as-found"); });
+  return order;
+}
+
 }  // namespace
 
 RunResult Runner::run(const std::vector<Vector>& vectors) {
@@ -267,7 +300,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   result.measured_turnaround = s.turnaround.max();
 
   int dead_probes = 0;
-  for (const Vector& v : vectors) {
+  for (const Vector& v : run_order(vectors)) {
     if (options_.stop && options_.stop()) {
       abort_run(result, "stopped by SIGINT");
       break;

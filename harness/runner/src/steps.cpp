@@ -118,12 +118,13 @@ std::optional<bool> every_axis_stopped(const FrameDescription& d) {
 
 // The slot a `from_profile` names (a number or a profile expression); 0 for
 // "navigation", which has one record.
-std::optional<std::string> record_index(const std::string& from_profile, const ExprContext& cx, std::uint32_t& index) {
+std::optional<std::string> record_index(const std::string& from_profile, std::uint8_t code, const ExprContext& cx,
+                                        std::uint32_t& index) {
   index = 0;
   if (from_profile == "navigation") return std::nullopt;
   const Number n = expand_number(from_profile, cx);
   if (n.kind != Expansion::Kind::kValue) return "from_profile: " + n.text;
-  const Count slot = count_in(n.value, 1, kMaxRecordIndex);
+  const Count slot = count_in(n.value, 1, max_record_index(code));
   if (slot.error) return "from_profile: " + *slot.error;
   index = static_cast<std::uint32_t>(slot.value);
   return std::nullopt;
@@ -133,7 +134,7 @@ std::optional<std::string> record_index(const std::string& from_profile, const E
 Expected<Bytes> record_bytes(const StructuredCommand& c, const ExprContext& cx, std::uint8_t address) {
   const CommandInfo* info = find_command(c.command);
   std::uint32_t index = 0;
-  if (auto e = record_index(c.from_profile, cx, index)) return DecodeError{0, "from_profile", *e, ""};
+  if (auto e = record_index(c.from_profile, info->code, cx, index)) return DecodeError{0, "from_profile", *e, ""};
   const RecordRequest r = profile_write(cx.profile, info->code, index);
   if (!r.request) return DecodeError{0, "from_profile", "needs " + r.unavailable, ""};
   return encode_request(*r.request, c.address.value_or(address));
@@ -160,7 +161,7 @@ std::optional<std::string> check_navigation_record(const FrameDescription& got, 
 // not being described (READING-NOTES 18, E-18); navigation as above.
 std::optional<std::string> check_record(const Expectation& e, const Frame& reply, const ExprContext& cx) {
   std::uint32_t index = 0;
-  if (auto err = record_index(e.from_profile, cx, index)) return err;
+  if (auto err = record_index(e.from_profile, reply.command, cx, index)) return err;
   const RecordReply r = profile_read_reply(cx.profile, reply.command, index);
   if (!r.reply) return "from_profile: needs " + r.unavailable;
   auto want = encode_reply(*r.reply, reply.address, reply.command);

@@ -183,6 +183,25 @@ Result filled_slot(const Call& c) {
                      " filled in the profile (a write there could not be undone: a slot cannot be emptied)");
 }
 
+}  // namespace
+
+std::optional<std::vector<int>> filled_slots(const Profile& profile, std::string_view list) {
+  std::vector<int> out;
+  if (list == "store") {
+    for (std::size_t i = 1; i <= profile.store.size(); ++i) out.push_back(static_cast<int>(i));
+    return out;
+  }
+  for (const auto& l : kSlotLists)
+    if (l.name == list) {
+      for (int i = 1; i <= l.slots; ++i)
+        if (l.filled(profile, i)) out.push_back(i);
+      return out;
+    }
+  return std::nullopt;
+}
+
+namespace {
+
 // Addresses a vector may send to that no controller on the line answers: not
 // the profile's own, not a bus peer's (§1 multi-drop).
 bool on_the_line(const Profile& p, int address) {
@@ -412,6 +431,16 @@ const Function kFunctions[] = {
          return maybe(motion::move_target(a, c.args[1].number, c.integer(2), motion::name_of(axis)));
        });
      }},
+    {{"away_from", "axis, to, ms",
+      "a position toward the farther end of the range whose auto move to `to` lasts at least ms at fast speed, and "
+      "not much more"},
+     3,
+     [](const Call& c) {
+       if (auto e = c.numbers({1, 2})) return error(*e);
+       return with_read_axis(c, [&](motion::Axis axis, const AxisProfile& a) {
+         return maybe(motion::away_from(a, c.args[1].number, c.integer(2), motion::name_of(axis)));
+       });
+     }},
     {{"pace_ms", "", "the run's pace between commands (--pace), ms"}, 0,
      [](const Call& c) { return number(static_cast<double>(c.cx.pace.count())); }},
     {{"counts", "axis, deg", "the pulse count of a position: count_offset + deg x counts_per_degree (§3.16)"}, 2,
@@ -636,6 +665,39 @@ const Function kFunctions[] = {
          if (axis == motion::Axis::kPol) return error("locate_slack: argument 1 must be az or el");
          return number(locate::slack(c.cx.profile, axis));
        });
+     }},
+    {{"mode_exit", "'MODE', 'NAME'",
+      "the value of an exit condition NAME of the §3.17 exit list of MODE (stow_exit_conditions for 'STOW_MODE', ...), "
+      "under the profile's reading of the lost locate entry (E-28)"},
+     2,
+     [](const Call& c) {
+       if (c.args[0].is_number || c.args[1].is_number)
+         return error("mode_exit: arguments must be names in quotes: 'STOW_MODE', 'STOW_FINISHED_NORMALLY'");
+       const auto mode = enums::mode_names().value_of(c.args[0].text);
+       if (!mode) return error("mode_exit: " + c.args[0].text + " is not a mode of §3.17");
+       const auto* exits =
+           enums::exit_list_for_mode(*mode, enums::EnumReading{c.cx.profile.restore_lost_locate_exit});
+       if (!exits) return error("mode_exit: " + c.args[0].text + " has no exit list");
+       const auto v = exits->value_of(c.args[1].text);
+       if (!v) return error("mode_exit: " + c.args[1].text + " is not an exit of " + c.args[0].text);
+       return number(*v);
+     }},
+    {{"locate_waiting", "",
+      "the §3.17 locate_states value a LOCATE waits in for what the profile's navigation data lacks: "
+      "LOCATE_WAITING_FOR_LAT_LON or LOCATE_WAITING_FOR_HEADING (E-59, E-84); unavailable when it lacks nothing, "
+      "or only a magnetic variation, which a controller may compute itself"},
+     0,
+     [](const Call& c) {
+       const auto site = look::site_of(c.cx.profile.navigation, c.cx.profile.az_sensor, c.cx.profile.fluxgate_heading);
+       if (site.missing == look::Missing::kNothing)
+         return unavailable("navigation data a LOCATE waits for: the profile has the site, and the heading it needs");
+       if (site.missing == look::Missing::kMagvar)
+         return unavailable("navigation data a LOCATE surely waits for: the profile lacks only a magnetic variation, "
+                            "which a controller may compute itself (E-84)");
+       const auto* states = enums::state_list_for_mode(enums::Mode("LOCATE_MODE").value);
+       const auto v = states ? states->value_of(look::waiting_state(site.missing)) : std::nullopt;
+       if (!v) return error("locate_waiting: no such locate state");
+       return number(*v);
      }},
     {{"locate_exit", "'NAME'",
       "the value of a §3.17 locate_exit_conditions name, under the profile's reading of the lost entry "

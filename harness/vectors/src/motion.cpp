@@ -252,6 +252,16 @@ Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string
                             " can end in " + number(std::round(fastest_ms)) + " ms, before " + std::to_string(ms) + " ms"};
 }
 
+Maybe<double> away_from(const AxisProfile& a, double to, int ms, std::string_view axis_name) {
+  const double inset = a.tolerance_deg + kLimitMargin;  // clear of the limit switches, as a jog's start
+  const double travel = a.fast_dps * seconds(ms) * 1.1;
+  const bool up = a.max_deg - to >= to - a.min_deg;
+  const double from = up ? tenths_up(to + travel) : tenths_down(to - travel);
+  if (from >= a.min_deg + inset && from <= a.max_deg - inset) return {from, ""};
+  return {std::nullopt, range_text(a, axis_name) + " has no room for a move of " + std::to_string(ms) + " ms at " +
+                            speed_text(a, 'F') + " to " + number(to)};
+}
+
 std::chrono::milliseconds longest_move(const AxisProfile& a, double distance) {
   double ms = std::abs(distance) / a.slow_dps * 1000;
   if (a.accel_dps2) ms += 2 * a.fast_dps / *a.accel_dps2 * 1000;

@@ -22,8 +22,16 @@ std::int32_t ddmm(std::int32_t minutes) {
 
 bool takes_profile_record(std::uint8_t code) {
   switch (code) {
-    case 0x39: case 0x3A: case 0x3B: case 0x3C: case 0x43: case 0x44: case 0x45: case 0x46: return true;
+    case 0x35: case 0x39: case 0x3A: case 0x3B: case 0x3C: case 0x43: case 0x44: case 0x45: case 0x46: return true;
     default: return false;
+  }
+}
+
+long long max_record_index(std::uint8_t code) {
+  switch (code) {
+    case 0x35: return 50;
+    case 0x3B: case 0x3C: return 10;
+    default: return 20;
   }
 }
 
@@ -52,6 +60,10 @@ RecordRequest profile_write(const Profile& p, std::uint8_t code, std::uint32_t i
 
 RecordReply profile_read_reply(const Profile& p, std::uint8_t code, std::uint32_t index) {
   switch (code) {
+    case 0x35:  // the STORE list's entry `index` and the number of entries (§3.6)
+      if (index >= 1 && index <= p.store.size())
+        return {QueryNameReply{index, static_cast<std::uint32_t>(p.store.size()), p.store[index - 1].name}, {}};
+      return {std::nullopt, "STORE entry " + std::to_string(index) + " in the profile"};
     case 0x3A: return {satellite_reply(slot_of(p.presets, index)), {}};  // empty: 7Fh 7Fh (READING-NOTES 18)
     case 0x3C: return {tle_reply(slot_of(p.tles, index)), {}};
     case 0x44: return {signpost_reply(slot_of(p.signposts, index)), {}};

@@ -110,7 +110,8 @@ std::string peek_id(const YAML::Node& v) {
 Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, const GroupDefaults& g, std::string& id) {
   file.spend(at);
   id = peek_id(v);
-  MapReader r(v, at, {"id", "comment", "spec", "level", "flags", "tags", "requires", "needs", "setup", "steps", "teardown"});
+  MapReader r(v, at, {"id", "comment", "spec", "level", "flags", "tags", "requires", "needs", "setup", "each_slot", "steps",
+                        "teardown"});
   Vector vec;
   vec.where = file.loc(at.mark);
   require_keys(r, at, {"id"}, "a vector");
@@ -145,8 +146,17 @@ Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, cons
     auto own = read_steps(n, a, cx);
     vec.setup.insert(vec.setup.end(), own.begin(), own.end());
   });
-  r.read("steps", vec.steps, [&](const YAML::Node& n, const At& a) { return read_steps(n, a, cx); });
+  StepContext steps_cx = cx;  // $slot is the steps' own: the teardown runs once, after every slot
+  r.with("each_slot", [&](const YAML::Node& n, const At& a) {
+    vec.each_slot = scalar(n, a, "a stored list");
+    if (vec.each_slot != "presets" && vec.each_slot != "tles" && vec.each_slot != "signposts" && vec.each_slot != "store")
+      fail(a, quoted_clip(vec.each_slot) + " is not a stored list: " + std::string(kSlotListNames));
+    steps_cx.captures.insert("$slot");
+  });
+  r.read("steps", vec.steps, [&](const YAML::Node& n, const At& a) { return read_steps(n, a, steps_cx); });
   if (vec.steps.empty()) fail(r.at("steps"), "a vector needs at least one step");
+  cx.captures = steps_cx.captures;  // the teardown reads what the steps captured (the last slot's)
+  if (!vec.each_slot.empty()) cx.captures.erase("$slot");
   r.read("teardown", vec.teardown, [&](const YAML::Node& n, const At& a) { return read_steps(n, a, cx); });
   vec.teardown.insert(vec.teardown.end(), g.teardown.begin(), g.teardown.end());
   return vec;

@@ -300,7 +300,7 @@ std::string to_record(const YAML::Node& v, const At& at, const CommandInfo& comm
     return s;
   }
   if (has_placeholder(s)) check_expressions(s, at, cx);
-  else (void)to_integer_in(v, at, 1, kMaxRecordIndex);
+  else (void)to_integer_in(v, at, 1, max_record_index(command.code));
   return s;
 }
 
@@ -337,7 +337,7 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     if (e.kind != Expectation::Kind::kAck) fail(a, "from_profile is an ack reply's");
     if (r.has("bytes")) fail(a, "give bytes or from_profile, not both");
     const bool read = command && takes_profile_record(command->code) && command->forms.front().effects.changes_stored_data == false;
-    if (!read) fail(a, "from_profile checks the reply of a read of stored data: 3Ah, 3Ch, 44h or 45h");
+    if (!read) fail(a, "from_profile checks the reply of a read of stored data: 35h, 3Ah, 3Ch, 44h or 45h");
     e.from_profile = to_record(n, a, *command, cx);
   });
   keep_captures(e.fields, cx);

@@ -1118,6 +1118,25 @@ TEST(Faults, EveryFaultChangesTheWire) {
        locate_to(-750)},
       // The satellite on the far side of the earth: a range error, not a move.
       {Fault::kLocateMovesOutOfRange, fast_locating, locate_to(1050)},
+      // Issue 22, stops: a LOCATE or STOW stopped at once by 'X'; a LOCATE with no site.
+      {Fault::kLocateIgnoresStop, fast_locating, cat({locate_to(-750), wire(Jog{{'X', 'F', 0}}, '2')})},
+      {Fault::kLocateStopExitCompleted, fast_locating, cat({locate_to(-750), wire(Jog{{'X', 'F', 0}}, '2')}),
+       wire(ExtendedStatusPoll{}, '2')},
+      {Fault::kLocateWithoutSiteCompletes, [](Profile& p) { p.navigation.latitude_min.reset(); }, locate_to(-750),
+       wire(ExtendedStatusPoll{}, '2')},
+      {Fault::kStowIgnoresStop, [](Profile& p) { p.stow = true; }, cat({wire(Misc{'S', 'S'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')})},
+      {Fault::kStowStopExitFinished, [](Profile& p) { p.stow = true; },
+       cat({wire(Misc{'S', 'S'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')}), wire(ExtendedStatusPoll{}, '2')},
+      // Issue 22, stored records: slot 2 and STORE entry 2 sit between the first and the last.
+      {Fault::kSlotReadShiftedInMiddle,
+       [](Profile& p) {
+         p.presets = {PresetSatellite{1, {}, false}, PresetSatellite{2, {}, false}};
+         p.presets[0].data.name = "FIRST";
+         p.presets[1].data.name = "MIDDLE";
+       },
+       wire(ReadSatellite{{2}}, '2')},
+      {Fault::kStoreEntryShiftedInMiddle, [](Profile& p) { p.store = {{"ONE"}, {"TWO"}, {"THREE"}}; },
+       wire(QueryName{{2}}, '2')},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {

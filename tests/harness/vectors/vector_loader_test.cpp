@@ -641,6 +641,27 @@ TEST(vectors, StepsPollsAndWaits) {
                {"steps", 1, "3.2-x", "steps", "at least one step"});
 }
 
+// each_slot: the steps read $slot, the setup and teardown may not; the list
+// is one of the stored lists.
+TEST(vectors, EachSlotBindsSlotInTheStepsOnly) {
+  const std::string read = "      - send: {command: read_satellite, fields: {index: \"{$slot}\"}}\n"
+                           "        expect: {reply: ack, from_profile: \"{$slot}\"}\n";
+  const VectorFile f = load_ok(one_vector(read, "    each_slot: presets\n"));
+  ASSERT_EQ(f.vectors.size(), 1u);
+  EXPECT_EQ(f.vectors[0].each_slot, "presets");
+  EXPECT_EQ(load_ok(one_vector("      - send: {command: query_name, fields: {index: \"{$slot}\"}}\n"
+                               "        expect: {reply: ack, from_profile: \"{$slot}\"}\n",
+                               "    each_slot: store\n"))
+                .vectors.at(0)
+                .each_slot,
+            "store");
+  expect_error(one_vector(read, "    each_slot: slots\n"),
+               {"each_slot", 1, "3.2-x", "each_slot", "\"slots\" is not a stored list: presets, tles, signposts or store"});
+  expect_error(one_vector(read), {"index: \"{$slot}", 1, "3.2-x", "steps[0].send.fields.index", "$slot is not captured by an earlier step"});
+  expect_error(one_vector(read, "    each_slot: presets\n    setup:\n" + read),
+               {"index: \"{$slot}", 1, "3.2-x", "setup[0].send.fields.index", "$slot is not captured by an earlier step"});
+}
+
 TEST(vectors, YamlSyntaxAndDocuments) {
   LoadResult syntax = load_vector_text("paragraph: \"3.2\"\ntitle: [\n", "test.yaml");
   ASSERT_EQ(syntax.errors.size(), 1u);

@@ -64,7 +64,22 @@ namespace sabus::harness {
   X(kLocateNorthernLatitude, "locate-northern-latitude", "LOCATE takes a southern latitude as northern")          \
   X(kLocateEasternLongitude, "locate-eastern-longitude", "LOCATE takes a western site longitude as eastern")      \
   X(kLocateMovesOutOfRange, "locate-moves-out-of-range",                                                         \
-    "LOCATE to a satellite outside the axis ranges moves to the limits instead of a range error")
+    "LOCATE to a satellite outside the axis ranges moves to the limits instead of a range error")               \
+  X(kLocateIgnoresStop, "locate-ignores-stop",                                                                 \
+    "a LOCATE in motion goes on to its satellite after 33h 'X' or the Stop key, which are ACKed")                \
+  X(kLocateWithoutSiteCompletes, "locate-without-site-completes",                                               \
+    "a LOCATE lacking the site, heading or magnetic variation ends at once as completed instead of waiting")      \
+  X(kLocateStopExitCompleted, "locate-stop-exit-completed",                                                     \
+    "a LOCATE stopped before it arrives exits with LOCATE_FUNCTION_COMPLETED")                                  \
+  X(kStowIgnoresStop, "stow-ignores-stop",                                                                     \
+    "a STOW in motion goes on to its stow position after 33h 'X' or the Stop key, which are ACKed")              \
+  X(kStowStopExitFinished, "stow-stop-exit-finished",                                                           \
+    "a STOW stopped before it arrives exits with STOW_FINISHED_NORMALLY")                                        \
+  /* Stored records read back (§3.6, §3.11, §3.13, §3.21) */                                                      \
+  X(kSlotReadShiftedInMiddle, "slot-read-shifted-in-middle",                                                     \
+    "a read of a slot between the first and the last of its list (3Ah, 3Ch, 44h) answers the next slot's record") \
+  X(kStoreEntryShiftedInMiddle, "store-entry-shifted-in-middle",                                                 \
+    "35h answers an entry between the first and the last of the STORE list with the next entry's name")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,

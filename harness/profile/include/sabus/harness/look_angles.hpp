@@ -48,6 +48,9 @@ struct SiteOf {
 SiteOf site_of(const Navigation& nav, AzSensor sensor, char fluxgate_heading);
 // What a missing piece is, for skip reasons and notes.
 std::string describe(Missing m);
+// The §3.17 locate_states state a LOCATE waits in for it (ERRATA E-59,
+// E-84); "" for kNothing.
+std::string_view waiting_state(Missing m);
 
 // The azimuth position pointing to a true azimuth, in -180 (excluded) to 180.
 double mount_azimuth(const Site& s, double true_azimuth_deg);

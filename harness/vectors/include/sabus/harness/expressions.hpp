@@ -88,4 +88,11 @@ struct ExprFunction {
 };
 std::vector<ExprFunction> expression_functions();
 
+// The indexes of a stored list the profile fills, in order: "presets",
+// "tles", "signposts" (their slots, §3.10, §3.12, §3.20) or "store" (the
+// STORE list's entries 1..n, §3.6). nullopt for another name. A vector's
+// `each_slot` runs its steps once for each (vectors/README.md).
+std::optional<std::vector<int>> filled_slots(const Profile& profile, std::string_view list);
+inline constexpr std::string_view kSlotListNames = "presets, tles, signposts or store";
+
 }  // namespace sabus::harness

@@ -147,6 +147,11 @@ Maybe<double> jog_start(const AxisProfile& a, int sign, char speed, int ms, std:
 // A target for an auto move from `from` whose travel at fast speed lasts at
 // least `ms`: the farther end of the range, held 5% of the span inside it.
 Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string_view axis_name);
+// A position, toward the farther end of the range, whose auto move to `to`
+// lasts at least ms at fast speed and no more than that by much: `to` plus
+// the fast speed's travel in ms (and 10 % more), in tenths; unavailable when
+// the range has no room for it.
+Maybe<double> away_from(const AxisProfile& a, double to, int ms, std::string_view axis_name);
 
 // The longest an auto move of `distance` degrees can take: at slow speed
 // (a controller may approach at slow speed), with both ramps. At most

@@ -16,13 +16,14 @@
 namespace sabus::harness {
 
 // The commands `from_profile` applies to: writes 39h, 3Bh, 43h, 46h and
-// reads 3Ah, 3Ch, 44h, 45h. Indexed ones take a slot index; 46h and 45h the
-// word "navigation".
+// reads 35h, 3Ah, 3Ch, 44h, 45h. Indexed ones take a slot index (35h: an
+// entry of the STORE list); 46h and 45h the word "navigation".
 bool takes_profile_record(std::uint8_t command_code);
 bool record_is_indexed(std::uint8_t command_code);
-// The highest slot index `from_profile` may name: the last of the longest
-// lists, presets and signposts (01-20, §3.10, §3.20).
-inline constexpr long long kMaxRecordIndex = 20;
+// The highest index `from_profile` may name for a command: the STORE list's
+// 50 entries (35h, §3.6), the TLE list's 10 slots (3Bh, 3Ch, §3.12), the
+// preset and signpost lists' 20 (§3.10, §3.20).
+long long max_record_index(std::uint8_t command_code);
 
 struct RecordRequest {
   std::optional<Request> request;

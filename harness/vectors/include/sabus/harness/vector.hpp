@@ -174,6 +174,10 @@ struct Vector {
   // the file's, the group's and the vector's.
   std::vector<std::string> needs;
   std::vector<Step> setup;           // the group's, then the vector's
+  // "presets", "tles", "signposts" or "store": the steps run once for each
+  // slot of that list the profile fills, with its index as $slot (setup and
+  // teardown once); "" runs them once.
+  std::string each_slot;
   std::vector<Step> steps;
   std::vector<Step> teardown;
   SourceLocation where;
