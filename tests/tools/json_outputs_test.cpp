@@ -240,6 +240,37 @@ TEST_F(JsonOutputs, DecodeReadsACaptureLongerThanItsBuffersInPieces) {
             std::string::npos);
 }
 
+// A proxy log file is decoded a record at a time, after a first pass that
+// checks every line: a bad line near the end is an error naming it with
+// nothing printed, as for a log held whole; a good log is one document with
+// every frame in order and its session events.
+TEST_F(JsonOutputs, AProxyLogIsCheckedWholeThenDecodedRecordByRecord) {
+  std::string log =
+      "{\"schema\":\"sabus-proxy-log\",\"version\":1,\"start\":\"x\",\"mc\":\"m\",\"device\":\"serial /dev/ttyUSB0\",\"line\":\"8N1\"}\n";
+  const std::size_t polls = 3000;
+  for (std::size_t i = 1; i <= polls; ++i) {
+    log += "{\"type\":\"frame\",\"t_ms\":" + std::to_string(i) + ".5,\"wall\":\"w\",\"dir\":\"mc->dev\",\"hex\":\"02 32 31 03 02\","
+           "\"summary\":\"s\",\"seq\":" + std::to_string(i) + ",\"reply_to\":null}\n";
+    if (i == polls / 2) log += "{\"type\":\"event\",\"t_ms\":1.0,\"what\":\"client lost\",\"detail\":\"d\"}\n";
+  }
+  const Output good = sabus({"decode", write("good.jsonl", log), "--json"});
+  EXPECT_EQ(good.status, 0);
+  const auto j = parsed(good);
+  ASSERT_EQ(keys_of(j), kCaptureKeys);
+  EXPECT_EQ(j["device"], "serial /dev/ttyUSB0");
+  EXPECT_EQ(j["frames"], polls);
+  ASSERT_EQ(j["events"].size(), polls);
+  for (std::size_t i = 0; i < polls; ++i) ASSERT_EQ(j["events"][i]["seq"], i + 1);
+  EXPECT_EQ(j["session_events"], nlohmann::json::array({"client lost: d"}));
+
+  const std::string bad = write("bad.jsonl", log + "{\"type\":\"frame\",\"t_ms\":1.0}\n");
+  Process p({SABUS_BIN, "decode", bad});
+  EXPECT_EQ(p.read_all(60s), "") << "nothing printed before the bad line is found";
+  EXPECT_EQ(p.wait_exit_for(10s), 2);
+  const auto said = test::shell(std::string(SABUS_BIN) + " decode " + bad + " 2>&1 >/dev/null");
+  EXPECT_EQ(said.out, "sabus decode: " + bad + ": line " + std::to_string(polls + 3) + ": no \"dir\"\n");
+}
+
 // ---- sabus ports --json ------------------------------------------------------------
 
 TEST_F(JsonOutputs, PortsIsAJsonListOfPortsWithTheirKeys) {

@@ -235,6 +235,7 @@ std::unique_ptr<ByteFile> parse_hex_stream(const std::string& prefix, std::istre
 // read whole: its records are decoded once all of it is known to be one.
 struct CaptureInput {
   std::string text;
+  bool proxy_log_file = false;  // the file is a proxy log, read a record at a time
 };
 
 std::string read_all(std::istream& in) { return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}; }
@@ -287,6 +288,15 @@ std::unique_ptr<ByteFile> read_input(const DecodeOptions& o, std::string& error,
   if (first_text == '{') {
     in.clear();
     in.seekg(0);
+    std::string first_line;
+    for (int c; (c = in.peek()) != EOF && std::isspace(c);) in.get();
+    std::getline(in, first_line);
+    if (harness::is_proxy_log_header(first_line)) {
+      capture = CaptureInput{"", true};
+      return nullptr;
+    }
+    in.clear();
+    in.seekg(0);
     std::string text = read_all(in);
     if (harness::looks_like_capture(text)) {
       capture = CaptureInput{std::move(text)};
@@ -315,96 +325,6 @@ nlohmann::json fields_json(const FrameDescription& d) {
   nlohmann::json jf = nlohmann::json::array();
   for (const auto& f : d.fields) jf.push_back(field_json(f));
   return jf;
-}
-
-// A proxy log or a run JSON: every frame with its time and direction (and,
-// for a run, its vector). Frames of a run's transcript are framed again by
-// the receiver (a send may hold several, or none).
-int run_decode_capture(const DecodeOptions& o, const std::string& text) {
-  std::string error;
-  auto capture = harness::read_capture(text, error);
-  if (!capture) {
-    std::cerr << "sabus decode: " << (o.file.empty() ? std::string("stdin") : o.file) << ": " << error << "\n";
-    return kExitUsage;
-  }
-  bool all_valid = true;
-  std::size_t frames = 0, ignored = 0;
-  nlohmann::json jevents = nlohmann::json::array();
-  if (!o.json)
-    std::cout << fmt::format("{}{}\n", to_string(capture->source), capture->device.empty() ? "" : " of " + capture->device);
-  for (const auto& seg : capture->segments) {
-    if (!seg.id.empty() && !o.json) std::cout << fmt::format("vector {} (§{}, {}): {}\n", seg.id, seg.paragraph, seg.level, seg.outcome);
-    for (const auto& item : seg.items) {
-      const std::string when = item.wall.empty() ? fmt::format("{:10.3f} ms", item.t_ms)
-                                                 : fmt::format("{:10.3f} ms {}", item.t_ms, item.wall);
-      nlohmann::json base = {{"t_ms", item.t_ms}, {"wall", item.wall}, {"dir", std::string(to_string(item.dir))}};
-      if (!seg.id.empty()) base["vector"] = seg.id;
-      if (item.ignored) {
-        ++ignored;
-        all_valid = false;
-        if (o.json) {
-          base.update({{"type", "discard"}, {"hex", to_hex(item.chars)}, {"message", item.note}});
-          jevents.push_back(base);
-        } else {
-          std::cout << fmt::format("{} {} ignored: {}{}\n", when, to_string(item.dir), item.note,
-                                   item.chars.empty() ? "" : "\n  " + to_hex(item.chars));
-        }
-        continue;
-      }
-      ReceiverOptions ro = item.dir == harness::Direction::kToDevice ? ReceiverOptions::slave_any_address()
-                                                                     : ReceiverOptions::master();
-      ro.parity = Parity::kNone;  // both formats hold 7-bit characters
-      Receiver receiver(ro);
-      Collector events;
-      receiver.feed(item.chars, events);
-      receiver.finish(events);
-      for (const auto& e : events.events) {
-        nlohmann::json j = base;
-        if (e.is_frame) {
-          ++frames;
-          const FrameDescription d = describe_frame(e.bytes);
-          all_valid &= !d.error.has_value();
-          if (o.json) {
-            j.update({{"type", "frame"}, {"hex", to_hex(e.bytes)}, {"summary", d.summary}, {"fields", fields_json(d)},
-                      {"error", d.error ? nlohmann::json(d.error->message()) : nlohmann::json()}});
-            if (item.seq) j["seq"] = *item.seq;
-            if (item.reply_to) j["reply_to"] = *item.reply_to;
-            jevents.push_back(j);
-          } else {
-            std::cout << fmt::format("{} {} {}\n", when, to_string(item.dir), d.summary);
-            for (const auto& f : d.fields) std::cout << "  " << f.line() << "\n";
-            if (d.error) std::cout << "  error: " << d.error->message() << "\n";
-          }
-        } else {
-          ++ignored;
-          all_valid = false;
-          const std::string hex = to_hex(ByteView(item.chars).subspan(e.offset, e.length));
-          if (o.json) {
-            j.update({{"type", "discard"}, {"hex", hex}, {"reason", std::string(to_string(e.discard->reason))},
-                      {"message", e.discard->message()}});
-            jevents.push_back(j);
-          } else {
-            std::cout << fmt::format("{} {} ignored: {}\n  {}\n", when, to_string(item.dir), e.discard->message(), hex);
-          }
-        }
-      }
-    }
-  }
-  for (const auto& ev : capture->events)
-    if (!o.json) std::cout << "event: " << ev << "\n";
-  if (o.json) {
-    nlohmann::json out = {{"source", std::string(to_string(capture->source))},
-                          {"device", capture->device},
-                          {"frames", frames},
-                          {"ignored_runs", ignored},
-                          {"valid", all_valid},
-                          {"session_events", capture->events},
-                          {"events", jevents}};
-    std::cout << json_text(out);
-  } else {
-    std::cout << fmt::format("{} frame(s), {} ignored run(s)\n", frames, ignored);
-  }
-  return all_valid && frames > 0 ? kExitOk : kExitFailed;
 }
 
 // What the decoder writes, buffered: the standard output is written a
@@ -483,6 +403,22 @@ std::string event_json(const nlohmann::json& event) {
     if (c == '\n') out += "    ";
   }
   return out;
+}
+
+// A value of the document at some depth: json's dump, each line after the
+// first indented by `indent` (what json_text gives it inside the whole).
+std::string indented(const nlohmann::json& value, std::string_view indent) {
+  const std::string text = value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string out;
+  for (char c : text) {
+    out += c;
+    if (c == '\n') out += indent;
+  }
+  return out;
+}
+
+std::string json_string(const std::string& s) {
+  return nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 // Counts of a pass of the receiver that only counts (the JSON gives them
@@ -577,11 +513,158 @@ void feed_all(const ByteFile& in, const ReceiverOptions& ro, ReceiverSink& sink,
   receiver.finish(sink);
 }
 
+// A proxy log or a run JSON: every frame with its time and direction (and,
+// for a run, its vector), each item written as it comes. Frames of a run's
+// transcript are framed again by the receiver (a send may hold several, or
+// none).
+struct CapturePrinter {
+  CapturePrinter(Output& out, bool json) : out(out), json(json) {}
+  Output& out;
+  bool json;
+  bool all_valid = true;
+  std::size_t frames = 0, ignored = 0, events = 0;
+
+  // The document's start, before its first item.
+  void start(const harness::Capture& c) {
+    if (json) out << "{\n  \"device\": " << json_string(c.device) << ",\n  \"events\": [";
+    else out << fmt::format("{}{}\n", to_string(c.source), c.device.empty() ? "" : " of " + c.device);
+  }
+  void segment(const harness::CapturedSegment& seg) {
+    if (!seg.id.empty() && !json) out << fmt::format("vector {} (§{}, {}): {}\n", seg.id, seg.paragraph, seg.level, seg.outcome);
+  }
+  void event(const nlohmann::json& j) {
+    out << (events++ == 0 ? "\n" : ",\n") << event_json(j);
+  }
+  void item(const harness::CapturedItem& item, const std::string& vector_id) {
+    const std::string when = item.wall.empty() ? fmt::format("{:10.3f} ms", item.t_ms)
+                                               : fmt::format("{:10.3f} ms {}", item.t_ms, item.wall);
+    nlohmann::json base = {{"t_ms", item.t_ms}, {"wall", item.wall}, {"dir", std::string(to_string(item.dir))}};
+    if (!vector_id.empty()) base["vector"] = vector_id;
+    if (item.ignored) {
+      ++ignored;
+      all_valid = false;
+      if (json) {
+        base.update({{"type", "discard"}, {"hex", to_hex(item.chars)}, {"message", item.note}});
+        event(base);
+      } else {
+        out << fmt::format("{} {} ignored: {}{}\n", when, to_string(item.dir), item.note,
+                           item.chars.empty() ? "" : "\n  " + to_hex(item.chars));
+      }
+      return;
+    }
+    ReceiverOptions ro = item.dir == harness::Direction::kToDevice ? ReceiverOptions::slave_any_address()
+                                                                   : ReceiverOptions::master();
+    ro.parity = Parity::kNone;  // both formats hold 7-bit characters
+    Receiver receiver(ro);
+    Collector collected;
+    receiver.feed(item.chars, collected);
+    receiver.finish(collected);
+    for (const auto& e : collected.events) {
+      nlohmann::json j = base;
+      if (e.is_frame) {
+        ++frames;
+        const FrameDescription d = describe_frame(e.bytes);
+        all_valid &= !d.error.has_value();
+        if (json) {
+          j.update({{"type", "frame"}, {"hex", to_hex(e.bytes)}, {"summary", d.summary}, {"fields", fields_json(d)},
+                    {"error", d.error ? nlohmann::json(d.error->message()) : nlohmann::json()}});
+          if (item.seq) j["seq"] = *item.seq;
+          if (item.reply_to) j["reply_to"] = *item.reply_to;
+          event(j);
+        } else {
+          out << fmt::format("{} {} {}\n", when, to_string(item.dir), d.summary);
+          for (const auto& f : d.fields) out << "  " << f.line() << "\n";
+          if (d.error) out << "  error: " << d.error->message() << "\n";
+        }
+      } else {
+        ++ignored;
+        all_valid = false;
+        const std::string hex = to_hex(ByteView(item.chars).subspan(e.offset, e.length));
+        if (json) {
+          j.update({{"type", "discard"}, {"hex", hex}, {"reason", std::string(to_string(e.discard->reason))},
+                    {"message", e.discard->message()}});
+          event(j);
+        } else {
+          out << fmt::format("{} {} ignored: {}\n  {}\n", when, to_string(item.dir), e.discard->message(), hex);
+        }
+      }
+    }
+  }
+  // The document's end, after its last item; the exit status.
+  int finish(const harness::Capture& c) {
+    if (json) {
+      out << (events == 0 ? "]" : "\n  ]") << ",\n  \"frames\": " << std::to_string(frames)
+          << ",\n  \"ignored_runs\": " << std::to_string(ignored) << ",\n  \"session_events\": "
+          << indented(nlohmann::json(c.events), "  ") << ",\n  \"source\": " << json_string(std::string(to_string(c.source)))
+          << ",\n  \"valid\": " << (all_valid ? "true" : "false") << "\n}\n";
+    } else {
+      for (const auto& ev : c.events) out << "event: " << ev << "\n";
+      out << fmt::format("{} frame(s), {} ignored run(s)\n", frames, ignored);
+    }
+    out.flush();
+    std::cout.flush();
+    return all_valid && frames > 0 ? kExitOk : kExitFailed;
+  }
+};
+
+// A proxy log or a run JSON held whole (stdin, a run JSON).
+int run_decode_capture(const DecodeOptions& o, const std::string& text) {
+  std::string error;
+  auto capture = harness::read_capture(text, error);
+  if (!capture) {
+    std::cerr << "sabus decode: " << (o.file.empty() ? std::string("stdin") : o.file) << ": " << error << "\n";
+    return kExitUsage;
+  }
+  Output out;
+  CapturePrinter printer(out, o.json);
+  printer.start(*capture);
+  for (const auto& seg : capture->segments) {
+    printer.segment(seg);
+    for (const auto& item : seg.items) printer.item(item, seg.id);
+  }
+  return printer.finish(*capture);
+}
+
+// A proxy log file, which a day at the bench makes hundreds of MB long: read
+// a record at a time, twice: once to check every line (a bad one is an error
+// before anything is printed, as for a log held whole), once to decode.
+int run_decode_proxy_log(const DecodeOptions& o) {
+  std::string error;
+  harness::Capture capture;
+  {
+    std::ifstream in(o.file, std::ios::binary);
+    if (!in || !harness::read_proxy_log(in, capture, [](harness::CapturedItem&&) {}, error)) {
+      std::cerr << "sabus decode: " << o.file << ": " << (in ? error : "cannot read it again") << "\n";
+      return kExitUsage;
+    }
+  }
+  capture = {};
+  Output out;
+  CapturePrinter printer(out, o.json);
+  std::ifstream in(o.file, std::ios::binary);
+  // The device side comes from the header: read it first, then start.
+  bool started = false;
+  auto start = [&] {
+    if (!started) printer.start(capture);
+    started = true;
+  };
+  if (!harness::read_proxy_log(in, capture, [&](harness::CapturedItem&& item) {
+        start();
+        printer.item(item, "");
+      }, error)) {
+    out.flush();
+    std::cerr << "sabus decode: " << o.file << ": " << error << " (the file changed while it was read)\n";
+    return kExitUsage;
+  }
+  start();
+  return printer.finish(capture);
+}
+
 int run_decode(const DecodeOptions& o) {
   std::string error;
   std::optional<CaptureInput> capture;
   auto input = read_input(o, error, capture);
-  if (capture) return run_decode_capture(o, capture->text);
+  if (capture) return capture->proxy_log_file ? run_decode_proxy_log(o) : run_decode_capture(o, capture->text);
   if (!input) {
     std::cerr << "sabus decode: " << error << "\n";
     return kExitUsage;
