@@ -1,6 +1,7 @@
 #include "sabus/protocol/receiver.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cstring>
 
 #include "sabus/protocol/catalog.hpp"
@@ -38,33 +39,65 @@ std::string_view description(DiscardReason r) {
   return "?";
 }
 
+namespace {
+
+// The message is built by appends into one string: `sabus decode` writes one
+// for every discarded run, and random input has one every two bytes.
+void append_number(std::string& m, std::uint64_t v) {
+  char digits[24];
+  const auto r = std::to_chars(digits, digits + sizeof digits, v);
+  m.append(digits, r.ptr);
+}
+
+}  // namespace
+
 std::string Discard::message() const {
-  std::string m = "bytes " + std::to_string(offset) + "-" + std::to_string(offset + length - 1) + " (" +
-                  std::to_string(length) + "): " + std::string(to_string(reason));
+  std::string m;
+  m.reserve(96);
+  m += "bytes ";
+  append_number(m, offset);
+  m += '-';
+  append_number(m, offset + length - 1);
+  m += " (";
+  append_number(m, length);
+  m += "): ";
+  m += to_string(reason);
+  const auto byte_at = [&](std::string_view before) {
+    m += before;
+    m += describe_byte(byte);
+    m += " at offset ";
+    append_number(m, at);
+  };
   switch (reason) {
     case DiscardReason::kBadLrc:
-      m += ": check byte " + describe_byte(byte) + " at offset " + std::to_string(at) + ", expected " +
-           describe_byte(expected);
+      byte_at(": check byte ");
+      m += ", expected ";
+      m += describe_byte(expected);
       break;
     case DiscardReason::kOtherAddress:
-      m += ": address " + describe_byte(byte) + " at offset " + std::to_string(at);
+      byte_at(": address ");
       if (!is_valid_address(byte)) m += " (outside 0x31-0x6f)";
       break;
     case DiscardReason::kControlCharacter:
     case DiscardReason::kParityError:
     case DiscardReason::kNotAscii:
     case DiscardReason::kOverrun:
-      m += ": " + describe_byte(byte) + " at offset " + std::to_string(at);
+      byte_at(": ");
       break;
     case DiscardReason::kUnknownCommand:
-      m += ": command " + describe_byte(byte);
+      m += ": command ";
+      m += describe_byte(byte);
       break;
     case DiscardReason::kWrongLength:
-      m += ": command " + describe_byte(byte) + " in a frame of " + std::to_string(length) + " bytes";
+      m += ": command ";
+      m += describe_byte(byte);
+      m += " in a frame of ";
+      append_number(m, length);
+      m += " bytes";
       break;
     case DiscardReason::kIncomplete:
       if (at == offset + length - 1 && byte == ETX) m += ": ETX where the command byte belongs";
-      else if (at == offset + length && byte != 0) m += ": new start " + describe_byte(byte) + " at offset " + std::to_string(at);
+      else if (at == offset + length && byte != 0) byte_at(": new start ");
       else if (at == offset + length) m += ": the input ended";
       break;
     case DiscardReason::kUnknown:

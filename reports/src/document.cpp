@@ -2,6 +2,7 @@
 // (reports/SCHEMA.md).
 #include "sabus/reports/document.hpp"
 
+#include <algorithm>
 #include <ctime>
 #include <fstream>
 #include <limits>
@@ -41,7 +42,24 @@ Summary RunDocument::counts() const {
   return s;
 }
 
+bool VectorRecord::lost_device() const {
+  return outcome == "fail" && std::any_of(failures.begin(), failures.end(), [](const std::string& f) {
+           return std::string_view(f).substr(0, harness::kDeviceLostFailure.size()) == harness::kDeviceLostFailure;
+         });
+}
+
+bool RunDocument::stopped() const {
+  return status == "aborted" && summary && summary->exit_code == harness::kStoppedExitCode;
+}
+
+std::string RunDocument::unfinished_reason() const {
+  if (status == "complete") return "";
+  if (status == "aborted") return abort_reason.empty() ? "aborted" : abort_reason;
+  return "the run has no end record: it was killed, or it is still running";
+}
+
 std::string RunDocument::verdict() const {
+  if (stopped()) return "STOPPED";
   if (status == "aborted") return "ABORTED";
   if (status != "complete") return "INCOMPLETE";
   if (!summary) return "FAIL";

@@ -109,7 +109,7 @@ th,td{{border:1px solid #bbb;padding:2px 6px;text-align:left;vertical-align:top;
 th{{background:#eee}}
 .pass{{background:{}}}.fail{{background:{}}}.known{{background:{}}}.skip{{background:{}}}.none{{color:#999}}
 .verdict{{padding:2px 10px;border-radius:4px}}
-.PASS{{background:#2e8b2e;color:#fff}}.FAIL,.ABORTED,.INCOMPLETE{{background:#b22222;color:#fff}}
+.PASS{{background:#2e8b2e;color:#fff}}.FAIL,.STOPPED,.ABORTED,.INCOMPLETE{{background:#b22222;color:#fff}}
 code,.hex,pre{{font-family:ui-monospace,monospace;font-size:12px}}
 pre{{margin:.3em 0;white-space:pre-wrap}}
 details{{margin:2px 0;border:1px solid #ddd;padding:2px 6px}}
@@ -437,7 +437,9 @@ std::string html_report(const RunDocument& d) {
                      e(d.identity.ok ? "controller " + d.identity.controller_type + ", firmware " + d.identity.firmware_version
                                      : "identity unknown"),
                      d.profile.empty() ? "" : " · profile " + e(d.profile));
-  if (!d.abort_reason.empty()) out += "<p class=\"fail\">Aborted: " + e(d.abort_reason) + "</p>\n";
+  if (!d.abort_reason.empty())
+    out += std::string("<p class=\"fail\">") + (d.stopped() ? "Stopped before its end: " : "Aborted: ") + e(d.abort_reason) +
+           "</p>\n";
   const bool failures = c.failed + c.unexpected > 0;
   out += std::string("<nav><a href=\"#device\">Device</a><a href=\"#run-options\">Options</a><a href=\"#per-paragraph\">Paragraphs</a>") +
          (failures ? "<a href=\"#failures\">Failures</a>" : "") +

@@ -4,7 +4,10 @@
 // testsuite carries the run's properties: suite version, firmware, profile,
 // seed. A failure carries the decoded difference and the hex transcript; a
 // skipped vector its reason (a known failure is reported as skipped, with the
-// known issue).
+// known issue). What stopped the bench is an error, not a failure: a run that
+// did not reach its end has a testsuite "run" whose one testcase holds an
+// error naming why (SIGINT, SIGTERM, a lost device, killed), and the vector
+// during which the device was lost holds an error too.
 #include <fmt/format.h>
 
 #include <cctype>
@@ -73,6 +76,25 @@ std::optional<double> wall_sum(const std::vector<const VectorRecord*>& vectors) 
   return sum;
 }
 
+// The type of the error of an unfinished run: "stopped" by the bench (exit
+// code 4), "aborted" otherwise (the device stopped answering, no backup), or
+// "killed" (no end record).
+std::string_view unfinished_type(const RunDocument& doc) {
+  return doc.stopped() ? "stopped" : doc.status == "aborted" ? "aborted" : "killed";
+}
+
+// The testsuite of the run itself, for a run that did not reach its end.
+std::string unfinished_run_suite(const RunDocument& doc, const std::string& shared) {
+  std::string out = fmt::format(
+      "  <testsuite name=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\" timestamp=\"{}\" package=\"sabus\">\n",
+      kJunitRunSuite, xml_escape(doc.started_at));
+  out += "    <properties>\n" + shared + "    </properties>\n";
+  out += fmt::format("    <testcase name=\"{}\" classname=\"{}\">\n", kJunitRunTestcase, kJunitRunClassname);
+  out += fmt::format("      <error message=\"{}\" type=\"{}\">{} of {} planned vectors finished</error>\n",
+                     xml_escape(doc.unfinished_reason()), unfinished_type(doc), doc.vectors.size(), doc.planned);
+  return out + "    </testcase>\n  </testsuite>\n";
+}
+
 }  // namespace
 
 std::string junit_xml(const RunDocument& doc) {
@@ -82,23 +104,29 @@ std::string junit_xml(const RunDocument& doc) {
     by_paragraph[v.paragraph].push_back(&v);
     all.push_back(&v);
   }
-  const Summary c = doc.counts();
+  const bool unfinished = doc.status != "complete";
   const std::string shared = run_properties(doc);
+  std::size_t all_failures = 0, all_errors = unfinished;
+  for (const auto* v : all) {
+    all_errors += v->lost_device();
+    all_failures += v->is_failure() && !v->lost_device();
+  }
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out += fmt::format("<testsuites name=\"sabus\" tests=\"{}\" failures=\"{}\" errors=\"0\"{}>\n", doc.vectors.size(),
-                     c.failed + c.unexpected, time_attribute(wall_sum(all)));
+  out += fmt::format("<testsuites name=\"sabus\" tests=\"{}\" failures=\"{}\" errors=\"{}\"{}>\n",
+                     doc.vectors.size() + unfinished, all_failures, all_errors, time_attribute(wall_sum(all)));
   for (const auto& [paragraph, vectors] : by_paragraph) {
-    std::size_t failures = 0, skipped = 0;
+    std::size_t failures = 0, errors = 0, skipped = 0;
     double transport_ms = 0;
     for (const auto* v : vectors) {
-      failures += v->is_failure();
+      errors += v->lost_device();
+      failures += v->is_failure() && !v->lost_device();
       skipped += v->is_skip();
       transport_ms += v->duration_ms;
     }
     out += fmt::format(
-        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\"{} "
+        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"{}\" skipped=\"{}\"{} "
         "timestamp=\"{}\" package=\"sabus\">\n",
-        xml_escape("§" + paragraph), vectors.size(), failures, skipped, time_attribute(wall_sum(vectors)),
+        xml_escape("§" + paragraph), vectors.size(), failures, errors, skipped, time_attribute(wall_sum(vectors)),
         xml_escape(doc.started_at));
     out += "    <properties>\n" + shared + property("transport_time", seconds(transport_ms), "      ") + "    </properties>\n";
     for (const auto* v : vectors) {
@@ -107,7 +135,12 @@ std::string junit_xml(const RunDocument& doc) {
       // The transport clock (virtual in-process), beside the wall-clock time.
       out += "      <properties>\n" + property("level", v->level, "        ") +
              property("transport_time", seconds(v->duration_ms), "        ") + "      </properties>\n";
-      if (v->is_failure()) {
+      if (v->lost_device()) {
+        std::string text;
+        for (const auto& f : v->failures) text += f + "\n";
+        out += fmt::format("      <error message=\"{}\" type=\"lost device\">{}</error>\n", xml_escape(v->difference()),
+                           xml_escape(text + "\n" + transcript_text(*v)));
+      } else if (v->is_failure()) {
         std::string text;
         for (const auto& f : v->failures) text += f + "\n";
         if (v->outcome == "unexpected pass") text += "unexpected pass: listed as a known issue: " + v->known_issue + "\n";
@@ -125,6 +158,7 @@ std::string junit_xml(const RunDocument& doc) {
     }
     out += "  </testsuite>\n";
   }
+  if (unfinished) out += unfinished_run_suite(doc, shared);
   out += "</testsuites>\n";
   return out;
 }

@@ -26,7 +26,8 @@ std::string markdown_summary(const RunDocument& d) {
   out += summary_line(c) + "\n\n";
   if (c.exit_code == harness::kNothingRanExitCode)
     out += "**Nothing ran**: " + md(nothing_ran_reason(c)) + ". A run that checked nothing is not a success.\n\n";
-  if (!d.abort_reason.empty()) out += "Aborted: " + md(d.abort_reason) + "\n\n";
+  if (!d.abort_reason.empty())
+    out += (d.stopped() ? "Stopped before its end: " : "Aborted: ") + md(d.abort_reason) + "\n\n";
   out += "| Level | passed | failed | known | skipped |\n|---|---:|---:|---:|---:|\n";
   std::map<std::string, Tally> levels;
   for (const auto& v : d.vectors) levels[v.level].add(v);

@@ -139,6 +139,57 @@ TEST(JunitProblems, FindInvalidXmlAndMissingTestcases) {
   EXPECT_TRUE(says(checks::junit_problems(good, other), "testcase 3.2-pass is a pass, the vector a fail"));
 }
 
+// A run stopped before its end (exit 4) is one error in JUnit naming why,
+// and the vector during which the device was lost an error, not a failure;
+// the check refuses the JUnit of a stopped run without that error, with
+// another reason, or with the lost vector as a failure, and a complete run
+// with such an error.
+TEST(JunitProblems, AStoppedRunIsAnErrorNamingWhyNotAFailure) {
+  RunDocument stopped = finished_record().doc;
+  VectorRecord lost = vector("3.3-lost", "fail");
+  lost.failures = {std::string(harness::kDeviceLostFailure) + "tcp 127.0.0.1:9: the connection was closed"};
+  stopped.vectors.push_back(lost);
+  stopped.status = "aborted";
+  stopped.abort_reason = "device lost during 3.3-lost: tcp 127.0.0.1:9: the connection was closed";
+  stopped.summary = Summary{1, 2, 1, 1, 1, harness::kStoppedExitCode, {{"motion", 1}}};
+  ASSERT_TRUE(stopped.stopped());
+  EXPECT_EQ(stopped.verdict(), "STOPPED");
+  const std::string xml = junit_xml(stopped);
+  ASSERT_EQ(joined(checks::junit_problems(xml, stopped)), "");
+  EXPECT_NE(xml.find("<testsuites name=\"sabus\" tests=\"7\" failures=\"2\" errors=\"2\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("type=\"stopped\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("type=\"lost device\""), std::string::npos) << xml;
+
+  RunDocument by_signal = stopped;
+  by_signal.abort_reason = "stopped by SIGTERM";
+  EXPECT_TRUE(says(checks::junit_problems(xml, by_signal), "not why the run ended: \"stopped by SIGTERM\""));
+  RunDocument complete = finished_record().doc;
+  complete.vectors.push_back(lost);
+  EXPECT_TRUE(says(checks::junit_problems(xml, complete), "the run is complete, but has a testcase of class sabus.run"));
+  std::string no_error = xml;
+  no_error.erase(no_error.find("  <testsuite name=\"run\""), no_error.find("</testsuites>") - no_error.find("  <testsuite name=\"run\""));
+  EXPECT_TRUE(says(checks::junit_problems(no_error, stopped), "has 0 error(s) in 0 testcase(s) of class sabus.run"));
+  std::string lost_as_failure = xml;
+  const auto at = lost_as_failure.find("<error message=\"device lost: ");
+  lost_as_failure.replace(at, 6, "<failure");
+  lost_as_failure.replace(lost_as_failure.find("</error>", at), 8, "</failure>");
+  EXPECT_TRUE(says(checks::junit_problems(lost_as_failure, stopped), "testcase 3.3-lost is a fail, the vector a error"));
+
+  // A killed run (no end record) and one aborted by the device's silence
+  // are unfinished too: an error each, of their own type.
+  RunDocument killed = finished_record().doc;
+  killed.status = "running";
+  killed.summary.reset();
+  EXPECT_EQ(joined(checks::junit_problems(junit_xml(killed), killed)), "");
+  EXPECT_NE(junit_xml(killed).find("type=\"killed\""), std::string::npos);
+  RunDocument silent = finished_record().doc;
+  silent.status = "aborted";
+  silent.abort_reason = "no answer to three liveness probes";
+  EXPECT_EQ(joined(checks::junit_problems(junit_xml(silent), silent)), "");
+  EXPECT_NE(junit_xml(silent).find("type=\"aborted\""), std::string::npos);
+  EXPECT_EQ(silent.verdict(), "ABORTED");
+}
+
 TEST(HtmlProblems, FindMarkupFromAStringAndTextNotShown) {
   const MemoryRecord r = finished_record();
   const std::string good = html_report(r.doc);

@@ -64,8 +64,10 @@ class Process {
     return s;
   }
   // SIGINT, then the exit status (-1 if it did not end within 5 s).
-  int interrupt() {
-    kill(pid_, SIGINT);
+  int interrupt() { return stop_with(SIGINT); }
+  // `signal`, then the exit status (-1 if it did not end within 5 s).
+  int stop_with(int signal) {
+    kill(pid_, signal);
     for (int i = 0; i < 500; ++i) {
       int status = 0;
       if (waitpid(pid_, &status, WNOHANG) == pid_) {

@@ -43,6 +43,11 @@ nlohmann::json parsed(const Output& o) {
   return j;
 }
 
+std::string fmt_hex(unsigned char b) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  return {kDigits[b >> 4], kDigits[b & 0xF]};
+}
+
 std::set<std::string> keys_of(const nlohmann::json& j) {
   std::set<std::string> out;
   if (j.is_object())
@@ -175,6 +180,95 @@ TEST_F(JsonOutputs, DecodeOfHostileCapturesIsJson) {
     EXPECT_GE(j["ignored_runs"].get<int>(), 2) << o.out;
     for (const auto& e : j["events"]) EXPECT_TRUE(e["type"] == "frame" || e["type"] == "discard") << e;
   }
+}
+
+// A capture longer than decode's buffers (it reads 64 KiB at a time and
+// keeps two such chunks): a run of zeros longer than both, letters (each
+// with a parity error: runs of a few bytes), a status poll with its parity
+// bits across a chunk boundary, letters, zeros. The document
+// reads back with every byte in one event, in order, each discard's hex the
+// bytes it covers, the frame whole; hex text on stdin (parsed into a
+// temporary file) gives the same document, and the text form the same frame.
+TEST_F(JsonOutputs, DecodeReadsACaptureLongerThanItsBuffersInPieces) {
+  const std::size_t before = 4 * 65536 - 2, after = 100000;
+  const std::string poll("\x82\xb2\xb1\x03\x82", 5);  // 02 32 31 03 02, even parity in bit 7
+  std::string letters;
+  for (std::size_t i = 0; i < 60000; ++i) letters += static_cast<char>('A' + i % 26);
+  const std::string raw = std::string(before - letters.size(), '\0') + letters + poll + letters +
+                          std::string(after - letters.size(), '\0');
+  const std::string file = write("long.bin", raw);
+  const Output o = sabus({"decode", file, "--json"});
+  EXPECT_EQ(o.status, 1) << "discarded runs";
+  const auto j = parsed(o);
+  ASSERT_EQ(keys_of(j), kBytesKeys);
+  EXPECT_EQ(j["bytes"], raw.size());
+  EXPECT_EQ(j["frames"], 1);
+  EXPECT_EQ(j["parity"], "even");
+  EXPECT_EQ(j["discarded_bytes"], before + after);
+  std::uint64_t next = 0, frames = 0, discards = 0;
+  for (const auto& e : j["events"]) {
+    ASSERT_EQ(e["offset"], next) << e.dump().substr(0, 200);
+    const auto length = e["length"].get<std::uint64_t>();
+    const auto hex = e["hex"].get<std::string>();
+    if (e["type"] == "frame") {
+      ++frames;
+      EXPECT_EQ(e["offset"], before);
+      EXPECT_EQ(hex, "02 32 31 03 02");
+      EXPECT_EQ(e["summary"].get<std::string>().find("error"), std::string::npos) << e["summary"];
+    } else {
+      ++discards;
+      std::string want;
+      for (std::uint64_t i = 0; i < length; ++i)
+        want += (i ? " " : "") + fmt_hex(static_cast<unsigned char>(raw[static_cast<std::size_t>(next + i)]));
+      ASSERT_EQ(hex, want) << "the hex of every byte of the run at " << next;
+    }
+    next += length;
+  }
+  EXPECT_EQ(next, raw.size());
+  EXPECT_EQ(frames, 1u);
+  EXPECT_EQ(discards, j["discarded_runs"].get<std::uint64_t>());
+
+  std::string hex_text = "# the same capture as hex text\n";
+  for (std::size_t i = 0; i < raw.size(); ++i) hex_text += fmt_hex(static_cast<unsigned char>(raw[i])) + (i % 32 == 31 ? "\n" : " ");
+  const std::string hex_file = write("long.hex", hex_text);
+  const auto from_stdin = test::shell(std::string(SABUS_BIN) + " decode --json --hex - < " + hex_file);
+  EXPECT_EQ(from_stdin.out, o.out) << "hex text on stdin decodes to the same document";
+  const auto text = test::shell(std::string(SABUS_BIN) + " decode " + file);
+  EXPECT_NE(text.out.find("\nframe at offset 262142 (5 bytes): "), std::string::npos);
+  EXPECT_NE(text.out.find(std::to_string(raw.size()) + " bytes: 1 frame(s), " + std::to_string(discards) + " discarded run(s) (" +
+                          std::to_string(before + after) + " bytes)"),
+            std::string::npos);
+}
+
+// A proxy log file is decoded a record at a time, after a first pass that
+// checks every line: a bad line near the end is an error naming it with
+// nothing printed, as for a log held whole; a good log is one document with
+// every frame in order and its session events.
+TEST_F(JsonOutputs, AProxyLogIsCheckedWholeThenDecodedRecordByRecord) {
+  std::string log =
+      "{\"schema\":\"sabus-proxy-log\",\"version\":1,\"start\":\"x\",\"mc\":\"m\",\"device\":\"serial /dev/ttyUSB0\",\"line\":\"8N1\"}\n";
+  const std::size_t polls = 3000;
+  for (std::size_t i = 1; i <= polls; ++i) {
+    log += "{\"type\":\"frame\",\"t_ms\":" + std::to_string(i) + ".5,\"wall\":\"w\",\"dir\":\"mc->dev\",\"hex\":\"02 32 31 03 02\","
+           "\"summary\":\"s\",\"seq\":" + std::to_string(i) + ",\"reply_to\":null}\n";
+    if (i == polls / 2) log += "{\"type\":\"event\",\"t_ms\":1.0,\"what\":\"client lost\",\"detail\":\"d\"}\n";
+  }
+  const Output good = sabus({"decode", write("good.jsonl", log), "--json"});
+  EXPECT_EQ(good.status, 0);
+  const auto j = parsed(good);
+  ASSERT_EQ(keys_of(j), kCaptureKeys);
+  EXPECT_EQ(j["device"], "serial /dev/ttyUSB0");
+  EXPECT_EQ(j["frames"], polls);
+  ASSERT_EQ(j["events"].size(), polls);
+  for (std::size_t i = 0; i < polls; ++i) ASSERT_EQ(j["events"][i]["seq"], i + 1);
+  EXPECT_EQ(j["session_events"], nlohmann::json::array({"client lost: d"}));
+
+  const std::string bad = write("bad.jsonl", log + "{\"type\":\"frame\",\"t_ms\":1.0}\n");
+  Process p({SABUS_BIN, "decode", bad});
+  EXPECT_EQ(p.read_all(60s), "") << "nothing printed before the bad line is found";
+  EXPECT_EQ(p.wait_exit_for(10s), 2);
+  const auto said = test::shell(std::string(SABUS_BIN) + " decode " + bad + " 2>&1 >/dev/null");
+  EXPECT_EQ(said.out, "sabus decode: " + bad + ": line " + std::to_string(polls + 3) + ": no \"dir\"\n");
 }
 
 // ---- sabus ports --json ------------------------------------------------------------

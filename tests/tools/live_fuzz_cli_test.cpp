@@ -75,6 +75,23 @@ TEST(Fuzz, NoFaultNoFindingAndUsageErrors) {
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--port", "/nonexistent/tty"}).wait_exit(), 3);
 }
 
+// A session with no limit ends by a signal: SIGINT and SIGTERM stop it with
+// the code of a stopped run (4), its totals printed, no finding written.
+TEST(Fuzz, ASignalStopsAnEndlessSessionWithItsOwnExitCode) {
+  using namespace std::chrono_literals;
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-stopped-" + std::to_string(getpid()));
+    Process fuzz({SABUS_BIN, "fuzz", "--sim", "--seed", "2", "--findings", dir.string()});
+    ASSERT_EQ(fuzz.line(5s).rfind("sabus fuzz: in-process reference controller", 0), 0u);
+    std::this_thread::sleep_for(300ms);  // some writes
+    EXPECT_EQ(fuzz.stop_with(signal), 4) << signal;
+    const std::string out = fuzz.read_all(5s);
+    EXPECT_NE(out.find(signal == SIGINT ? "ABORTED: stopped by SIGINT\n" : "ABORTED: stopped by SIGTERM\n"), std::string::npos) << out;
+    EXPECT_NE(out.find("\n0 finding(s)\n"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(dir));
+  }
+}
+
 // ---- the finding files: new files, each written or said not to be -----------------------
 
 // `sabus fuzz --sim --fault ignores-parity --seed 1` in `dir` (its one

@@ -12,6 +12,9 @@
 #include <thread>
 
 #include "process.hpp"
+#include "sabus/harness/runner.hpp"
+#include "sabus/reports/checks.hpp"
+#include "sabus/reports/document.hpp"
 #include "temp_dir.hpp"
 
 namespace sabus::reports {
@@ -158,7 +161,30 @@ class InterruptedRun : public ReportsCli {
   }
   std::unique_ptr<Process> start_run() {
     return std::make_unique<Process>(
-        std::vector<std::string>{kSabus, "run", "--tcp", "127.0.0.1:" + port_, "--pace", "150", "--json", path("run.json")});
+        std::vector<std::string>{kSabus, "run", "--tcp", "127.0.0.1:" + port_, "--pace", "150", "--json", path("run.json"),
+                                 "--junit", path("junit.xml"), "--md", path("summary.md")});
+  }
+  // The files of a run the bench stopped, read back: the run JSON through its
+  // schema, the JUnit through reports/junit.xsd and the checks (one error
+  // naming `why`, of type "stopped"; no vector a failure but the one the
+  // device was lost in, an error), the summary's verdict STOPPED.
+  void expect_stopped_files(const std::string& why) {
+    const std::string json = slurp(path("run.json"));
+    EXPECT_EQ(checks::run_json_problems(json), checks::Problems{});
+    std::string error;
+    const auto doc = read_run_file(path("run.json"), error);
+    ASSERT_TRUE(doc) << error;
+    EXPECT_EQ(doc->status, "aborted");
+    EXPECT_EQ(doc->abort_reason.rfind(why, 0), 0u) << doc->abort_reason;
+    ASSERT_TRUE(doc->summary);
+    EXPECT_EQ(doc->summary->exit_code, harness::kStoppedExitCode);
+    const std::string junit = slurp(path("junit.xml"));
+    EXPECT_EQ(checks::junit_problems(junit, *doc), checks::Problems{});
+    EXPECT_NE(junit.find("<error message=\"" + why), std::string::npos) << "the error names why";
+    EXPECT_NE(junit.find("type=\"stopped\""), std::string::npos);
+    EXPECT_EQ(junit.find("<failure"), std::string::npos) << "a stopped run is not a failure of the firmware";
+    EXPECT_EQ(checks::markdown_problems(slurp(path("summary.md")), *doc), checks::Problems{});
+    EXPECT_EQ(slurp(path("summary.md")).rfind("### SAbus conformance: **STOPPED**", 0), 0u);
   }
   // Waits until the journal holds `n` vectors; the JSON meanwhile says the
   // run goes on and names the journal. Returns the vectors planned.
@@ -186,10 +212,11 @@ TEST_F(InterruptedRun, SigintHalfWayLeavesAnAbortedJsonWithEveryFinishedVector) 
   const std::size_t seen = journaled_vectors(dir_ / "run.journal.jsonl");
   ASSERT_GE(seen, 2u) << "the run did not get going";
   ASSERT_GT(planned, seen + 2) << "the run is too fast to interrupt half-way";
-  EXPECT_EQ(run->interrupt(), 1);
+  EXPECT_EQ(run->interrupt(), harness::kStoppedExitCode) << "stopped, not failed (1)";
   const auto doc = nlohmann::json::parse(slurp(path("run.json")));
   EXPECT_EQ(doc["status"], "aborted");
   EXPECT_EQ(doc["abort_reason"], "stopped by SIGINT");
+  expect_stopped_files("stopped by SIGINT");
   EXPECT_GE(doc["vectors"].size(), seen) << "every vector finished before the SIGINT is kept";
   EXPECT_LT(doc["vectors"].size(), planned);
   for (const auto& v : doc["vectors"]) {
@@ -199,6 +226,33 @@ TEST_F(InterruptedRun, SigintHalfWayLeavesAnAbortedJsonWithEveryFinishedVector) 
   EXPECT_EQ(doc["summary"]["passed"].get<std::size_t>(), doc["vectors"].size());
   EXPECT_FALSE(doc.contains("journal"));
   EXPECT_FALSE(fs::exists(dir_ / "run.journal.jsonl"));
+}
+
+// SIGTERM (what a CI job's timeout or `kill` sends) stops the run as SIGINT
+// does, and the reports name it.
+TEST_F(InterruptedRun, SigtermStopsTheRunWithItsOwnExitCodeAndAJunitError) {
+  auto run = start_run();
+  const std::size_t planned = wait_for(2);
+  ASSERT_GT(planned, journaled_vectors(dir_ / "run.journal.jsonl") + 2) << "the run is too fast to stop half-way";
+  EXPECT_EQ(run->stop_with(SIGTERM), harness::kStoppedExitCode);
+  expect_stopped_files("stopped by SIGTERM");
+  const auto doc = nlohmann::json::parse(slurp(path("run.json")));
+  EXPECT_GE(doc["vectors"].size(), 2u);
+  EXPECT_LT(doc["vectors"].size(), planned);
+}
+
+// The device goes away half-way (the simulator killed: its socket closes):
+// the run stops with the code of a stopped run, not 1 or 3, its reports
+// saved; the vector it was in is an error in JUnit.
+TEST_F(InterruptedRun, ALostDeviceStopsTheRunWithItsOwnExitCode) {
+  auto run = start_run();
+  const std::size_t planned = wait_for(2);
+  ASSERT_GT(planned, journaled_vectors(dir_ / "run.journal.jsonl") + 2);
+  sim_.reset();  // SIGKILL
+  EXPECT_EQ(run->wait_exit_for(30s), harness::kStoppedExitCode);
+  expect_stopped_files("device lost during ");
+  const std::string junit = slurp(path("junit.xml"));
+  EXPECT_NE(junit.find("type=\"lost device\""), std::string::npos) << "the vector it was lost in is an error";
 }
 
 // A run killed outright (SIGKILL: no end record, no final JSON) leaves its

@@ -20,6 +20,11 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitUnreachable = 3;  // the device could not be reached
+// Stopped before its end by the bench, not the firmware: SIGINT, SIGTERM or a
+// lost device, with the results so far saved. 4 is the first free code;
+// pytest's 2 (interrupted) is the usage error here, and 128+signal would say
+// "killed" and has no number for a lost device.
+inline constexpr int kExitStopped = 4;
 // Nothing was checked: no vector selected, or every selected vector skipped.
 // pytest's "no tests ran" is 5 too, so a CI set up for either reads it the same.
 inline constexpr int kExitNothingRan = 5;

@@ -30,8 +30,9 @@ using namespace sabus::harness;
 using namespace sabus::harness::live_fuzz;
 namespace fs = std::filesystem;
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_fuzz_sigint(int) { g_stop = true; }
+// The signal that stopped the session (0: none).
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_fuzz_stop_signal(int signal) { g_stop_signal = signal; }
 
 struct FuzzCliOptions {
   DeviceOptions device;
@@ -172,7 +173,8 @@ int run_fuzz(const FuzzCliOptions& o) {
     std::cerr << "sabus fuzz: the device is lost: " << e.what() << "\n";
     return 3;
   }
-  std::signal(SIGINT, on_fuzz_sigint);
+  std::signal(SIGINT, on_fuzz_stop_signal);
+  std::signal(SIGTERM, on_fuzz_stop_signal);
 
   std::vector<Finding> findings;
   std::vector<std::string> written;
@@ -180,6 +182,7 @@ int run_fuzz(const FuzzCliOptions& o) {
   std::vector<FuzzFrame> history;
   constexpr std::size_t kHistory = 512;
   std::string aborted;
+  bool stopped = false;  // by a signal or a lost device, before a limit ended the session
   std::size_t frames = 0;
   const FuzzFrame status_probe{encode_frame({FrameKind::kCommand, profile.address, 0x31, {}}), {}, "status poll after it"};
 
@@ -210,7 +213,7 @@ int run_fuzz(const FuzzCliOptions& o) {
     record(*first);
   }
   try {
-    while (!g_stop && (o.max_frames == 0 || frames < o.max_frames) && (o.max_time <= 0 || elapsed() < o.max_time) &&
+    while (g_stop_signal == 0 && (o.max_frames == 0 || frames < o.max_frames) && (o.max_time <= 0 || elapsed() < o.max_time) &&
            findings.size() < o.max_findings) {
       FuzzFrame f = generator.next();
       // A frame the device must ignore is followed by a status poll in the
@@ -243,12 +246,17 @@ int run_fuzz(const FuzzCliOptions& o) {
     }
   } catch (const TransportLost& e) {
     aborted = std::string("the device is lost: ") + e.what();
+    stopped = true;
   }
-  if (g_stop) aborted = "stopped by SIGINT";
+  if (g_stop_signal != 0) {
+    aborted = g_stop_signal == SIGTERM ? "stopped by SIGTERM" : "stopped by SIGINT";
+    stopped = true;
+  }
   progress.reset();  // its last line cleared before the totals
 
   print_totals(session, transport, elapsed(), seed, pty, aborted, findings, written);
-  return findings.empty() ? kExitOk : kExitFailed;
+  // A finding is the firmware's, whatever stopped the session after it.
+  return !findings.empty() ? kExitFailed : stopped ? kExitStopped : kExitOk;
 }
 
 }  // namespace

@@ -26,8 +26,6 @@ namespace {
 
 using namespace sabus::harness;
 
-constexpr int kExitUnreachable = 3;
-
 std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) { g_stop = true; }
 
@@ -214,7 +212,7 @@ int forward(Line& device_line, PtyLine* pty, TcpListener* listener, ProxyLogger&
     } catch (const LineError& e) {
       log.event("device lost", e.what());
       std::cerr << "sabus proxy: device lost: " << e.what() << "\n";
-      status = kExitUnreachable;
+      status = kExitStopped;
       break;
     }
     if (mc && fds[1].revents != 0) {
@@ -238,7 +236,7 @@ int forward(Line& device_line, PtyLine* pty, TcpListener* listener, ProxyLogger&
         } catch (const LineError& e) {
           log.event("device lost", e.what());
           std::cerr << "sabus proxy: device lost: " << e.what() << "\n";
-          status = kExitUnreachable;
+          status = kExitStopped;
           break;
         }
       }

@@ -33,8 +33,19 @@ namespace {
 using namespace sabus::harness;
 namespace fs = std::filesystem;
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_sigint(int) { g_stop = true; }
+// The signal that asked the run to stop (0: none): the runner stops after
+// the current step, the reports say which signal, and the exit status is
+// kExitStopped.
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_run_stop_signal(int signal) { g_stop_signal = signal; }
+std::string_view stop_signal() {
+  switch (g_stop_signal.load()) {
+    case 0: return "";
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+  }
+  return "a signal";
+}
 
 struct RunCliOptions {
   DeviceOptions device;
@@ -217,7 +228,7 @@ void set_run_options(RunOptions& ro, const RunCliOptions& o, Level level, const 
   ro.seed = o.seed;
   // §4: no more than one status request a second, and wait for ACK/NAK.
   ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
-  ro.stop = [] { return g_stop.load(); };
+  ro.stop = stop_signal;
   ro.keep_transcripts = false;  // the run document and its journal have them
   // The stored-data backup (taken before the first destructive vector) is
   // for a device that outlives the run: the in-process controller is gone
@@ -316,7 +327,7 @@ int finish_console(Console& console, const RunResult& run, const reports::RunDoc
     if (!l.alive) console.line(fmt::format("LIVENESS {}: {}", l.when, l.detail));
   if (!run.backup.file.empty() && !quiet()) console.line("stored data backed up to " + run.backup.file);
   for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
-  if (run.aborted) console.line("ABORTED: " + run.abort_reason);
+  if (run.aborted) console.line((run.stopped_by.empty() ? "ABORTED: " : "STOPPED: ") + run.abort_reason);
   console.line(reports::summary_line(*doc.summary));
   const int status = run.exit_code();
   if (status == kExitNothingRan)
@@ -382,7 +393,8 @@ int run_run(RunCliOptions o) {
     console.vector_done(doc.vectors.back());
     last_result = std::chrono::steady_clock::now();  // writing this one is not the next one's time
   };
-  std::signal(SIGINT, on_sigint);
+  std::signal(SIGINT, on_run_stop_signal);
+  std::signal(SIGTERM, on_run_stop_signal);
 
   Runner runner(transport, device.profile, ro);
   last_result = std::chrono::steady_clock::now();
@@ -394,14 +406,18 @@ int run_run(RunCliOptions o) {
 }
 
 static_assert(kExitNothingRan == harness::kNothingRanExitCode);
+static_assert(kExitStopped == harness::kStoppedExitCode);
 
 constexpr const char* kRunExitStatus = R"(Exit status:
   0  every must-level vector that ran passed (with --strict every should-level one too), and at least one ran
   1  a must-level vector failed (with --strict a should-level one too), a listed known issue passed, a
-     liveness check failed, or the run was stopped (SIGINT, a lost device)
+     liveness check failed, or the device stopped answering during the run
   2  usage: a bad option or value, a profile, vector or known-issues file that does not load, an unknown id
      in --known-issues, a report path that cannot be written
   3  the device could not be reached: the port or socket does not open, or nothing answers
+  4  the run was stopped before its end by SIGINT, SIGTERM or a lost device (the port or socket went away):
+     the reports hold every vector finished before it, the JSON is marked aborted and the JUnit has an error
+     naming why; failures before the stop do not change the code: the run has no verdict
   5  nothing ran: no vector matches the selection, or every selected vector was skipped (the summary says
      why, by cause); a run that checked nothing is not a success, and 5 is pytest's code for it too
 )";

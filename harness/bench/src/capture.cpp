@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <sstream>
 
 #include "sabus/protocol/codec.hpp"
@@ -143,11 +144,10 @@ std::string schema_of(const nlohmann::json& j) {
   return it != j.end() && it->is_string() ? it->get<std::string>() : "";
 }
 
-Capture read_proxy_log(const std::string& text) {
-  Capture c;
+// A proxy log from `in`, a record a line: the header's device side and the
+// events into `c`, each frame and discard to `on_item` as it is read.
+void read_proxy_log(std::istream& in, Capture& c, const std::function<void(CapturedItem&&)>& on_item) {
   c.source = Capture::Source::kProxyLog;
-  c.segments.emplace_back();
-  std::istringstream in(text);
   std::size_t n = 0;
   bool header = false;
   for (std::string line; std::getline(in, line);) {
@@ -186,9 +186,16 @@ Capture read_proxy_log(const std::string& text) {
       item.ignored = true;
       item.note = need_string(j, "message", where);
     }
-    c.segments.front().items.push_back(std::move(item));
+    on_item(std::move(item));
   }
   if (!header) throw BadInput{"line 1: empty log"};
+}
+
+Capture read_proxy_log(const std::string& text) {
+  Capture c;
+  c.segments.emplace_back();
+  std::istringstream in(text);
+  read_proxy_log(in, c, [&](CapturedItem&& item) { c.segments.front().items.push_back(std::move(item)); });
   return c;
 }
 
@@ -236,6 +243,23 @@ bool looks_like_capture(const std::string& text) {
   if (schema_of(head) == kProxyLogSchema) return true;
   nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
   return schema_of(doc) == "sabus-run";
+}
+
+bool is_proxy_log_header(const std::string& first_line) {
+  return schema_of(nlohmann::json::parse(first_line, nullptr, false)) == kProxyLogSchema;
+}
+
+bool read_proxy_log(std::istream& in, Capture& capture, const std::function<void(CapturedItem&&)>& on_item,
+                    std::string& error) {
+  try {
+    read_proxy_log(in, capture, on_item);
+    return true;
+  } catch (const BadInput& e) {
+    error = e.message;
+  } catch (const nlohmann::json::exception& e) {
+    error = e.what();
+  }
+  return false;
 }
 
 std::optional<Capture> read_capture(const std::string& text, std::string& error) {

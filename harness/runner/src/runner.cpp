@@ -48,6 +48,7 @@ bool VectorResult::counts_as_failure(bool strict) const {
 
 int RunResult::exit_code() const {
   if (!liveness.empty() && !liveness.front().alive) return liveness.front().heard ? 1 : 3;
+  if (!stopped_by.empty()) return kStoppedExitCode;
   if (aborted) return 1;
   for (const auto& v : vectors)
     if (v.counts_as_failure(strict)) return 1;
@@ -238,9 +239,10 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
     r.failures = attempt(s, v, r.transcript);
     if (!r.failures.empty() && s.options.repeat > 0) repeat_failing(s, v, s.options.repeat, r);
   } catch (const TransportLost& e) {
-    r.failures.push_back(std::string("device lost: ") + e.what());
+    r.failures.push_back(std::string(kDeviceLostFailure) + e.what());
     result.aborted = true;
     result.abort_reason = std::string("device lost during ") + v.id + ": " + e.what();
+    result.stopped_by = "lost device";
   }
   r.duration_ms = std::chrono::duration<double, std::milli>(s.transport.now() - t0).count();
   set_verdict(r, s.options);
@@ -301,8 +303,9 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
 
   int dead_probes = 0;
   for (const Vector& v : run_order(vectors)) {
-    if (options_.stop && options_.stop()) {
-      abort_run(result, "stopped by SIGINT");
+    if (const std::string_view signal = options_.stop ? options_.stop() : ""; !signal.empty()) {
+      abort_run(result, "stopped by " + std::string(signal));
+      result.stopped_by = signal;
       break;
     }
     if (!is_selected(options_, v.id)) continue;  // select: not part of this run at all
@@ -318,6 +321,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
           result.backup = detail::take_backup(s, error);
         } catch (const TransportLost& e) {
           abort_run(result, std::string("device lost while backing up stored data: ") + e.what());
+          result.stopped_by = "lost device";
           break;
         }
         // The file is what is left when the run (or the machine) dies before
@@ -349,7 +353,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
       result.restore_notes.push_back(std::string("stored data not restored, the device is lost: ") + e.what());
     }
   }
-  if (!result.aborted || result.abort_reason == "stopped by SIGINT") result.liveness.push_back(s.liveness("after the last vector"));
+  if (!result.aborted || (!result.stopped_by.empty() && result.stopped_by != "lost device")) result.liveness.push_back(s.liveness("after the last vector"));
   result.measured_turnaround = s.turnaround.max();
   result.bytes_sent = s.bytes_sent;
   result.bytes_received = s.bytes_received;

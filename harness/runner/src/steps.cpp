@@ -313,7 +313,7 @@ std::optional<std::string> Session::run_poll(const Step& s) {
       stopped_polls = 0;
     }
     if (transport.now() - start >= timeout) return "poll timed out after " + std::to_string(timeout.count()) + " ms: " + *unmet;
-    if (options.stop && options.stop()) return "stopped";
+    if (options.stop && !options.stop().empty()) return "stopped";
     transport.pause(s.interval);
   }
 }

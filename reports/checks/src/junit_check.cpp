@@ -8,9 +8,11 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "embedded_schemas.hpp"
 #include "sabus/reports/checks.hpp"
+#include "sabus/reports/writers.hpp"
 
 namespace sabus::reports::checks {
 namespace {
@@ -57,20 +59,50 @@ bool named(xmlNode* node, const char* name) {
   return node->type == XML_ELEMENT_NODE && xmlStrcmp(node->name, reinterpret_cast<const xmlChar*>(name)) == 0;
 }
 
-// What each testcase says of its vector: "fail", "skip" or "pass".
-std::map<std::string, std::string> testcases(xmlNode* root, Problems& problems) {
-  std::map<std::string, std::string> out;
+// A text as an XML parser gives back an attribute holding it: line ends
+// normalized to LF (XML 1.0 §2.11), then each LF and tab a space (§3.3.3).
+std::string as_attribute(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') continue;  // CR LF: one line end
+    out += c == '\r' || c == '\n' || c == '\t' ? ' ' : c;
+  }
+  return out;
+}
+
+struct Testcases {
+  // What each vector's testcase says of it: "fail", "error", "skip" or "pass".
+  std::map<std::string, std::string> vectors;
+  // The error messages of the run's own testcase (kJunitRunClassname): one
+  // for a run that did not reach its end, none otherwise.
+  std::vector<std::string> run_errors;
+  int run_testcases = 0;
+};
+
+Testcases testcases(xmlNode* root, Problems& problems) {
+  Testcases out;
   for (xmlNode* suite = root->children; suite; suite = suite->next) {
     if (!named(suite, "testsuite")) continue;
     for (xmlNode* test = suite->children; test; test = test->next) {
       if (!named(test, "testcase")) continue;
       std::string verdict = "pass";
+      std::vector<std::string> errors;
       for (xmlNode* c = test->children; c; c = c->next) {
         if (named(c, "failure")) verdict = "fail";
         if (named(c, "skipped")) verdict = "skip";
+        if (named(c, "error")) {
+          verdict = "error";
+          errors.push_back(attribute(c, "message"));
+        }
+      }
+      if (attribute(test, "classname") == kJunitRunClassname) {
+        ++out.run_testcases;
+        out.run_errors.insert(out.run_errors.end(), errors.begin(), errors.end());
+        continue;
       }
       const std::string name = attribute(test, "name");
-      if (!out.emplace(name, verdict).second) problems.push_back("JUnit: testcase \"" + name + "\" twice");
+      if (!out.vectors.emplace(name, verdict).second) problems.push_back("JUnit: testcase \"" + name + "\" twice");
     }
   }
   return out;
@@ -95,12 +127,25 @@ Problems junit_problems(std::string_view xml, const RunDocument& doc) {
   if (!problems.empty()) return problems;
 
   // Every vector a testcase, with its verdict.
-  const auto cases = testcases(xmlDocGetRootElement(parsed.get()), problems);
+  const Testcases all = testcases(xmlDocGetRootElement(parsed.get()), problems);
+  const auto& cases = all.vectors;
   if (cases.size() != doc.vectors.size())
     problems.push_back("JUnit: " + std::to_string(cases.size()) + " testcases for " + std::to_string(doc.vectors.size()) +
                        " vectors");
+  // A run that did not reach its end is one error naming why, never a
+  // failure of a vector; a complete run has no such testcase.
+  const std::string unfinished = doc.unfinished_reason();
+  if (unfinished.empty() && all.run_testcases > 0)
+    problems.push_back("JUnit: the run is complete, but has a testcase of class " + std::string(kJunitRunClassname));
+  if (!unfinished.empty() && (all.run_testcases != 1 || all.run_errors.size() != 1))
+    problems.push_back("JUnit: the run is " + doc.status + " (" + unfinished + "), but has " +
+                       std::to_string(all.run_errors.size()) + " error(s) in " + std::to_string(all.run_testcases) +
+                       " testcase(s) of class " + std::string(kJunitRunClassname) + ", not one");
+  else if (!unfinished.empty() && all.run_errors.front() != as_attribute(shown(unfinished)))
+    problems.push_back("JUnit: the run's error says \"" + all.run_errors.front() + "\", not why the run ended: \"" +
+                       as_attribute(shown(unfinished)) + "\"");
   for (const auto& v : doc.vectors) {
-    const std::string want = v.is_failure() ? "fail" : v.is_skip() ? "skip" : "pass";
+    const std::string want = v.lost_device() ? "error" : v.is_failure() ? "fail" : v.is_skip() ? "skip" : "pass";
     const auto it = cases.find(shown(v.id));
     if (it == cases.end()) problems.push_back("JUnit: no testcase for " + v.id);
     else if (it->second != want) problems.push_back("JUnit: testcase " + v.id + " is a " + it->second + ", the vector a " + want);

@@ -190,6 +190,31 @@ TEST(Runner, PassFailSkipAndLiveness) {
   EXPECT_FALSE(r.vectors[0].transcript.empty());
 }
 
+// A signal stops the run after the vector it came during: the run is
+// aborted, says which signal, and exits 4 whatever failed before it (the run
+// has no verdict); a run that is not stopped exits 1 on the same failure.
+TEST(Runner, ASignalStopsTheRunWithItsOwnExitCode) {
+  const auto wrong = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);
+  const auto status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  const std::vector<Vector> vectors = {vector_with("a-wrong", {wrong}), vector_with("b-status", {status})};
+  for (const std::string_view signal : {"SIGINT", "SIGTERM"}) {
+    RunOptions o;
+    std::size_t results = 0;
+    o.on_result = [&](const VectorResult&) { ++results; };
+    o.stop = [&]() -> std::string_view { return results > 0 ? signal : ""; };
+    const RunResult r = run_in_process(vectors, {}, o);
+    ASSERT_EQ(r.vectors.size(), 1u) << signal;
+    EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
+    EXPECT_TRUE(r.aborted);
+    EXPECT_EQ(r.stopped_by, signal);
+    EXPECT_EQ(r.abort_reason, "stopped by " + std::string(signal));
+    EXPECT_EQ(r.exit_code(), kStoppedExitCode) << signal;
+  }
+  const RunResult not_stopped = run_in_process(vectors);
+  EXPECT_TRUE(not_stopped.stopped_by.empty());
+  EXPECT_EQ(not_stopped.exit_code(), 1);
+}
+
 // Each frame of a transcript carries its description as the runner made it
 // when it sent or received the frame: the reports show those fields.
 TEST(Runner, TranscriptFramesCarryTheirFieldsAsDescribed) {

@@ -53,6 +53,9 @@ struct VectorRecord {
 
   bool is_failure() const { return outcome == "fail" || outcome == "unexpected pass"; }
   bool is_skip() const { return outcome == "skip" || outcome == "known failure"; }
+  // A failure that is the bench's: the device was lost while the vector ran
+  // (harness::kDeviceLostFailure). JUnit shows it as an error.
+  bool lost_device() const;
   // A step failed (fail, known failure): the reports show its frames field by field.
   bool has_failed_steps() const { return outcome == "fail" || outcome == "known failure"; }
   // The decoded difference in one line: the first failure, or why an
@@ -104,8 +107,14 @@ struct RunDocument {
 
   // Counts from the vectors (the summary may be absent in an aborted run).
   Summary counts() const;
+  // Stopped by the bench before its end: SIGINT, SIGTERM or a lost device
+  // (exit code 4, harness::kStoppedExitCode).
+  bool stopped() const;
+  // Why the run did not reach its end, as the reports say it: the abort
+  // reason, or that a run with no end record was killed; "" for a complete run.
+  std::string unfinished_reason() const;
   // "PASS", "FAIL", "NOTHING RAN" (exit code 5: every vector skipped, or
-  // none selected), or "ABORTED" / "INCOMPLETE".
+  // none selected), or "STOPPED" (exit code 4) / "ABORTED" / "INCOMPLETE".
   std::string verdict() const;
 };
 

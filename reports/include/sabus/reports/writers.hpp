@@ -56,8 +56,14 @@ std::string clock_text(std::chrono::milliseconds d);
 
 // JUnit XML as Jenkins and GitLab read it (reports/junit.xsd): one testsuite
 // per spec paragraph, one testcase per vector; times from the wall clock,
-// the run's firmware, profile, seed and suite version as properties.
+// the run's firmware, profile, seed and suite version as properties. A run
+// that did not reach its end (RunDocument::unfinished_reason) adds the
+// testsuite kJunitRunSuite, whose one testcase holds an <error> naming why;
+// the vector during which the device was lost is an <error>, not a failure.
 std::string junit_xml(const RunDocument& doc);
+inline constexpr std::string_view kJunitRunSuite = "run";
+inline constexpr std::string_view kJunitRunTestcase = "the run reached its end";
+inline constexpr std::string_view kJunitRunClassname = "sabus.run";
 // One self-contained HTML page: nothing from the network, one inline script
 // (the filter; the page's Content-Security-Policy allows it by its hash and
 // nothing else); every string from the device or the vectors is escaped.

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <istream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,5 +85,14 @@ bool looks_like_capture(const std::string& text);
 // t_ms, dir, hex, note are used). On bad input returns nullopt and sets
 // `error` to "line N: reason" (proxy log) or "vectors[i].transcript[j]: reason".
 std::optional<Capture> read_capture(const std::string& text, std::string& error);
+// Whether a capture's first line is a proxy log's header.
+bool is_proxy_log_header(const std::string& first_line);
+// A proxy log read a record at a time, for a log too large to hold: the
+// header's device side and the events go into `capture` (its segments stay
+// empty), each frame and discard to `on_item` as it is read. On bad input
+// returns false with `error` as read_capture sets it (the items before the
+// bad line have been handed over).
+bool read_proxy_log(std::istream& in, Capture& capture, const std::function<void(CapturedItem&&)>& on_item,
+                    std::string& error);
 
 }  // namespace sabus::harness

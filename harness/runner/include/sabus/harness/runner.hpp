@@ -109,7 +109,9 @@ struct RunOptions {
   std::uint64_t seed = 0;
   std::chrono::milliseconds pace{0};          // at least this long between commands (§4); 0: none
   std::chrono::milliseconds turnaround_allowance{50};
-  std::function<bool()> stop;                 // SIGINT: stop after the current step
+  // The signal that asks the run to stop after the current step ("SIGINT",
+  // "SIGTERM"); "" to go on.
+  std::function<std::string_view()> stop;
   std::function<void(const VectorResult&)> on_result;  // progress and incremental reports
   // false: RunResult::vectors keep no transcripts (on_result has had them), so
   // a run of thousands of vectors does not hold every frame it exchanged.
@@ -140,12 +142,25 @@ struct StoredDataBackup {
 
 // RunResult::exit_code when no vector ran.
 inline constexpr int kNothingRanExitCode = 5;
+// RunResult::exit_code when the run was stopped before its end by the bench,
+// not by the firmware: a signal or a lost device. 4 is the first code free
+// here (1 failed, 2 usage, 3 unreachable); pytest's 2 for an interrupted
+// session is this project's usage error, and 128+signal (130, 143) would be
+// read as "killed" and has no number for a lost device.
+inline constexpr int kStoppedExitCode = 4;
+// How the failure of the vector that was running when the device was lost
+// begins: the reports show that vector as an error of the bench, not a
+// failure of the firmware.
+inline constexpr std::string_view kDeviceLostFailure = "device lost: ";
 
 struct RunResult {
   std::vector<VectorResult> vectors;
   std::vector<LivenessResult> liveness;
   bool aborted = false;
   std::string abort_reason;
+  // Why the bench stopped the run ("SIGINT", "SIGTERM", "lost device"); ""
+  // when it ran to its end or the device's answers ended it.
+  std::string stopped_by;
   std::chrono::microseconds measured_turnaround{0};
   // Traffic of the whole run, liveness checks included: for line-efficiency figures.
   std::size_t bytes_sent = 0, bytes_received = 0;
@@ -157,7 +172,8 @@ struct RunResult {
   std::map<SkipCause, std::size_t> skipped_by_cause;
   // 0: every must-level vector that ran passed; 1: otherwise (a liveness
   // check failed on a device that sends bytes, too); 3: the device could not
-  // be reached (nothing came back to the first liveness check); 5: no vector
+  // be reached (nothing came back to the first liveness check); 4: stopped
+  // by a signal or a lost device (stopped_by), whatever ran before; 5: no vector
   // ran (every one was skipped, or none was given): a run that checked
   // nothing is not a success (pytest's "no tests ran" is 5 too).
   bool strict = false;  // RunOptions::strict: should-level failures fail the run too
