@@ -258,7 +258,7 @@ void Rfc2217Line::negotiate(milliseconds timeout) {
   auto rt = settings_answer.value_or(first_answer.value_or(Clock::duration{0}));
   if (first_answer) rt = std::min(rt, *first_answer);
   round_trip_ = std::chrono::duration_cast<std::chrono::microseconds>(rt);
-  say(fmt::format("negotiated BINARY, SUPPRESS-GO-AHEAD, COM-PORT-OPTION; {} baud {}; round trip {:.1f} ms", baud_,
+  say(fmt::format("negotiated BINARY, SUPPRESS-GO-AHEAD, COM-PORT-OPTION; {} baud {}; round trip {:.2f} ms", baud_,
                   to_string(format_), round_trip_.count() / 1000.0),
       false);
 }
@@ -279,7 +279,7 @@ std::size_t Rfc2217Line::read(std::span<std::uint8_t> buf, milliseconds timeout)
 void Rfc2217Line::write(ByteView bytes) { tcp_->write(telnet::escaped(bytes)); }
 
 std::string Rfc2217Line::describe() const {
-  return fmt::format("rfc2217 {} {} {} (round trip {:.1f} ms)", endpoint_, baud_, to_string(format_),
+  return fmt::format("rfc2217 {} {} {} (round trip {:.2f} ms)", endpoint_, baud_, to_string(format_),
                      round_trip_.count() / 1000.0);
 }
 
