@@ -10,6 +10,9 @@ bound. Usage: rfc2217_peers.py SABUS WORKDIR CASE, CASE one of:
   pyserial        pyserial's rfc2217:// client against `sabus sim --rfc2217`:
                   a status poll, an empty-slot read (its 7Fh bytes are 0xFF
                   with parity), a baud-rate change the sim logs.
+  sabus-client    `sabus run --port rfc2217://...` against `sabus sim
+                  --rfc2217`, 8N1 with sabus's parity and --line 7E1 (the
+                  sim then does the UART's parity work).
   second-client   a second client of `sabus sim --tcp` and of `--rfc2217`
                   refused at once with a text line; with --takeover it is
                   served and the first one is disconnected.
@@ -190,11 +193,43 @@ def case_pyserial():
             fail("device type reply: " + reply.hex(" "))
     finally:
         p.close()
+    # A client whose port is 7E1 (bytesize 7, even parity): 7-bit characters
+    # both ways, the parity made and checked by the sim for it.
+    p = open_pyserial(port, bytesize=7, parity="E")
+    try:
+        p.write(bytes(b & 0x7F for b in frame(0x3A, b"%02d" % empty)))
+        reply = read_exactly(p, 32, "read satellite %d at 7E1" % empty)
+        if reply[0] != 0x06 or reply[3:5] != b"\x7f\x7f" or any(b & 0x80 for b in reply):
+            fail("7E1 read of empty slot %d: %s" % (empty, reply.hex(" ")))
+    finally:
+        p.close()
     log = wait_for(lambda: "client gone" in read_text(os.path.join(WORK, "sim.log")) and
                    read_text(os.path.join(WORK, "sim.log")), "the sim to log the client leaving")
     if "client set 4800 baud: the line is emulated at that rate" not in log:
         fail("the sim did not log the baud rate change:\n" + log)
     print("pyserial's rfc2217:// client against sabus sim --rfc2217: status poll, empty slot %d, 4800 baud" % empty)
+
+
+def case_sabus_client():
+    ready = start_sim(["--rfc2217", "127.0.0.1:0", "--emulate-line"], "sim")
+    port = int(ready.group(2).rsplit(":", 1)[1])
+    for line in ["8N1", "7E1"]:
+        out = os.path.join(WORK, "run-%s.out" % line)
+        args = [SABUS, "run", "--port", "rfc2217://127.0.0.1:%d" % port, "--line", line, "--pace", "0",
+                "--filter", "3.1-*", "--filter", "3.2-*", "--filter", "3.11-read-satellite-empty-slot"]
+        with open(out, "w") as f:
+            try:
+                status = subprocess.run(args, stdout=f, stderr=subprocess.STDOUT, timeout=300).returncode
+            except subprocess.TimeoutExpired:
+                fail("sabus run --line %s did not finish in 300 s" % line)
+        text = read_text(out)
+        if status != 0 or not re.search(r"^\d+ passed, 0 failed", text, re.M) or \
+                not re.search(r"^PASS 3.11-read-satellite-empty-slot ", text, re.M):
+            fail("sabus run --line %s against sabus sim --rfc2217: exit %d\n%s" % (line, status, text))
+        print("sabus run --line %s: %s" % (line, text.strip().splitlines()[-1]))
+    log = read_text(os.path.join(WORK, "sim.log"))
+    if "ignored" in log:
+        fail("the sim ignored bytes:\n" + log)
 
 
 def refused_text(port):
@@ -275,6 +310,7 @@ def case_second_client():
 try:
     shutil.rmtree(WORK, ignore_errors=True)
     os.makedirs(WORK)
-    {"ser2net": case_ser2net, "pyserial": case_pyserial, "second-client": case_second_client}[CASE]()
+    {"ser2net": case_ser2net, "pyserial": case_pyserial, "sabus-client": case_sabus_client,
+     "second-client": case_second_client}[CASE]()
 finally:
     stop_all()
