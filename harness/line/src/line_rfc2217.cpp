@@ -379,8 +379,7 @@ void Rfc2217ServerLine::com_port(ByteView payload) {
       const auto asked = cp::baudrate_of(payload);
       if (asked && *asked >= 300 && *asked <= 115200 && static_cast<int>(*asked) != baud_) {
         baud_ = static_cast<int>(*asked);
-        baud_change_ = baud_;
-        say(fmt::format("client set {} baud", baud_), true);
+        baud_change_ = baud_;  // the server loop logs it when it takes it
       } else if (asked && *asked != 0 && static_cast<int>(*asked) != baud_) {
         say(fmt::format("client asked for {} baud: kept {} (300-115200)", *asked, baud_), true);
       }
