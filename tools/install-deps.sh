@@ -25,6 +25,8 @@ packages=(
   chromium                              # headless: the HTML report's test renders it (tests/reports)
   time                                  # /usr/bin/time: peak memory in tools/journal-bench.sh
   bc                                    # arithmetic of tools/journal-bench.sh and tools/perf-run.sh
+  ser2net                               # a real RFC 2217 terminal server in front of `sabus sim --pty` (tests/tools)
+  python3-serial                        # pyserial's rfc2217:// client against `sabus sim --rfc2217` (/usr/bin/python3)
 )
 
 missing=()

@@ -12,7 +12,8 @@ using namespace sabus::harness;
 
 void add_device_options(CLI::App* sub, DeviceOptions& o) {
   sub->add_flag("--sim", o.sim, "The in-process reference controller (the default)");
-  sub->add_option("--port", o.port, "A serial port");
+  sub->add_option("--port", o.port,
+                  "A serial port, or a terminal server's RFC 2217 port: rfc2217://HOST:PORT (pyserial's form)");
   sub->add_option("--tcp", o.tcp, "A TCP serial server, HOST:PORT");
   sub->add_option("--profile", o.profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");
   sub->add_option("--address", o.address, "Device address (49-111, or the address character)");
@@ -21,6 +22,12 @@ void add_device_options(CLI::App* sub, DeviceOptions& o) {
       ->check(CLI::IsMember({"8N1", "7E1"}));
   add_serial_backend_option(sub, o.serial_backend);
   sub->add_option("--fault", o.faults, "With --sim: inject a named fault (sabus sim --list-faults)");
+}
+
+TelnetNote telnet_note(const std::string& tool) {
+  return [tool](const std::string& text, bool important) {
+    if (important || verbose()) std::cerr << "sabus " << tool << ": " << text << "\n";
+  };
 }
 
 void add_serial_backend_option(CLI::App* sub, std::string& backend) {
@@ -57,6 +64,13 @@ OpenedDevice open_device(const std::string& tool, DeviceOptions o) {
   try {
     if (o.sim) {
       d.transport = make_in_process_transport(bus_of(d.profile), d.faults);  // §1 multi-drop: bus_peers
+    } else if (is_rfc2217_url(o.port)) {
+      std::string error;
+      const auto url = parse_rfc2217_url(o.port, error);
+      if (!url) return usage("--port " + error);
+      d.transport = make_rfc2217_transport(url->host, url->port, d.profile.baud,
+                                           o.line == "7E1" ? LineMode::kTrue7E1 : LineMode::kSoftwareParity8N1,
+                                           std::chrono::seconds(5), telnet_note(tool));
     } else if (!o.port.empty()) {
       std::string note;
       const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);

@@ -11,6 +11,7 @@
 
 #include "sabus/harness/faults.hpp"
 #include "sabus/harness/profile.hpp"
+#include "sabus/harness/rfc2217.hpp"
 #include "sabus/harness/transport.hpp"
 
 namespace sabus::cli {
@@ -29,6 +30,12 @@ void add_device_options(CLI::App* sub, DeviceOptions& o);
 // --serial-backend (auto, libserialport or termios), for every command that
 // opens a serial port.
 void add_serial_backend_option(CLI::App* sub, std::string& backend);
+
+// What the telnet layer of an rfc2217:// port has to say, on stderr as
+// "sabus TOOL: ...": what matters always (a line error the server saw, a
+// SET-CONTROL it did not acknowledge), the rest (modem state, the
+// negotiation's round trip) with --verbose.
+harness::TelnetNote telnet_note(const std::string& tool);
 
 // The device, ready to use: the profile (with --address and --baud applied),
 // the faults and the transport. `exit_code` is 0 when it worked, kExitUsage

@@ -81,6 +81,9 @@ Command add_ports_command(CLI::App& app) {
   auto o = std::make_shared<PortsOptions>();
   CLI::App* sub = app.add_subcommand("ports", "List the serial ports (name, description, USB ids, serial number)");
   sub->add_flag("--json", o->json, "Print JSON (an array, empty when there are none)");
+  sub->footer(
+      "A controller behind a terminal server (ser2net, Moxa NPort, Digi PortServer) is not listed: name its port "
+      "--port rfc2217://HOST:PORT when the server speaks Telnet with RFC 2217, or --tcp HOST:PORT for a raw TCP port.");
   return {sub, [o] { return run_ports(*o); }};
 }
 

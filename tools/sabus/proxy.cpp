@@ -140,6 +140,13 @@ std::unique_ptr<Line> open_device(const ProxyOptions& o) {
     auto hp = parse_host_port(o.tcp);
     return TcpLine::connect(hp->host, hp->port, std::chrono::seconds(5));
   }
+  if (is_rfc2217_url(o.port)) {
+    std::string error;
+    const auto url = parse_rfc2217_url(o.port, error);
+    if (!url) throw LineError("--port " + error);
+    return Rfc2217Line::connect(url->host, url->port, o.baud, o.line == "7E1" ? CharFormat::k7E1 : CharFormat::k8N1,
+                                std::chrono::seconds(5), telnet_note("proxy"));
+  }
   std::string note;
   const auto backend = parse_serial_backend(o.serial_backend).value_or(SerialBackend::automatic);
   auto line = open_serial_line(o.port, o.baud, backend, o.line == "7E1" ? CharFormat::k7E1 : CharFormat::k8N1, &note);
@@ -319,7 +326,7 @@ Command add_proxy_command(CLI::App& app) {
       "proxy", "Forward bytes between an M&C system and the controller unchanged, logging every exchange decoded");
   sub->add_option("--listen-pty", o->listen_pty, "M&C side: create a pseudo-terminal and link LINK to it");
   sub->add_option("--listen-tcp", o->listen_tcp, "M&C side: accept one TCP client at a time on HOST:PORT (port 0: any)");
-  sub->add_option("--port", o->port, "Device side: a serial port (a pty works too)");
+  sub->add_option("--port", o->port, "Device side: a serial port (a pty works too), or rfc2217://HOST:PORT (a terminal server)");
   sub->add_option("--tcp", o->tcp, "Device side: a TCP serial server HOST:PORT");
   sub->add_option("--baud", o->baud, "Device side baud rate")->check(kBaudRange);
   sub->add_option("--line", o->line, "8N1 (default: parity in bit 7, forwarded as is) or 7E1 (a true 7E1 port)")

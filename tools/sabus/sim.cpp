@@ -30,6 +30,8 @@ struct SimOptions {
   std::string link;
   std::string port;
   std::string tcp;
+  std::string rfc2217;
+  bool takeover = false;
   int baud = 0;
   std::string serial_backend = "auto";
   std::string profile;
@@ -94,9 +96,14 @@ std::optional<FaultSet> faults(const SimOptions& o) {
 
 int run_sim(const SimOptions& o) {
   if (o.list_faults) return list_faults();
-  const int transports = (o.pty ? 1 : 0) + (o.port.empty() ? 0 : 1) + (o.tcp.empty() ? 0 : 1);
+  const int transports =
+      (o.pty ? 1 : 0) + (o.port.empty() ? 0 : 1) + (o.tcp.empty() ? 0 : 1) + (o.rfc2217.empty() ? 0 : 1);
   if (transports != 1) {
-    std::cerr << "sabus sim: choose one of --pty --link PATH, --port DEV, --tcp HOST:PORT\n";
+    std::cerr << "sabus sim: choose one of --pty --link PATH, --port DEV, --tcp HOST:PORT, --rfc2217 HOST:PORT\n";
+    return kExitUsage;
+  }
+  if (o.takeover && o.tcp.empty() && o.rfc2217.empty()) {
+    std::cerr << "sabus sim: --takeover needs --tcp or --rfc2217\n";
     return kExitUsage;
   }
   if (o.pty && o.link.empty()) {
@@ -147,6 +154,12 @@ int run_sim(const SimOptions& o) {
     std::cerr << "sabus sim: --tcp HOST:PORT, with a port 0-65535\n";
     return kExitUsage;
   }
+  if (!o.rfc2217.empty() && !(tcp = parse_host_port(o.rfc2217))) {
+    std::cerr << "sabus sim: --rfc2217 HOST:PORT, with a port 0-65535\n";
+    return kExitUsage;
+  }
+  serve_options.rfc2217 = !o.rfc2217.empty();
+  serve_options.takeover = o.takeover;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
@@ -154,7 +167,8 @@ int run_sim(const SimOptions& o) {
   try {
     if (tcp) {
       auto listener = TcpListener::listen(tcp->host, tcp->port);
-      std::cout << "READY tcp " << tcp->host << ":" << listener->port() << std::endl;
+      std::cout << "READY " << (serve_options.rfc2217 ? "rfc2217 " : "tcp ") << tcp->host << ":" << listener->port()
+                << std::endl;
       status = serve_tcp(*listener, bus, serve_options, g_stop);
     } else if (o.pty) {
       auto line = PtyLine::create(o.link);
@@ -183,11 +197,16 @@ int run_sim(const SimOptions& o) {
 
 Command add_sim_command(CLI::App& app) {
   auto o = std::make_shared<SimOptions>();
-  CLI::App* sub = app.add_subcommand("sim", "Serve the reference RC3000 on a pty, a serial port or TCP");
+  CLI::App* sub = app.add_subcommand("sim", "Serve the reference RC3000 on a pty, a serial port, TCP or RFC 2217");
   sub->add_flag("--pty", o->pty, "Create a pseudo-terminal (with --link PATH)");
   sub->add_option("--link", o->link, "Symlink PATH to the pseudo-terminal; removed on exit");
   sub->add_option("--port", o->port, "Serve a serial port (e.g. /dev/ttyUSB0)");
   sub->add_option("--tcp", o->tcp, "Serve raw TCP at HOST:PORT, as a serial device server (port 0: any free port)");
+  sub->add_option("--rfc2217", o->rfc2217,
+                  "Serve Telnet with RFC 2217 at HOST:PORT, as a terminal server's port (rfc2217://HOST:PORT; "
+                  "port 0: any free port)");
+  sub->add_flag("--takeover", o->takeover,
+                "With --tcp/--rfc2217: a new client replaces the one served (default: it is refused at once)");
   sub->add_option("--baud", o->baud, "Baud rate, 300-115200 (default: the profile's)")->check(kBaudRange);
   add_serial_backend_option(sub, o->serial_backend);
   sub->add_option("--profile", o->profile, "Device profile (default vectors/profiles/rc3000-1.59.yaml)");

@@ -1,12 +1,17 @@
 // The server loop of `sabus sim` and the line timing model (LinePacer).
 #include "sabus/harness/serve.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <string_view>
+
+#include "sabus/harness/rfc2217.hpp"
 
 namespace sabus::harness {
 
@@ -51,15 +56,33 @@ struct SessionEnd {
   std::string message;  // why the line was lost
 };
 
+// What a session asks its server between reads: whether to end it (another
+// client takes over), and a baud rate the client set (RFC 2217).
+struct SessionHooks {
+  std::function<bool()> end_now;
+  std::function<std::optional<int>()> baud_change;
+};
+
 SessionEnd run_session(Line& line, LineDevice& device, const ServeOptions& options, const std::atomic<bool>& stop,
-                       Transcript& transcript) {
+                       Transcript& transcript, const SessionHooks& hooks = {}) {
   const milliseconds tick = std::max(options.tick, milliseconds{1});
-  LinePacer pacer(options.baud, std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                    std::chrono::duration<double, std::milli>(std::max(options.turnaround_ms, 0.0))));
+  const auto turnaround = std::chrono::duration_cast<std::chrono::nanoseconds>(
+      std::chrono::duration<double, std::milli>(std::max(options.turnaround_ms, 0.0)));
+  LinePacer pacer(options.baud, turnaround);
   std::array<std::uint8_t, 256> buf{};
   Bytes reply, due;
+  std::optional<int> new_baud;
   try {
     while (!stop.load(std::memory_order_relaxed)) {
+      if (hooks.end_now && hooks.end_now()) return {};
+      if (hooks.baud_change)
+        if (const auto baud = hooks.baud_change()) {
+          new_baud = baud;
+          transcript.note(fmt::format("client set {} baud{}", *baud,
+                                      options.emulate_line ? ": the line is emulated at that rate" : ""));
+        }
+      // Replies already queued keep their times; the next ones take the new rate.
+      if (new_baud && pacer.empty()) pacer = LinePacer(*std::exchange(new_baud, std::nullopt), turnaround);
       milliseconds timeout = tick;
       if (options.emulate_line) {
         due.clear();
@@ -107,24 +130,75 @@ int serve_tcp(TcpListener& listener, LineDevice& device, const ServeOptions& opt
               const std::atomic<bool>& stop) {
   Transcript transcript(options.log);
   const milliseconds tick = std::max(options.tick, milliseconds{1});
+  std::unique_ptr<TcpLine> next;  // a client that took over, served next
+  std::string listener_error;
   while (!stop.load(std::memory_order_relaxed)) {
-    std::unique_ptr<TcpLine> client;
+    std::unique_ptr<TcpLine> client = std::move(next);
     try {
-      client = listener.accept(tick);
+      if (!client) client = listener.accept(tick);
     } catch (const LineError& e) {
-      transcript.note(std::string("listener failed: ") + e.what());
-      std::cerr << "sabus: " << e.what() << "\n";
-      return 1;
+      listener_error = e.what();
+      break;
     }
     if (!client) {
       device.tick();  // the controller keeps running with nobody connected
       transcript.device_log(device.take_log());
       continue;
     }
-    transcript.note("client connected: " + client->describe());
-    const SessionEnd end = run_session(*client, device, options, stop, transcript);
-    if (!end.lost) break;
-    transcript.note("client gone: " + end.message);
+    const std::string who = client->describe();
+    transcript.note("client connected: " + who);
+    std::unique_ptr<Line> line;
+    Rfc2217ServerLine* telnet = nullptr;
+    try {
+      if (options.rfc2217) {
+        auto server = std::make_unique<Rfc2217ServerLine>(
+            std::move(client), options.baud,
+            [&transcript](const std::string& text, bool) { transcript.note(text); });
+        telnet = server.get();
+        line = std::move(server);
+      } else {
+        line = std::move(client);
+      }
+    } catch (const LineError& e) {
+      transcript.note(std::string("client gone: ") + e.what());
+      continue;
+    }
+    SessionHooks hooks;
+    // A newcomer while this client is served: refused at once, or served
+    // instead (--takeover). Checked between reads, so never kept waiting.
+    hooks.end_now = [&]() {
+      std::unique_ptr<TcpLine> other;
+      try {
+        other = listener.accept(milliseconds{0});
+      } catch (const LineError& e) {
+        listener_error = e.what();
+        return true;
+      }
+      if (!other) return false;
+      if (options.takeover) {
+        transcript.note("client " + other->describe() + " takes over from " + who + " (--takeover): " + who +
+                        " disconnected");
+        next = std::move(other);
+        return true;
+      }
+      transcript.note("client refused: " + other->describe() + ": the port is in use by " + who);
+      try {
+        other->write(ByteView(reinterpret_cast<const std::uint8_t*>(kPortInUse.data()), kPortInUse.size()));
+      } catch (const LineError&) {
+        // it left already: nothing to tell it
+      }
+      return false;  // `other` is closed here
+    };
+    if (telnet != nullptr) hooks.baud_change = [telnet] { return telnet->take_baud_change(); };
+    const SessionEnd end = run_session(*line, device, options, stop, transcript, hooks);
+    if (!listener_error.empty()) break;
+    if (end.lost) transcript.note("client gone: " + end.message);
+    else if (!next) break;  // stopped
+  }
+  if (!listener_error.empty()) {
+    transcript.note("listener failed: " + listener_error);
+    std::cerr << "sabus: " << listener_error << "\n";
+    return 1;
   }
   return 0;
 }

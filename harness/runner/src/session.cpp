@@ -25,9 +25,12 @@ void Session::record(bool sent, const Bytes& bytes, std::string note, std::vecto
 
 // The turnaround the device's profile states (turnaround_ms): a slow
 // controller's replies are waited for from the first command on, before the
-// runner has measured any.
+// runner has measured any. Behind a terminal server the network's round trip
+// (measured when the line was opened) comes on top of it; the turnaround the
+// runner measures later includes it anyway.
 std::chrono::microseconds Session::stated_turnaround() const {
-  return std::chrono::microseconds(static_cast<std::int64_t>(std::ceil(profile.turnaround_ms * 1000)));
+  return std::chrono::microseconds(static_cast<std::int64_t>(std::ceil(profile.turnaround_ms * 1000))) +
+         transport.network_round_trip();
 }
 
 milliseconds Session::reply_timeout(std::size_t request_bytes) const {

@@ -116,4 +116,12 @@ std::unique_ptr<LineTransport> make_tcp_transport(const std::string& host, std::
   return std::make_unique<LineTransport>(TcpLine::connect(host, port, timeout), LineMode::kSoftwareParity8N1, baud);
 }
 
+std::unique_ptr<LineTransport> make_rfc2217_transport(const std::string& host, std::uint16_t port, int baud,
+                                                      LineMode mode, std::chrono::milliseconds timeout,
+                                                      TelnetNote note) {
+  const CharFormat format = mode == LineMode::kTrue7E1 ? CharFormat::k7E1 : CharFormat::k8N1;
+  return std::make_unique<LineTransport>(Rfc2217Line::connect(host, port, baud, format, timeout, std::move(note)),
+                                         mode, baud);
+}
+
 }  // namespace sabus::harness

@@ -215,6 +215,61 @@ TEST(Runner, ASignalStopsTheRunWithItsOwnExitCode) {
   EXPECT_EQ(not_stopped.exit_code(), 1);
 }
 
+// The reference controller behind a network whose round trip is `delay`
+// (on a virtual clock): every reply shows up `delay` after its request. It
+// reports `reported` as its measured round trip, as Rfc2217Line does.
+class DistantTransport final : public Transport {
+ public:
+  DistantTransport(std::chrono::milliseconds delay, std::chrono::microseconds reported)
+      : inner_({load_profile_file(default_profile_path()).profile.value()}), delay_(delay), reported_(reported) {}
+  void send(ByteView chars, std::span<const std::size_t> wrong_parity = {}) override {
+    inner_.send(chars, wrong_parity);
+    due_ = inner_.now() + delay_;
+  }
+  std::size_t receive(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
+    if (inner_.pending() > 0 && inner_.now() < due_)
+      inner_.pause(std::min(timeout, std::chrono::ceil<std::chrono::milliseconds>(due_ - inner_.now())));
+    else if (inner_.pending() == 0)
+      inner_.pause(timeout);
+    return inner_.pending() > 0 && inner_.now() >= due_ ? inner_.receive(buf, std::chrono::milliseconds{0}) : 0;
+  }
+  void pause(std::chrono::milliseconds d) override { inner_.pause(d); }
+  TimePoint now() const override { return inner_.now(); }
+  bool can_send_parity_errors() const override { return true; }
+  int baud() const override { return 9600; }
+  std::string describe() const override { return "reference controller behind a slow network"; }
+  std::chrono::microseconds network_round_trip() const override { return reported_; }
+
+ private:
+  InProcessTransport inner_;
+  std::chrono::milliseconds delay_;
+  std::chrono::microseconds reported_;
+  TimePoint due_{};
+};
+
+// Behind a terminal server the first replies come a network round trip
+// later than the profile's turnaround says; the round trip measured when the
+// line was opened is waited for from the first command on.
+TEST(Runner, TheNetworksRoundTripIsWaitedForFromTheFirstCommand) {
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto status = send_command("status", "", {}, Expectation::Kind::kAck);
+  for (const bool reported : {true, false}) {
+    DistantTransport t(std::chrono::milliseconds{400}, std::chrono::microseconds{reported ? 400000 : 0});
+    Runner runner(t, p, RunOptions{});
+    const RunResult r = runner.run({vector_with("a-status", {status})});
+    if (reported) {
+      EXPECT_FALSE(r.aborted) << r.abort_reason;
+      ASSERT_EQ(r.vectors.size(), 1u);
+      EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass) << (r.vectors[0].failures.empty() ? "" : r.vectors[0].failures[0]);
+    } else {
+      // Not told of the network, the runner gives up before the first reply
+      // comes: the liveness check before the first vector finds no device.
+      EXPECT_TRUE(r.aborted);
+      EXPECT_NE(r.abort_reason.find("the device did not answer"), std::string::npos) << r.abort_reason;
+    }
+  }
+}
+
 // Each frame of a transcript carries its description as the runner made it
 // when it sent or received the frame: the reports show those fields.
 TEST(Runner, TranscriptFramesCarryTheirFieldsAsDescribed) {

@@ -74,6 +74,11 @@ class Line {
   // The file descriptor to poll() for input alongside others (`sabus proxy`
   // waits on two lines at once); -1 when there is none.
   virtual int poll_fd() const { return -1; }
+  // The network round trip to the device server in front of the device,
+  // measured when the line was opened; 0 for a line with no network in it
+  // (or none measured: raw TCP has no way to ask). The runner adds it to its
+  // reply and silence windows.
+  virtual std::chrono::microseconds round_trip() const { return {}; }
 };
 
 // Small POSIX helpers the backends share; usable by tests too.

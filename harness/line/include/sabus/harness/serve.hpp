@@ -28,7 +28,19 @@ struct ServeOptions {
   std::ostream* log = nullptr;
   // The longest wait for input before device.tick() runs again.
   std::chrono::milliseconds tick{5};
+  // serve_tcp only. rfc2217: each client gets Telnet with RFC 2217's
+  // COM-PORT-OPTION (Rfc2217ServerLine), not raw bytes; the baud rate it
+  // sets is the one emulate_line emulates from then on. takeover: a client
+  // that connects while another is served replaces it (the first is
+  // disconnected); without it the newcomer is refused at once with
+  // kPortInUse and closed, as ser2net and commercial device servers do.
+  bool rfc2217 = false;
+  bool takeover = false;
 };
+
+// What a refused second client reads before its connection is closed
+// (ser2net says "Port already in use").
+inline constexpr std::string_view kPortInUse = "Port already in use: sabus sim serves one client at a time\r\n";
 
 // Serves `device` on `line` until `stop` is set (by the caller's SIGINT /
 // SIGTERM handler; it is checked at least every `tick`) or the line is lost.
@@ -37,7 +49,9 @@ int serve(Line& line, LineDevice& device, const ServeOptions& options, const std
 
 // TcpServe: like a serial device server, accepts one client, serves it until
 // it disconnects, accepts the next, until `stop`. The device keeps running
-// (tick) between clients. Returns 0 on stop, 1 when the listener fails.
+// (tick) between clients. A client that comes while one is served is refused
+// or takes over (ServeOptions::takeover); the log says which. Returns 0 on
+// stop, 1 when the listener fails.
 int serve_tcp(TcpListener& listener, LineDevice& device, const ServeOptions& options,
               const std::atomic<bool>& stop);
 

@@ -61,6 +61,10 @@ class Transport {
   virtual bool parity_in_bit7() const { return true; }
   virtual int baud() const = 0;  // 0 in-process
   virtual std::string describe() const = 0;
+  // The network round trip to a device server in front of the device
+  // (Line::round_trip(), measured when it was opened); 0 with no network or
+  // none measured. The runner adds it to the turnaround it waits for.
+  virtual std::chrono::microseconds network_round_trip() const { return {}; }
 };
 
 // How a receiver reads what `t.receive()` returns.

@@ -18,6 +18,7 @@
 #include "sabus/harness/faults.hpp"
 #include "sabus/harness/line.hpp"
 #include "sabus/harness/profile.hpp"
+#include "sabus/harness/rfc2217.hpp"
 #include "sabus/harness/transport.hpp"
 
 namespace sabus::harness {
@@ -127,6 +128,7 @@ class LineTransport final : public Transport {
   // The line's describe() and the mode: "serial /dev/ttyUSB0 9600 8N1
   // (libserialport), software even parity in bit 7".
   std::string describe() const override;
+  std::chrono::microseconds network_round_trip() const override { return line_->round_trip(); }
 
   Line& line() { return *line_; }
   LineMode mode() const { return mode_; }
@@ -155,5 +157,15 @@ std::unique_ptr<LineTransport> make_serial_transport(const std::string& path, in
 // as on a port opened 8N1. Throws LineError when it cannot connect.
 std::unique_ptr<LineTransport> make_tcp_transport(const std::string& host, std::uint16_t port,
                                                   std::chrono::milliseconds timeout, int baud = 9600);
+
+// A terminal server's RFC 2217 port (rfc2217://HOST:PORT): its serial side
+// set to `baud` 8N1 for software parity (the default) or 7E1 for
+// LineMode::kTrue7E1, where the server's UART makes the parity (its 7-bit
+// characters come back with bit 7 clear; a parity error there is only seen
+// as the server's NOTIFY-LINESTATE, passed to `note`). Throws LineError when
+// it cannot connect or the server does not negotiate within `timeout`.
+std::unique_ptr<LineTransport> make_rfc2217_transport(const std::string& host, std::uint16_t port, int baud,
+                                                      LineMode mode, std::chrono::milliseconds timeout,
+                                                      TelnetNote note = {});
 
 }  // namespace sabus::harness
