@@ -297,7 +297,7 @@ ResolvedMatcher resolve_jogged(FieldMatcher m, const ExprContext& cx) {
   const Count jog_ms = count_in(ms.value, 0, kMaxMs);
   if (jog_ms.error) return problem(Expansion::Kind::kError, m, "jogged: ms " + *jog_ms.error);
   const int per = motion::display_units(cx.profile);
-  m.readings = motion::jog_readings(a, per, start, dir->sign, m.speed, static_cast<int>(jog_ms.value));
+  m.readings = motion::jog_readings(a, per, start, dir->sign, m.speed, static_cast<int>(jog_ms.value), m.angular);
   m.hundredths = per == motion::kHundredths;
   m.low = static_cast<double>(m.readings.tenths.low) / motion::kTenths;
   m.high = static_cast<double>(m.readings.tenths.high) / motion::kTenths;

@@ -178,14 +178,26 @@ PositionReadings near_readings(double target, double tolerance, int per_degree) 
   return in_tenths_and_finer(r, per_degree);
 }
 
+namespace {
+// The tenths field of a hundredths display of a fluxgate heading (0.00 to
+// 359.99, §3.2 NOTE) truncates the heading, which is never negative: for a
+// position below 0 (a heading a turn away) that is truncation down (E-30).
+Readings heading_hundredths_shown_as(std::int64_t tenths) { return {tenths * 10, tenths * 10 + 9}; }
+std::int64_t floor_tenths(std::int64_t hundredths) {
+  return hundredths >= 0 ? hundredths / 10 : -((-hundredths + 9) / 10);
+}
+}  // namespace
+
 PositionReadings jog_readings(const AxisProfile& a, int per_degree, std::int64_t from_tenths, int sign, char speed,
-                              int ms) {
+                              int ms, bool heading) {
   const Interval travel = jog_travel(a, speed, ms);
   const double shortest = travel.low * per_degree, longest = travel.high * per_degree;
   const double min_units = a.min_deg * per_degree, max_units = a.max_deg * per_degree;
   // The readings the start can have been: a tenths field shows one reading
   // of a tenths display, or ten of a hundredths display (E-30).
-  const Readings start = per_degree == kHundredths ? hundredths_shown_as(from_tenths) : Readings{from_tenths, from_tenths};
+  const Readings start = per_degree != kHundredths ? Readings{from_tenths, from_tenths}
+                         : heading                  ? heading_hundredths_shown_as(from_tenths)
+                                                    : hundredths_shown_as(from_tenths);
   const std::int64_t most = whole_up(longest);  // units the longest travel spans
   std::optional<Readings> all;
   for (const Shown how : kEveryWayShown) {
@@ -206,6 +218,7 @@ PositionReadings jog_readings(const AxisProfile& a, int per_degree, std::int64_t
     }
     all = all ? Readings{std::min(all->low, r.low), std::max(all->high, r.high)} : r;
   }
+  if (heading && per_degree == kHundredths) return {{floor_tenths(all->low), floor_tenths(all->high)}, *all};
   return in_tenths_and_finer(*all, per_degree);
 }
 
@@ -254,7 +267,8 @@ Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string
 
 Maybe<double> away_from(const AxisProfile& a, double to, int ms, std::string_view axis_name) {
   const double inset = a.tolerance_deg + kLimitMargin;  // clear of the limit switches, as a jog's start
-  const double travel = a.fast_dps * seconds(ms) * 1.1;
+  // A move ends within tolerance_deg of its target: that much is never travelled.
+  const double travel = a.fast_dps * seconds(ms) * 1.1 + a.tolerance_deg;
   const bool up = a.max_deg - to >= to - a.min_deg;
   const double from = up ? tenths_up(to + travel) : tenths_down(to - travel);
   if (from >= a.min_deg + inset && from <= a.max_deg - inset) return {from, ""};

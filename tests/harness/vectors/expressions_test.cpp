@@ -351,6 +351,29 @@ TEST(Motion, AReadingAcrossZeroAllowsTheTruncationOfBothEnds) {
   EXPECT_FALSE(r.hundredths->contains(10));
 }
 
+TEST(Motion, AFluxgateHeadingOnAHundredthsDisplayIsTruncatedAsAHeading) {
+  // The profile of sweep seed 1572771045374231305: a 500 ms 'E' jog at 1.42
+  // deg/s from a heading of 0.5 (0.50 to 0.59, a fluxgate azimuth with
+  // hundredths) ends 0.64 to 0.78 deg lower, at -0.28 to -0.05: a heading of
+  // 359.72 to 359.95, whose tenths field truncates the heading to 359.7 to
+  // 359.9, that is -0.3 to -0.1 (truncation toward zero of the position
+  // would give -0.2 to 0.0, and 359.7M was read).
+  AxisProfile a;
+  a.min_deg = -180;
+  a.max_deg = 180;
+  a.fast_dps = 1.42;
+  const auto heading = motion::jog_readings(a, motion::kHundredths, 5, -1, 'F', 500, true);
+  EXPECT_TRUE(heading.tenths.contains(-3)) << heading.tenths.low << " to " << heading.tenths.high;
+  EXPECT_FALSE(heading.tenths.contains(1)) << "0.64 deg at least below 0.59";
+  const auto position = motion::jog_readings(a, motion::kHundredths, 5, -1, 'F', 500);
+  EXPECT_FALSE(position.tenths.contains(-3)) << "a position's tenths are truncated toward zero (E-30)";
+  // A heading of 359.7 read where the range says -0.3: 359.70 to 359.79, so
+  // -0.30 to -0.21, not the -0.39 to -0.30 of a negative position.
+  const auto from_negative = motion::jog_readings(a, motion::kHundredths, -3, +1, 'F', 0, true);
+  ASSERT_TRUE(from_negative.hundredths);
+  EXPECT_EQ(*from_negative.hundredths, (motion::Readings{-30, -21}));
+}
+
 TEST(Motion, AReadingIsShownRoundedOrTruncatedAndItsTenthsAreTruncated) {
   using motion::Shown;
   EXPECT_EQ(motion::shown(-0.47, 100, Shown::kRounded), -47);

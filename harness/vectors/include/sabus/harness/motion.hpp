@@ -116,7 +116,8 @@ PositionReadings near_readings(double target, double tolerance, int per_degree);
 // stand for, moved by jog_travel, clipped at the limits, read again the same
 // way; a reading never moves against the jog, nor by more units than the
 // longest travel spans. The union of the windows of every way shown.
-PositionReadings jog_readings(const AxisProfile& a, int per_degree, std::int64_t from_tenths, int sign, char speed, int ms);
+PositionReadings jog_readings(const AxisProfile& a, int per_degree, std::int64_t from_tenths, int sign, char speed, int ms,
+                              bool heading = false);
 
 // The readings in `per_degree` units of a reading written [low, high] in
 // degrees, inclusive (a range matcher): the whole units between them.
@@ -149,8 +150,8 @@ Maybe<double> jog_start(const AxisProfile& a, int sign, char speed, int ms, std:
 Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string_view axis_name);
 // A position, toward the farther end of the range, whose auto move to `to`
 // lasts at least ms at fast speed and no more than that by much: `to` plus
-// the fast speed's travel in ms (and 10 % more), in tenths; unavailable when
-// the range has no room for it.
+// the fast speed's travel in ms (and 10 % more) and the axis's arrival
+// tolerance, in tenths; unavailable when the range has no room for it.
 Maybe<double> away_from(const AxisProfile& a, double to, int ms, std::string_view axis_name);
 
 // The longest an auto move of `distance` degrees can take: at slow speed
