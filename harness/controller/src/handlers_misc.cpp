@@ -131,12 +131,9 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
   }
   if (key == '0')
     for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) c.axis(a).fast = !c.axis(a).fast;
-  // Faults stop-key-ignored-in-remote, locate-ignores-stop and
-  // stow-ignores-stop: the Stop key leaves a remote auto move, a LOCATE or a
-  // STOW running.
-  const bool ignored = (c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE")) ||
-                       (c.faults_.has(Fault::kLocateIgnoresStop) && c.in_mode("LOCATE_MODE")) ||
-                       (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE"));
+  // Fault stop-key-ignored-in-remote: the Stop key leaves a remote auto move running.
+  const bool ignored =
+      (c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE")) || stop_ignored_by_fault(c);
   if (key == 'A' && !ignored) {
     c.stop_all();
     // The Stop key ends a LOCATE, STOW or DEPLOY where it is, back in MANUAL

@@ -30,6 +30,11 @@ Navigation locate_navigation(Navigation n, const FaultSet& faults) {
 
 }  // namespace
 
+bool Handlers::stop_ignored_by_fault(const C& c) {
+  return (c.faults_.has(Fault::kLocateIgnoresStop) && c.in_mode("LOCATE_MODE")) ||
+         (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE"));
+}
+
 // ---- §3.3 Auto Move -----------------------------------------------------------
 Outcome Handlers::auto_move(C& c, const Frame& f, const AutoMove& m) {
   return std::visit([&](const auto& form) { return auto_move_form(c, f, form); }, m.form);
@@ -139,10 +144,7 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   if (track_busy(c)) return nak(c, code, NakRule::kTrackPeaking);
   // Fault x-reenters-remote: REMOTE mode is entered again (ERRATA E-88).
   if (c.faults_.has(Fault::kXReentersRemote) && c.in_mode("REMOTE_MODE")) c.set_state("INITIALIZING_MODE");
-  // Faults locate-ignores-stop, stow-ignores-stop: the LOCATE or STOW goes on.
-  if ((c.faults_.has(Fault::kLocateIgnoresStop) && c.in_mode("LOCATE_MODE")) ||
-      (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE")))
-    return status(c, code, "stop ignored (fault)");
+  if (stop_ignored_by_fault(c)) return status(c, code, "stop ignored (fault)");
   // A LOCATE, STOW or DEPLOY stopped before it completes exits as by the
   // Stop key (E-82, E-89).
   if (const std::string exit = c.moving_exit(true); !exit.empty())

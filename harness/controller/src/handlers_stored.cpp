@@ -23,21 +23,23 @@ bool tle_checksum_ok(const std::string& line) {
 
 double wrap_pol(double deg) { return deg > 90 ? deg - 180 : deg < -90 ? deg + 180 : deg; }
 
-// The reply to a read of one slot (3Ah, 3Ch, 44h): the slot's data by
-// `make` (satellite_reply, tle_reply, signpost_reply), or the empty slot's
-// index when it holds none (READING-NOTES 18).
-template <class Slot, class Make>
-auto reply_to_read(const Controller& c, const std::optional<Slot>& slot, Make make) {
-  auto reply = make(slot ? &*slot : nullptr);
-  if (!slot) reply.index = Handlers::empty_index(c);
-  return reply;
-}
-
-// The slot a read of `index` answers from: `index` itself, or with
-// kSlotReadShiftedInMiddle (an index table off by one except at its ends)
-// the next one, for every slot but the first and last of a list of `slots`.
+// The slot a read of `index` answers from: `index` itself, or with `fault`
+// (an index table off by one except at its ends) the next one, for every
+// slot but the first and last of a list of `slots`.
 std::size_t slot_read(const Controller& c, Fault fault, std::size_t index, std::size_t slots) {
   return c.faults().has(fault) && index > 1 && index < slots ? index + 1 : index;
+}
+
+// The reply to a read of slot `index` of `list` (3Ah, 3Ch, 44h): the slot's
+// data by `make` (satellite_reply, tle_reply, signpost_reply) under the
+// index asked for, or the empty slot's index when it holds none
+// (READING-NOTES 18).
+template <class List, class Make>
+auto reply_to_read(const Controller& c, const List& list, std::uint32_t index, Make make) {
+  const auto& slot = list[slot_read(c, Fault::kSlotReadShiftedInMiddle, index, list.size()) - 1];
+  auto reply = make(slot ? &*slot : nullptr);
+  reply.index = slot ? std::optional<std::uint8_t>(static_cast<std::uint8_t>(index)) : Handlers::empty_index(c);
+  return reply;
 }
 
 }  // namespace
@@ -85,9 +87,7 @@ Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
 }
 Outcome Handlers::read_satellite(C& c, const ReadSatellite& r) {
   if (r.index < 1 || r.index > 20) return nak(c, 0x3A, NakRule::kSatelliteIndex, "index " + std::to_string(r.index));
-  auto reply = reply_to_read(c, c.state_.presets[slot_read(c, Fault::kSlotReadShiftedInMiddle, r.index, 20) - 1], satellite_reply);
-  if (reply.index) reply.index = static_cast<std::uint8_t>(r.index);
-  return ack(c, 0x3A, reply);
+  return ack(c, 0x3A, reply_to_read(c, c.state_.presets, r.index, satellite_reply));
 }
 std::optional<std::uint8_t> Handlers::empty_index(const C& c) {
   // READING-NOTES 18: 7Fh in both index bytes.
@@ -104,9 +104,7 @@ Outcome Handlers::write_tle(C& c, const WriteTle& w) {
 }
 Outcome Handlers::read_tle(C& c, const ReadTle& r) {
   if (r.index < 1 || r.index > 10) return nak(c, 0x3C, NakRule::kTleIndex, "index " + std::to_string(r.index));
-  auto reply = reply_to_read(c, c.state_.tles[slot_read(c, Fault::kSlotReadShiftedInMiddle, r.index, 10) - 1], tle_reply);
-  if (reply.index) reply.index = static_cast<std::uint8_t>(r.index);
-  return ack(c, 0x3C, reply);
+  return ack(c, 0x3C, reply_to_read(c, c.state_.tles, r.index, tle_reply));
 }
 
 // ---- §3.19 Remote Store ----------------------------------------------------------------
@@ -175,9 +173,7 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
 Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
   if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
   if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
-  auto reply = reply_to_read(c, c.state_.signposts[slot_read(c, Fault::kSlotReadShiftedInMiddle, r.index, 20) - 1], signpost_reply);
-  if (reply.index) reply.index = static_cast<std::uint8_t>(r.index);
-  return ack(c, 0x44, reply);
+  return ack(c, 0x44, reply_to_read(c, c.state_.signposts, r.index, signpost_reply));
 }
 
 // ---- §3.22 / §3.23 Navigation data ---------------------------------------------------

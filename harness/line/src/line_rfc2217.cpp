@@ -40,6 +40,20 @@ std::vector<std::uint8_t> kept_options() {
   return {telnet::kBinary, telnet::kSuppressGoAhead, telnet::kComPortOption};
 }
 
+// The offer each end opens with (RFC 2217 §2; ser2net and pyserial's
+// PortManager do the same): 8-bit data both ways (BINARY, RFC 856), no
+// go-aheads (RFC 858), and COM-PORT-OPTION, which the client WILLs and the
+// server DOs.
+Bytes opening_offer(telnet::Options& options, bool client) {
+  using namespace telnet;
+  Bytes offer;
+  for (const Bytes& b : {options.request_local(kBinary), options.request_remote(kBinary),
+                         options.request_local(kSuppressGoAhead), options.request_remote(kSuppressGoAhead),
+                         client ? options.request_local(kComPortOption) : options.request_remote(kComPortOption)})
+    offer.insert(offer.end(), b.begin(), b.end());
+  return offer;
+}
+
 }  // namespace
 
 bool is_rfc2217_url(std::string_view text) { return text.substr(0, kScheme.size()) == kScheme; }
@@ -169,12 +183,8 @@ void Rfc2217Line::handle(const telnet::Event& e) {
 void Rfc2217Line::negotiate(milliseconds timeout) {
   using namespace telnet;
   // Stage 1 (RFC 2217 §2): the client offers COM-PORT-OPTION (WILL), and
-  // both sides go 8-bit clean (BINARY, RFC 856) without go-aheads (RFC 858).
-  Bytes hello;
-  for (const Bytes& b : {options_.request_local(kBinary), options_.request_remote(kBinary),
-                         options_.request_local(kSuppressGoAhead), options_.request_remote(kSuppressGoAhead),
-                         options_.request_local(kComPortOption)})
-    hello.insert(hello.end(), b.begin(), b.end());
+  // both sides go 8-bit clean without go-aheads.
+  const Bytes hello = opening_offer(options_, true);
   const auto sent = Clock::now();
   tcp_->write(hello);
   auto deadline = sent + timeout;
@@ -287,16 +297,8 @@ std::string Rfc2217Line::describe() const {
 
 Rfc2217ServerLine::Rfc2217ServerLine(std::unique_ptr<TcpLine> client, int baud, TelnetNote note)
     : client_(std::move(client)), note_(std::move(note)), options_(kept_options(), kept_options()), baud_(baud) {
-  using namespace telnet;
-  // What a device server offers a new client (RFC 2217 §2; ser2net and
-  // pyserial's PortManager do the same): 8-bit data both ways, no go-aheads,
-  // and the com port option.
-  Bytes hello;
-  for (const Bytes& b : {options_.request_local(kBinary), options_.request_remote(kBinary),
-                         options_.request_local(kSuppressGoAhead), options_.request_remote(kSuppressGoAhead),
-                         options_.request_remote(kComPortOption)})
-    hello.insert(hello.end(), b.begin(), b.end());
-  client_->write(hello);
+  // What a device server offers a new client.
+  client_->write(opening_offer(options_, false));
 }
 
 void Rfc2217ServerLine::say(const std::string& text, bool important) const {

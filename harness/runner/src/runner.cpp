@@ -152,20 +152,14 @@ std::optional<Skip> skip_reason(const Vector& v, const RunOptions& o, const Prof
   if (auto why = missing_capability(v, ExprContext{profile, nullptr, o.pace}))
     return Skip{SkipCause::kProfile, "needs " + *why};
   if (!v.each_slot.empty() && filled_slots(profile, v.each_slot).value_or(std::vector<int>{}).empty())
-    return Skip{SkipCause::kProfile, "needs " + std::string(v.each_slot == "store" ? "an entry of the STORE list" : "a filled slot of " + v.each_slot) + " in the profile: it stores none"};
+    return Skip{SkipCause::kProfile, "needs a stored " + std::string(slot_what(v.each_slot).value_or(v.each_slot)) +
+                                         " in the profile: it stores none"};
   if (v.has_tag("motion") && !o.allow_motion) return Skip{SkipCause::kMotion, "moves the antenna: needs --allow-motion"};
   if (v.has_tag("destructive") && !o.allow_destructive)
     return Skip{SkipCause::kDestructive, "changes stored data: needs --allow-destructive"};
   if (v.has_tag("parity") && !transport.can_send_parity_errors())
     return Skip{SkipCause::kParity, "sends parity errors: the port is a true 7E1 port (--line 7E1)"};
   return std::nullopt;
-}
-
-// "preset slot 2", "STORE entry 2": where a failure of an each_slot vector was.
-std::string slot_name(const std::string& list, int index) {
-  const std::string what = list == "store" ? "STORE entry" : list == "presets" ? "preset slot"
-                           : list == "tles"  ? "TLE slot"    : "signpost slot";
-  return what + " " + std::to_string(index);
 }
 
 // The steps, once, or once for each slot of the list `each_slot` names that
@@ -179,7 +173,10 @@ void run_steps(Session& s, const Vector& v, std::vector<std::string>& failures) 
     if (!v.each_slot.empty()) s.captures["$slot"] = std::to_string(slot);
     for (const Step& step : v.steps)
       if (auto e = s.run_step(step)) {
-        failures.push_back(v.each_slot.empty() ? *e : slot_name(v.each_slot, slot) + ": " + *e);
+        // Where the failure was: "preset satellite 2: ...", "STORE entry 2: ...".
+        failures.push_back(v.each_slot.empty() ? *e
+                                               : std::string(slot_what(v.each_slot).value_or(v.each_slot)) + " " +
+                                                     std::to_string(slot) + ": " + *e);
         break;
       }
   }

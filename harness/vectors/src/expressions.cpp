@@ -185,9 +185,25 @@ Result filled_slot(const Call& c) {
 
 }  // namespace
 
+// The STORE list (§3.6) beside kSlotLists: its entries are 1..n, none empty.
+constexpr std::string_view kStoreList = "store";
+
+std::optional<std::string_view> slot_what(std::string_view list) {
+  if (list == kStoreList) return "STORE entry";
+  for (const auto& l : kSlotLists)
+    if (l.name == list) return l.what;
+  return std::nullopt;
+}
+
+std::string slot_list_names() {
+  std::string out;
+  for (const auto& l : kSlotLists) out += std::string(l.name) + ", ";
+  return out.substr(0, out.size() - 2) + " or " + std::string(kStoreList);
+}
+
 std::optional<std::vector<int>> filled_slots(const Profile& profile, std::string_view list) {
   std::vector<int> out;
-  if (list == "store") {
+  if (list == kStoreList) {
     for (std::size_t i = 1; i <= profile.store.size(); ++i) out.push_back(static_cast<int>(i));
     return out;
   }

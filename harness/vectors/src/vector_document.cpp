@@ -149,8 +149,7 @@ Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, cons
   StepContext steps_cx = cx;  // $slot is the steps' own: the teardown runs once, after every slot
   r.with("each_slot", [&](const YAML::Node& n, const At& a) {
     vec.each_slot = scalar(n, a, "a stored list");
-    if (vec.each_slot != "presets" && vec.each_slot != "tles" && vec.each_slot != "signposts" && vec.each_slot != "store")
-      fail(a, quoted_clip(vec.each_slot) + " is not a stored list: " + std::string(kSlotListNames));
+    if (!slot_what(vec.each_slot)) fail(a, quoted_clip(vec.each_slot) + " is not a stored list: " + slot_list_names());
     steps_cx.captures.insert("$slot");
   });
   r.read("steps", vec.steps, [&](const YAML::Node& n, const At& a) { return read_steps(n, a, steps_cx); });

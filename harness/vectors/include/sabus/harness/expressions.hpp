@@ -93,6 +93,10 @@ std::vector<ExprFunction> expression_functions();
 // STORE list's entries 1..n, §3.6). nullopt for another name. A vector's
 // `each_slot` runs its steps once for each (vectors/README.md).
 std::optional<std::vector<int>> filled_slots(const Profile& profile, std::string_view list);
-inline constexpr std::string_view kSlotListNames = "presets, tles, signposts or store";
+// What one entry of such a list is called ("preset satellite", "TLE",
+// "signpost", "STORE entry"); nullopt for a name that is not a list.
+std::optional<std::string_view> slot_what(std::string_view list);
+// The names of the lists, for messages: "presets, tles, signposts or store".
+std::string slot_list_names();
 
 }  // namespace sabus::harness
