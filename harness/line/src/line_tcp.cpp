@@ -65,6 +65,12 @@ void set_nodelay(int fd) {
 TcpLine::TcpLine(UniqueFd fd, std::string description)
     : FdLine(std::move(fd), Kind::socket), description_(std::move(description)) {}
 
+bool TcpLine::peer_closed() const {
+  pollfd p{fd(), POLLRDHUP, 0};
+  if (::poll(&p, 1, 0) <= 0) return false;
+  return (p.revents & (POLLRDHUP | POLLHUP | POLLERR)) != 0;
+}
+
 std::unique_ptr<TcpLine> TcpLine::connect(const std::string& host, std::uint16_t port,
                                           std::chrono::milliseconds timeout) {
   const std::string name = "tcp " + endpoint(host, port);

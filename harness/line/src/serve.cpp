@@ -146,6 +146,7 @@ int serve_tcp(TcpListener& listener, LineDevice& device, const ServeOptions& opt
       continue;
     }
     const std::string who = client->describe();
+    const TcpLine* socket = client.get();  // still owned by `line` below
     transcript.note("client connected: " + who);
     std::unique_ptr<Line> line;
     Rfc2217ServerLine* telnet = nullptr;
@@ -175,6 +176,13 @@ int serve_tcp(TcpListener& listener, LineDevice& device, const ServeOptions& opt
         return true;
       }
       if (!other) return false;
+      if (socket->peer_closed()) {
+        // The client before it left and its close is not read yet: the port
+        // is free, so the newcomer is served, not refused.
+        transcript.note("client gone: " + who + " closed the connection");
+        next = std::move(other);
+        return true;
+      }
       if (options.takeover) {
         transcript.note("client " + other->describe() + " takes over from " + who + " (--takeover): " + who +
                         " disconnected");

@@ -260,6 +260,10 @@ class TcpLine final : public FdLine {
   static std::unique_ptr<TcpLine> connect(const std::string& host, std::uint16_t port,
                                           std::chrono::milliseconds timeout);
   std::string describe() const override { return description_; }
+  // True once the peer has closed its end (FIN or reset), without reading:
+  // a server deciding whether a newcomer finds the port in use asks this,
+  // since the last client's close may not have been read yet.
+  bool peer_closed() const;
 
  private:
   friend class TcpListener;
