@@ -23,6 +23,11 @@ constexpr double kDisplayResolution = 0.1;
 // acceleration (stop, speed up, cruise, slow down); the bound keeps a
 // degenerate one from looping.
 constexpr int kMaxPhases = 16;
+// §3.7 'A' (ERRATA E-90): the spiral's step, how long it searches before it
+// gives up, and the tick its legs (and a DEPLOY's movements) are timed on.
+constexpr double kSpiralStepDeg = 1.0;
+constexpr std::chrono::seconds kSearchTime{20};
+constexpr std::chrono::milliseconds kSearchTick{100};
 
 double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
 int sign_of(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
@@ -220,8 +225,11 @@ bool Controller::in_mode(enums::Mode mode) const { return state_.mode.mode == mo
 // moving state: the one of the state the STOW or DEPLOY is in.
 std::string Controller::moving_exit(bool stopped) const {
   if (in_mode("LOCATE_MODE")) return locate_exit(stopped);
+  if (in_mode("SPIRAL_REMOTE_MODE")) return search_exit(stopped);
   if (!in_mode("STOW_MODE") && !in_mode("DEPLOY_MODE")) return "";
   if (stopped && in_mode("STOW_MODE") && faults_.has(Fault::kStowStopExitFinished)) return "STOW_FINISHED_NORMALLY";
+  if (stopped && in_mode("DEPLOY_MODE") && faults_.has(Fault::kDeployStopExitFinished))
+    return "DEPLOY_FINISHED_NORMALLY";
   const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
   const auto* exits = enums::exit_list_for_mode(state_.mode.mode, enum_reading());
   const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
@@ -248,6 +256,22 @@ std::string Controller::locate_exit(bool stop_key) const {
                                  "LOCATE_SECOND_ELEV_MOVEMENT"})
         if (*name == m) movement = m;
   return movement + (stop_key ? "_STOP_KEY" : "_MODE_CHANGED");
+}
+
+// ERRATA E-90: locate_exit_conditions pair a STOP_KEY and a MODE_CHANGED
+// entry with each moving state of the spiral search, named without the
+// state's "SEARCH_" (SPIRAL_SEARCH_STEPPING_UP_IN_ELEVATION ->
+// SPIRAL_STEPPING_UP_IN_ELEVATION_STOP_KEY).
+std::string Controller::search_exit(bool stop_key) const {
+  if (stop_key && faults_.has(Fault::kSearchStopExitNoPeak)) return "SPIRAL_NO_PEAK_FOUND";
+  const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
+  const auto* exits = enums::exit_list_for_mode(state_.mode.mode, enum_reading());
+  const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
+  if (!state || !exits) return "";
+  std::string stem(*state);
+  if (const auto at = stem.find("SPIRAL_SEARCH_"); at == 0) stem.replace(0, 14, "SPIRAL_");
+  const std::string name = stem + (stop_key ? "_STOP_KEY" : "_MODE_CHANGED");
+  return exits->value_of(name) ? name : "";
 }
 
 // ---- motion ------------------------------------------------------------------
@@ -380,16 +404,74 @@ void Controller::step_ramped(AxisId a, TimePoint from, TimePoint to) {
   if (s.motion != Motion::kJog && k.v != 0) s.direction = sign_of(k.v);
 }
 
+void Controller::advance(TimePoint to) {
+  const bool was_moving = moving();
+  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) step_axis(a, last_update_, to);
+  last_update_ = to;
+  if (was_moving && !moving()) on_motion_done();
+}
+
 void Controller::update() {
   const TimePoint now = clock_.now();
-  if (now <= last_update_) return;
-  const bool was_moving = moving();
-  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) step_axis(a, last_update_, now);
-  last_update_ = now;
-  if (was_moving && !moving()) on_motion_done();
-  if (in_mode("SPIRAL_REMOTE_MODE") && now >= search_end_) {
+  // A search or a DEPLOY chains movements: time is cut in ticks, so that
+  // each begins about when the one before ended.
+  while ((in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE")) && last_update_ < now)
+    advance(std::min(now, last_update_ + std::chrono::duration_cast<Duration>(kSearchTick)));
+  if (now > last_update_) advance(now);
+}
+
+// ---- §3.7 'A': the spiral search, 'D': the deploy (ERRATA E-90) --------------
+
+void Controller::start_search(char pattern) {
+  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0,
+                   clock_.now() + std::chrono::duration_cast<Duration>(kSearchTime), false};
+  enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
+  next_search_leg();
+}
+
+// Azimuth clockwise, elevation up, azimuth counterclockwise, elevation down,
+// each pair a step longer than the last ('E'); a flat spiral keeps its
+// elevation legs one step long ('F'). A step is 1 deg, or twice the axis's
+// arrival tolerance where that is more. A leg a limit leaves no room for is
+// passed over. When the search time is over: back to where it began, and out
+// with no peak found (the model measures no signal).
+void Controller::next_search_leg() {
+  struct Leg {
+    AxisId axis;
+    int direction;
+    std::string_view state;
+  };
+  static constexpr Leg kLegs[] = {{AxisId::kAz, +1, "SPIRAL_SEARCH_STEPPING_CW_IN_AZIMUTH"},
+                                  {AxisId::kEl, +1, "SPIRAL_SEARCH_STEPPING_UP_IN_ELEVATION"},
+                                  {AxisId::kAz, -1, "SPIRAL_SEARCH_STEPPING_CCW_IN_AZIMUTH"},
+                                  {AxisId::kEl, -1, "SPIRAL_SEARCH_STEPPING_DOWN_IN_ELEVATION"}};
+  if (search_.returning) {
     enter_mode("MANUAL_MODE", "MANUAL_IDLE", "SPIRAL_NO_PEAK_FOUND");
+    return;
   }
+  for (std::size_t tries = 0; tries < std::size(kLegs) && last_update_ < search_.end; ++tries) {
+    const Leg& leg = kLegs[static_cast<std::size_t>(search_.legs) % std::size(kLegs)];
+    const int size = search_.legs / 2 + 1;
+    ++search_.legs;
+    // A step the drive could not make (within its arrival tolerance) would
+    // not move at all: at least twice that.
+    const double step = std::max(kSpiralStepDeg, 2 * axis_profile(leg.axis).tolerance_deg);
+    const double length = step * (leg.axis == AxisId::kEl && search_.pattern == 'F' ? 1 : size);
+    set_state(leg.state);
+    start_move(leg.axis, axis(leg.axis).position + leg.direction * length, false);
+    if (moving()) return;
+  }
+  search_.returning = true;
+  set_state("SPIRAL_SEARCH_NO_PEAK_MOVING_TO_AZIMUTH");
+  start_move(AxisId::kAz, search_.az0, false);
+  start_move(AxisId::kEl, search_.el0, false);
+  if (!moving()) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "SPIRAL_NO_PEAK_FOUND");
+}
+
+void Controller::start_deploy() {
+  enter_mode("DEPLOY_MODE", "DEPLOY_MOVING_ELEVATION");
+  start_move(AxisId::kEl, profile_.el.deploy_deg.value_or(profile_.el.initial_deg), false);
+  if (!moving()) on_motion_done();
 }
 
 // A mode that drives the antenna ends when the antenna arrives.
@@ -401,7 +483,16 @@ void Controller::on_motion_done() {
   if (in_mode("LOCATE_MODE")) {
     if (locate_moving) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
   } else if (in_mode("STOW_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
-  else if (in_mode("DEPLOY_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "DEPLOY_FINISHED_NORMALLY");
+  else if (in_mode("DEPLOY_MODE")) {
+    const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
+    const bool elevation_done = states && states->name_of(state_.mode.state) == "DEPLOY_MOVING_ELEVATION";
+    if (elevation_done && profile_.az.deploy_deg) {
+      set_state("DEPLOY_MOVING_AZIMUTH");
+      start_move(AxisId::kAz, *profile_.az.deploy_deg, false);
+      if (moving()) return;
+    }
+    enter_mode("MANUAL_MODE", "MANUAL_IDLE", "DEPLOY_FINISHED_NORMALLY");
+  } else if (in_mode("SPIRAL_REMOTE_MODE")) next_search_leg();
   else if (in_mode("RECALL_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "RECALL_NORMAL_EXIT");
 }
 

@@ -9,7 +9,6 @@ namespace sabus::harness {
 namespace {
 
 constexpr std::chrono::milliseconds kKeyJogHold{500};    // §2 REMOTE JOG HOLD 20 x 1/40 s
-constexpr std::chrono::seconds kSpiralSearchTime{20};
 
 bool valid_key(char k) { return (k >= '0' && k <= '9') || (k >= 'A' && k <= 'G'); }
 
@@ -66,13 +65,11 @@ Outcome Handlers::misc(C& c, const Misc& m) {
     case 'D':
       if (!c.profile_.deploy && !c.faults_.has(Fault::kStowWithoutCapability))
         return nak(c, 0x36, NakRule::kMiscNoDeploy);
-      c.enter_mode("DEPLOY_MODE", "DEPLOY_MOVING_ELEVATION");
-      c.start_move(AxisId::kEl, c.profile_.el.initial_deg, false);
+      c.start_deploy();
       return status(c, 0x36, "deploy");
     case 'A':
       if (m.param != 'E' && m.param != 'F') return nak(c, 0x36, NakRule::kMiscSearchParameter);
-      c.enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
-      c.search_end_ = c.clock_.now() + kSpiralSearchTime;
+      c.start_search(m.param);  // moves from the next update on (E-90)
       return status(c, 0x36, m.param == 'E' ? "expanding spiral search" : "flat spiral search");
     case 'K': {
       auto r = keypress(c, m.param, 0x36);
@@ -136,8 +133,8 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
       (c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE")) || stop_ignored_by_fault(c);
   if (key == 'A' && !ignored) {
     c.stop_all();
-    // The Stop key ends a LOCATE, STOW or DEPLOY where it is, back in MANUAL
-    // mode (E-82, E-89).
+    // The Stop key ends a LOCATE, STOW, DEPLOY or search where it is, back in
+    // MANUAL mode (E-82, E-89, E-90).
     if (const std::string exit = c.moving_exit(true); !exit.empty()) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", exit);
   }
   if (key == 'C' && !c.in_mode("MANUAL_MODE")) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE");

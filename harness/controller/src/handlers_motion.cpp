@@ -32,7 +32,9 @@ Navigation locate_navigation(Navigation n, const FaultSet& faults) {
 
 bool Handlers::stop_ignored_by_fault(const C& c) {
   return (c.faults_.has(Fault::kLocateIgnoresStop) && c.in_mode("LOCATE_MODE")) ||
-         (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE"));
+         (c.faults_.has(Fault::kStowIgnoresStop) && c.in_mode("STOW_MODE")) ||
+         (c.faults_.has(Fault::kDeployIgnoresStop) && c.in_mode("DEPLOY_MODE")) ||
+         (c.faults_.has(Fault::kSearchIgnoresStop) && c.in_mode("SPIRAL_REMOTE_MODE"));
 }
 
 // ---- §3.3 Auto Move -----------------------------------------------------------
@@ -145,7 +147,7 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   // Fault x-reenters-remote: REMOTE mode is entered again (ERRATA E-88).
   if (c.faults_.has(Fault::kXReentersRemote) && c.in_mode("REMOTE_MODE")) c.set_state("INITIALIZING_MODE");
   if (stop_ignored_by_fault(c)) return status(c, code, "stop ignored (fault)");
-  // A LOCATE, STOW or DEPLOY stopped before it completes exits as by the
+  // A LOCATE, STOW, DEPLOY or search stopped before it completes exits as by the
   // Stop key (E-82, E-89).
   if (const std::string exit = c.moving_exit(true); !exit.empty())
     c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", exit);

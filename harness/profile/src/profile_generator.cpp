@@ -337,6 +337,14 @@ void errata(Draw& d, Profile& p) {
   p.restore_lost_locate_exit = d.chance(0.5);                           // E-28
 }
 
+// §3.7 'D' (ERRATA E-90): a mount with a deploy function states where a
+// DEPLOY drives the elevation, and sometimes the azimuth; or says nothing.
+void deploy_positions(Draw& d, Profile& p) {
+  if (!p.deploy || d.chance(0.25)) return;
+  p.el.deploy_deg = inside(d, {p.el.min_deg, p.el.max_deg});
+  if (d.chance(0.5)) p.az.deploy_deg = inside(d, {p.az.min_deg, p.az.max_deg});
+}
+
 }  // namespace
 
 Profile random_profile(std::uint64_t seed) {
@@ -353,6 +361,7 @@ Profile random_profile(std::uint64_t seed) {
   display(d, p);
   track_and_alarms(d, p);
   errata(d, p);
+  deploy_positions(d, p);  // drawn last: the fields before keep their draws
   return p;
 }
 

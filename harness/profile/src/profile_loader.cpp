@@ -219,8 +219,8 @@ struct AxisRanges {
 // `range` is where its range was given.
 void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::optional<At>& range_at) {
   MapReader r(v, at,
-              {"fast_dps", "slow_dps", "min_deg", "max_deg", "initial_deg", "has_stow_limit", "stow_deg", "tolerance_deg",
-               "accel_dps2", "power_on_speed", "ad_error"});
+              {"fast_dps", "slow_dps", "min_deg", "max_deg", "initial_deg", "has_stow_limit", "stow_deg", "deploy_deg",
+               "tolerance_deg", "accel_dps2", "power_on_speed", "ad_error"});
   auto position = [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kPositionMin, kPositionMax); };
   auto speed = [](const YAML::Node& n, const At& a) { return to_positive(n, a, kMaxSpeed, kMinSpeed); };
   r.read("fast_dps", axis.fast_dps, speed);
@@ -230,6 +230,10 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::option
   r.read("initial_deg", axis.initial_deg, position);
   r.read("has_stow_limit", axis.has_stow_limit, to_bool);
   r.read("stow_deg", axis.stow_deg, position);
+  r.read("deploy_deg", axis.deploy_deg, [&](const YAML::Node& n, const At& a) -> std::optional<double> {
+    if (n.IsNull()) return std::nullopt;  // not stated
+    return position(n, a);
+  });
   r.read("tolerance_deg", axis.tolerance_deg,
          [](const YAML::Node& n, const At& a) { return to_number_in(n, a, kToleranceMin, kToleranceMax); });
   r.read("accel_dps2", axis.accel_dps2, [](const YAML::Node& n, const At& a) -> std::optional<double> {
@@ -256,6 +260,8 @@ void read_axis(const YAML::Node& v, const At& at, AxisProfile& axis, std::option
     fail(r.at("initial_deg"), "initial_deg " + number_text(axis.initial_deg) + " is outside min_deg..max_deg");
   if (axis.has_stow_limit && !inside(axis.stow_deg))
     fail(r.at("stow_deg"), "stow_deg " + number_text(axis.stow_deg) + " is outside min_deg..max_deg");
+  if (axis.deploy_deg && !inside(*axis.deploy_deg))
+    fail(r.at("deploy_deg"), "deploy_deg " + number_text(*axis.deploy_deg) + " is outside min_deg..max_deg");
 }
 
 void read_axes(const YAML::Node& v, const At& at, Profile& p, AxisRanges& ranges) {

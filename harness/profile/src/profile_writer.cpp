@@ -80,6 +80,7 @@ std::string axis_text(const AxisProfile& a) {
                {"initial_deg", number_text(a.initial_deg)},
                {"has_stow_limit", bool_text(a.has_stow_limit)},
                {"stow_deg", number_text(a.stow_deg)},
+               {"deploy_deg", a.deploy_deg ? number_text(*a.deploy_deg) : "~"},
                {"tolerance_deg", number_text(a.tolerance_deg)},
                {"accel_dps2", a.accel_dps2 ? number_text(*a.accel_dps2) : "~"},
                {"power_on_speed", name_text(kAxisSpeeds, a.power_on_speed)},

@@ -30,6 +30,20 @@ bool values_equal(const std::string& want, const std::string& got) {
   }
 }
 
+// An expected value written as the field shows it: a code field reads
+// "0x26", so an expression's 32 is named 0x20 beside it, not 32.
+std::string as_field_shows(const std::string& want, const std::string& got) {
+  if (got.rfind("0x", 0) != 0 || want.empty() || want.find_first_not_of("0123456789") != std::string::npos)
+    return want;
+  try {
+    char hex[24];
+    std::snprintf(hex, sizeof hex, "0x%02lx", std::stoul(want));
+    return hex;
+  } catch (...) {
+    return want;
+  }
+}
+
 // A number as a reply field shows it: a whole number of units, `per` of
 // them to one (10^decimals: "-152.5" is -1525 tenths, "11050" 11050 units).
 struct Reading {
@@ -175,13 +189,13 @@ std::optional<std::string> check_one_field(const FrameDescription& reply, const 
   switch (m.kind) {
     case FieldMatcher::Kind::kAny: return std::nullopt;
     case FieldMatcher::Kind::kEq:
-      if (!m.values.empty() && !values_equal(m.values[0], got)) return fail(m.values[0]);
+      if (!m.values.empty() && !values_equal(m.values[0], got)) return fail(as_field_shows(m.values[0], got));
       return std::nullopt;
     case FieldMatcher::Kind::kOneOf: {
       std::string list;
       for (const auto& v : m.values) {
         if (values_equal(v, got)) return std::nullopt;
-        list += (list.empty() ? "" : ", ") + v;
+        list += (list.empty() ? "" : ", ") + as_field_shows(v, got);
       }
       return fail("one of " + list);
     }

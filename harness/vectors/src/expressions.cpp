@@ -408,6 +408,14 @@ const Function kFunctions[] = {
                                  : unavailable("a stow limit on the " + std::string(motion::name_of(axis)));
        });
      }},
+    {{"deploy_deg", "axis", "where a DEPLOY drives the axis (§3.7 'D'); unavailable when the profile does not say"}, 1,
+     [](const Call& c) {
+       return with_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+         return a.deploy_deg ? number(*a.deploy_deg)
+                             : unavailable("the deploy position of the " + std::string(motion::name_of(axis)) +
+                                           " in the profile (deploy_deg)");
+       });
+     }},
     {{"fast", "axis", "the axis's fast speed, deg/s"}, 1,
      [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.fast_dps); }); }},
     {{"slow", "axis", "the axis's slow speed, deg/s"}, 1,

@@ -267,8 +267,10 @@ Maybe<double> move_target(const AxisProfile& a, double from, int ms, std::string
 
 Maybe<double> away_from(const AxisProfile& a, double to, int ms, std::string_view axis_name) {
   const double inset = a.tolerance_deg + kLimitMargin;  // clear of the limit switches, as a jog's start
-  // A move ends within tolerance_deg of its target: that much is never travelled.
-  const double travel = a.fast_dps * seconds(ms) * 1.1 + a.tolerance_deg;
+  // A move ends within tolerance_deg of its target, twice: the move that
+  // puts the axis here may stop that much short of `from` (nearer `to`), and
+  // the move to `to` that much short of it. Neither is travelled.
+  const double travel = a.fast_dps * seconds(ms) * 1.1 + 2 * a.tolerance_deg;
   const bool up = a.max_deg - to >= to - a.min_deg;
   const double from = up ? tenths_up(to + travel) : tenths_down(to - travel);
   if (from >= a.min_deg + inset && from <= a.max_deg - inset) return {from, ""};

@@ -375,6 +375,75 @@ TEST(Controller, StowDeployAndSearchChangeTheMode) {
   EXPECT_EQ(meanings::mode_name(r.extended().mode), "SPIRAL_REMOTE_MODE");
 }
 
+// ERRATA E-90: the reference search moves leg by leg about where it began,
+// then returns there and exits with no peak found.
+TEST(Controller, ASearchMovesAboutWhereItBeganAndReturns) {
+  Rig r;
+  const double az0 = r.c.state().az.position, el0 = r.c.state().el.position;
+  ASSERT_FALSE(is_nak(r.send(Misc{'A', 'E'})));
+  double farthest = 0;
+  for (int i = 0; i < 150; ++i) {  // 15 s in 100 ms steps
+    r.wait(100ms);
+    farthest = std::max({farthest, std::abs(r.c.state().az.position - az0), std::abs(r.c.state().el.position - el0)});
+  }
+  EXPECT_GE(farthest, 2.0) << "an expanding spiral's legs grow";
+  EXPECT_EQ(meanings::mode_name(r.extended().mode), "SPIRAL_REMOTE_MODE");
+  r.wait(300s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "MANUAL_MODE");
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "SPIRAL_NO_PEAK_FOUND");
+  EXPECT_NEAR(r.c.state().az.position, az0, 0.11);
+  EXPECT_NEAR(r.c.state().el.position, el0, 0.11);
+}
+
+TEST(Controller, TheStopKeyEndsASearchWithTheStopEntryOfItsMovement) {
+  Rig r;
+  ASSERT_FALSE(is_nak(r.send(Misc{'A', 'E'})));
+  r.wait(1500ms);
+  ASSERT_TRUE(r.c.state().az.motion != AxisState::Motion::kIdle || r.c.state().el.motion != AxisState::Motion::kIdle);
+  ASSERT_FALSE(is_nak(r.send(Misc{'K', 'A'})));
+  r.wait(100ms);
+  const double az = r.c.state().az.position, el = r.c.state().el.position;
+  r.wait(30s);
+  EXPECT_EQ(r.c.state().az.position, az);
+  EXPECT_EQ(r.c.state().el.position, el);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "MANUAL_MODE");
+  const std::string exit = meanings::exit_name(x.last_mode, x.exit_status);
+  EXPECT_TRUE(exit.starts_with("SPIRAL_") && exit.ends_with("_STOP_KEY")) << exit;
+  // 'X' likewise, into REMOTE.
+  ASSERT_FALSE(is_nak(r.send(Misc{'A', 'F'})));
+  r.wait(1500ms);
+  ASSERT_FALSE(is_nak(r.send(Jog{{'X', 'F', 0}})));
+  x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "REMOTE_MODE");
+  EXPECT_EQ(meanings::mode_name(x.last_mode), "SPIRAL_REMOTE_MODE");
+  EXPECT_TRUE(meanings::exit_name(x.last_mode, x.exit_status).ends_with("_STOP_KEY"));
+}
+
+// ERRATA E-90: a DEPLOY drives the elevation to the profile's deploy_deg,
+// then the azimuth to its own when the profile states one.
+TEST(Controller, ADeployGoesWhereTheProfileSays) {
+  Profile p = test_profile();
+  p.el.deploy_deg = 30.0;
+  p.az.deploy_deg = -20.0;
+  Rig r(p);
+  ASSERT_FALSE(is_nak(r.send(Misc{'D', ' '})));
+  r.wait(300s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "DEPLOY_FINISHED_NORMALLY");
+  EXPECT_NEAR(r.c.state().el.position, 30.0, 0.11);
+  EXPECT_NEAR(r.c.state().az.position, -20.0, 0.11);
+  // Stopped on its way: the MOVE_STOPPED entry of the movement it is in.
+  ASSERT_FALSE(is_nak(r.send(AutoMove{AutoMoveAzEl{0, 600}})));
+  r.wait(300s);
+  ASSERT_FALSE(is_nak(r.send(Misc{'D', ' '})));
+  r.wait(2s);
+  ASSERT_FALSE(is_nak(r.send(Misc{'K', 'A'})));
+  x = r.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "DEPLOY_MOVING_ELEVATION_MOVE_STOPPED");
+}
+
 TEST(Controller, TrackBandChangeAndErrorReset) {
   Profile p = test_profile();
   p.track = {true, TrackActivity::kIdle, TrackBand::kC, true};
@@ -1127,6 +1196,14 @@ TEST(Faults, EveryFaultChangesTheWire) {
       {Fault::kStowIgnoresStop, [](Profile& p) { p.stow = true; }, cat({wire(Misc{'S', 'S'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')})},
       {Fault::kStowStopExitFinished, [](Profile& p) { p.stow = true; },
        cat({wire(Misc{'S', 'S'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')}), wire(ExtendedStatusPoll{}, '2')},
+      // A DEPLOY (to an elevation the profile states) and a search, stopped at once by 'X'.
+      {Fault::kDeployIgnoresStop, [](Profile& p) { p.el.deploy_deg = 10.0; },
+       cat({wire(Misc{'D', 'D'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')})},
+      {Fault::kDeployStopExitFinished, [](Profile& p) { p.el.deploy_deg = 10.0; },
+       cat({wire(Misc{'D', 'D'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')}), wire(ExtendedStatusPoll{}, '2')},
+      {Fault::kSearchIgnoresStop, [](Profile&) {}, cat({wire(Misc{'A', 'E'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')})},
+      {Fault::kSearchStopExitNoPeak, [](Profile&) {}, cat({wire(Misc{'A', 'E'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')}),
+       wire(ExtendedStatusPoll{}, '2')},
       // Issue 22, stored records: slot 2 and STORE entry 2 sit between the first and the last.
       {Fault::kSlotReadShiftedInMiddle,
        [](Profile& p) {

@@ -162,6 +162,10 @@ TEST(profile, DefaultFileIsTheStructDefaultsPlusStoredData) {
   p.presets.clear();
   p.tles.clear();
   p.navigation = Navigation{};
+  // Where its DEPLOY goes is this controller's (E-90), not a default that a
+  // profile leaving it out would inherit.
+  EXPECT_EQ(p.el.deploy_deg, 45.0);
+  p.el.deploy_deg.reset();
   expect_same(p, Profile{});
 }
 
@@ -489,9 +493,9 @@ Profile every_field_set() {
   p.counts_per_degree = 123.456;
   p.count_offset = 99999;
   p.fluxgate_heading = 'M';
-  p.az = {3.3, 0.1, -170.5, 179.25, 12.125, true, 0.1, 5, 0.25, AxisSpeed::kSlow, true};
-  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0, 0.1, 1000, AxisSpeed::kFast, false};
-  p.pol = {9, 3, -45, 45, -44.9, true, 44.9, 2.5, std::nullopt, AxisSpeed::kSlow, false};
+  p.az = {3.3, 0.1, -170.5, 179.25, 12.125, true, 0.1, 5, 0.25, AxisSpeed::kSlow, true, 120.75};
+  p.el = {0.7, 0.05, 0, 89.5, 1e-3, false, 0, 0.1, 1000, AxisSpeed::kFast, false, std::nullopt};
+  p.pol = {9, 3, -45, 45, -44.9, true, 44.9, 2.5, std::nullopt, AxisSpeed::kSlow, false, -12.5};
   p.turnaround_ms = 0.25;
   p.agc = 0;
   p.agc_channel = 3;

@@ -56,6 +56,24 @@ TEST(Matchers, EqOneOfRegexRangeAny) {
   EXPECT_TRUE(check_field(d, matcher("no such field", K::kAny, {}), c));
 }
 
+TEST(Matchers, ExpectedCodesAreNamedAsTheFieldShowsThem) {
+  // An expression such as mode_exit(...) gives a decimal number; beside a
+  // code field's "0x44" the failure names it in hex, as the field shows it.
+  const auto d = status_reply();
+  Captures c;
+  using K = FieldMatcher::Kind;
+  auto fail = check_field(d, matcher("az status", K::kOneOf, {"32", "87"}), c);
+  ASSERT_TRUE(fail);
+  EXPECT_EQ(*fail, "byte 36 az status: expected one of 0x20, 0x57, got 0x44 (slow, ccw automatic movement in progress)");
+  fail = check_field(d, matcher("az status", K::kEq, {"87"}), c);
+  ASSERT_TRUE(fail);
+  EXPECT_NE(fail->find("expected 0x57, got 0x44"), std::string::npos) << *fail;
+  // A field that is not a code keeps the number as written.
+  fail = check_field(d, matcher("sat name", K::kOneOf, {"12", "X"}), c);
+  ASSERT_TRUE(fail);
+  EXPECT_NE(fail->find("expected one of 12, X, got SBS 6"), std::string::npos) << *fail;
+}
+
 TEST(Matchers, CaptureKeepsTheText) {
   const auto d = status_reply();
   Captures c;

@@ -123,6 +123,8 @@ class Controller {
   // stopped (a stop or the Stop key) or taken over by another mode; "" in
   // any other mode or state.
   std::string moving_exit(bool stopped) const;
+  // The §3.17 exit of a spiral search left while it moves (E-90).
+  std::string search_exit(bool stop_key) const;
 
   bool stow_limit(AxisId a) const;
   bool moving() const;
@@ -134,6 +136,15 @@ class Controller {
   void step_axis(AxisId a, TimePoint from, TimePoint to);
   void step_ramped(AxisId a, TimePoint from, TimePoint to);
   void on_motion_done();
+  // Motion from the last update to `to`, and what ends with it.
+  void advance(TimePoint to);
+  // §3.7 'A' (ERRATA E-90): a square spiral about the current position, leg
+  // by leg; when its time is over, back to where it began.
+  void start_search(char pattern);
+  void next_search_leg();
+  // §3.7 'D' (ERRATA E-90): the elevation, then the azimuth when the profile
+  // states a deploy position for it.
+  void start_deploy();
 
   std::int32_t tenths(AxisId a) const;
   // §3.2 bytes 14-31 / §3.24 bytes 4-9: the tenths shown (a heading for a
@@ -153,7 +164,14 @@ class Controller {
   FaultSet faults_;
   ControllerState state_;
   TimePoint last_update_;
-  TimePoint search_end_{};  // §3.7 'A': when the spiral search gives up
+  // §3.7 'A' (ERRATA E-90): the spiral search in progress.
+  struct Search {
+    char pattern = 'E';        // 'E' expanding, 'F' flat
+    double az0 = 0, el0 = 0;   // where it began: the nominal position it returns to
+    int legs = 0;              // legs begun
+    TimePoint end{};           // when it gives up with no peak found
+    bool returning = false;    // moving back to az0, el0
+  } search_;
   int signal_strength_ = 0;  // §3.9, when a profile implements 38h
   std::array<std::optional<std::string>, 10> iess_;  // §3.14, when a profile implements 3Dh/3Eh
 };

@@ -75,6 +75,14 @@ namespace sabus::harness {
     "a STOW in motion goes on to its stow position after 33h 'X' or the Stop key, which are ACKed")              \
   X(kStowStopExitFinished, "stow-stop-exit-finished",                                                           \
     "a STOW stopped before it arrives exits with STOW_FINISHED_NORMALLY")                                        \
+  X(kDeployIgnoresStop, "deploy-ignores-stop",                                                                 \
+    "a DEPLOY in motion goes on to its deploy position after 33h 'X' or the Stop key, which are ACKed")          \
+  X(kDeployStopExitFinished, "deploy-stop-exit-finished",                                                       \
+    "a DEPLOY stopped before it arrives exits with DEPLOY_FINISHED_NORMALLY")                                    \
+  X(kSearchIgnoresStop, "search-ignores-stop",                                                                 \
+    "a spiral search goes on searching after 33h 'X' or the Stop key, which are ACKed")                          \
+  X(kSearchStopExitNoPeak, "search-stop-exit-no-peak",                                                         \
+    "a spiral search stopped before it ends exits with SPIRAL_NO_PEAK_FOUND")                                   \
   /* Stored records read back (§3.6, §3.11, §3.13, §3.21) */                                                      \
   X(kSlotReadShiftedInMiddle, "slot-read-shifted-in-middle",                                                     \
     "a read of a slot between the first and the last of its list (3Ah, 3Ch, 44h) answers the next slot's record") \

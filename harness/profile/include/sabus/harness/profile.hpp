@@ -42,6 +42,9 @@ struct AxisProfile {
   // §3.2 bytes 14-31, §3.24 bytes 4-9: the A/D converter reports an error on
   // this axis's sensor, so its position field holds '*' (E-42).
   bool ad_error = false;
+  // §3.7 'D': where a DEPLOY drives this axis, when the profile states it
+  // (the spec does not; ERRATA E-90). Vectors that stop a DEPLOY need it.
+  std::optional<double> deploy_deg;
   bool operator==(const AxisProfile&) const = default;
 };
 
@@ -157,9 +160,9 @@ struct Profile {
   bool dvb_receiver = false;                // §3.20 / §3.21 (E-23)
   double counts_per_degree = 100.0;         // pulse/resolver sensors (§3.16)
   std::int32_t count_offset = 10000;        // counts at 0 deg
-  AxisProfile az{2.0, 0.5, -180.0, 180.0, 0.0, false, 0.0, 0.1, std::nullopt};
-  AxisProfile el{1.0, 0.25, -5.0, 90.0, 45.0, true, -5.0, 0.1, std::nullopt};
-  AxisProfile pol{5.0, 1.0, -90.0, 90.0, 0.0, false, 0.0, 0.1, std::nullopt};
+  AxisProfile az{2.0, 0.5, -180.0, 180.0, 0.0, false, 0.0, 0.1, std::nullopt, AxisSpeed::kFast, false, std::nullopt};
+  AxisProfile el{1.0, 0.25, -5.0, 90.0, 45.0, true, -5.0, 0.1, std::nullopt, AxisSpeed::kFast, false, std::nullopt};
+  AxisProfile pol{5.0, 1.0, -90.0, 90.0, 0.0, false, 0.0, 0.1, std::nullopt, AxisSpeed::kFast, false, std::nullopt};
   // The device's reply turnaround: the longest it takes from the end of a
   // request to the first byte of its reply (sabus sim --emulate-line waits
   // this long; the runner allows for it).
