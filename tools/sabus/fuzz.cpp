@@ -129,6 +129,16 @@ void print_totals(const Session& session, const Transport& transport, double wal
   if (transport.baud() > 0 && pty) std::cout << fmt::format(" wire_s={:.3f} (at that baud rate; a pseudo-terminal has none, so no line_busy)", wire_s);
   else if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
   std::cout << "\n";
+  if (const Lockstep* l = session.lockstep()) {
+    // What the lockstep oracle reached: the rules the device NAKed by, of
+    // all the reference controller knows, and the reply fields compared.
+    const LockstepCoverage& cov = l->coverage();
+    std::string rules;
+    for (const std::string& r : cov.rules_fired) rules += (rules.empty() ? "" : ", ") + r;
+    std::cout << fmt::format("lockstep: {} of {} NAK rules fired on the device{}; {} of {} reply fields compared; {} resync(s)\n",
+                             cov.rules_fired.size(), all_nak_rules().size(), rules.empty() ? "" : " (" + rules + ")",
+                             cov.fields_compared.size(), comparable_reply_fields(), cov.resyncs);
+  }
   if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
   std::cout << fmt::format("{} finding(s)\n", findings.size());
   for (std::size_t i = 0; i < findings.size(); ++i)
@@ -191,7 +201,7 @@ int run_fuzz(const FuzzCliOptions& o) {
   auto record = [&](const live_fuzz::Verdict& v) {
     if (seen_kinds.count(v.kind)) return;  // one reproducer a kind
     seen_kinds.insert(v.kind);
-    Finding f{v.kind, v.message, history, {}, false};
+    Finding f{v.kind, v.message, history, {}, false, v.field};
     progress->line(fmt::format("FINDING {} after {} writes: {}", to_string(v.kind), frames, v.message));
     progress->update(frames, findings.size(), fmt::format("minimizing the {} finding", to_string(v.kind)));
     minimize(f, profile, so, fresh, fresh ? nullptr : &session);

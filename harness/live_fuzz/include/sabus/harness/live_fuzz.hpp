@@ -19,9 +19,12 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <set>
+#include <array>
 #include <string>
 #include <vector>
 
+#include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/transport.hpp"
 #include "sabus/protocol/frame.hpp"
@@ -140,7 +143,16 @@ struct Observation {
     "of the message.")                                                                                               \
   X(kReset, "device-reset", "3.1",                                                                                   \
     "The SA Bus specification requires that command character 30h must trigger the return of the six character "    \
-    "device type string.")
+    "device type string.")                                                                                          \
+  X(kNakRule, "nak-rule", "1",                                                                                       \
+    "A remote device replies with a not-acknowledged (NAK) character, 15 hex, if it receives an invalid command or " \
+    "data.")                                                                                                         \
+  X(kValue, "value", "1",                                                                                            \
+    "replies with a response message containing its own address and status information relating to its present "   \
+    "condition")                                                                                                     \
+  X(kEffect, "effect", "1",                                                                                          \
+    "The user should query the controller later to see if the command was actually carried out, or is still in "    \
+    "progress.")
 
 enum class FindingKind : std::uint8_t {
 #define SABUS_X(id, name, paragraph, quote) id,
@@ -154,6 +166,7 @@ std::string_view quote_of(FindingKind k);
 struct Verdict {
   FindingKind kind;
   std::string message;
+  std::string field = {};  // the reply field that differs (value, effect), as describe_frame names it
 };
 
 // The spec's answer rules for one device profile. It keeps a reference §1
@@ -183,6 +196,74 @@ class Oracle {
 // The longest reply `accepted` can draw (catalog lengths; the longest reply of
 // the catalog when a length is unknown), for reply windows.
 std::size_t expected_reply_bytes(const std::vector<Frame>& accepted);
+
+// ---- lockstep -----------------------------------------------------------------
+
+// What the lockstep oracle has seen in a session, for the summary.
+struct LockstepCoverage {
+  std::set<std::string> rules_fired;      // NAK rules the device NAKed by (as the model names them)
+  std::set<std::string> fields_compared;  // "31h azimuth": reply fields compared with the model
+  std::size_t resyncs = 0;                // positions taken from the device within the drift window
+};
+
+// How many reply fields the lockstep oracle can compare: every field of the
+// field classes' table but the device's (field_classes.hpp), counted once
+// for each command whose reply has it.
+std::size_t comparable_reply_fields();
+
+// The lockstep oracle: a reference controller (the project's Bus, this
+// profile, no faults) on its own virtual clock, fed every write the session
+// sends (the same characters and wrong-parity marks, through the controller's
+// own §1 receiver) at the time it was sent, its replies compared with the
+// device's (issue 24):
+//   - ACK vs NAK: the model's NAK names its rule (nak-rule);
+//   - each reply field by its class (field_classes.hpp): fixed, echo,
+//     profile, stored and state fields exactly; motion fields within a window
+//     while an axis moves or has drifted; device fields never (value or effect,
+//     see classify()).
+// Time on a line is known only to within the exchange's latency: the model
+// is also run `uncertainty` earlier and later (copies of the bus), and a
+// device reply is accepted when it is one the model gives somewhere in that
+// span; the copy that matched is kept, so the model stays in step.
+class Lockstep {
+ public:
+  Lockstep(const Profile& profile, TimePoint start);
+  Lockstep(const Lockstep&) = delete;
+  Lockstep& operator=(const Lockstep&) = delete;
+  // One write sent at `sent_at` (the device's clock), and the replies the
+  // device gave to it, in order. `uncertainty`: how far the device's
+  // execution time can be from `sent_at` (0 in-process).
+  std::optional<Verdict> step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                              const std::vector<Frame>& device);
+  // Back to the profile's state (after the device was restored, or before a replay).
+  void rebuild(TimePoint now);
+  const LockstepCoverage& coverage() const { return coverage_; }
+  // The model (for tests).
+  Controller& model();
+
+  // The spread a position may have on this axis for `uncertainty` of timing
+  // (fast speed both ways), the axis's arrival tolerance and the display's
+  // 0.1 deg: within it a device at rest is resynchronized, not reported.
+  static double drift_window(const AxisProfile& axis, Duration uncertainty);
+
+ private:
+  struct Run;
+  Run run(const Bus& from, TimePoint at, const FuzzFrame& frame);
+  // Whether a controller fresh from the profile answers `field` of the
+  // `reply`-th reply to `frame` otherwise than the model, and as the device.
+  bool kept_as_before(const FuzzFrame& frame, std::size_t reply, std::string_view field, std::size_t occurrence,
+                      const std::string& model_value, const std::string& device_value);
+  Profile profile_;
+  std::unique_ptr<VirtualClock> clock_;
+  std::unique_ptr<Bus> bus_;
+  // A controller fresh from the profile that no write reaches: what a field
+  // reads when no command of the session has changed it (classify an effect).
+  VirtualClock pristine_clock_;
+  std::unique_ptr<Bus> pristine_;
+  TimePoint last_{};
+  std::array<bool, 3> drifted_{};     // az, el, pol resynchronized: hundredths and counts not compared
+  LockstepCoverage coverage_;
+};
 
 // ---- minimizer ----------------------------------------------------------------
 
@@ -233,6 +314,7 @@ struct SessionOptions {
   std::chrono::milliseconds pace{0};                   // §4: at least this long between writes
   std::chrono::milliseconds turnaround_allowance{50};  // beyond the profile's turnaround: late
   std::size_t liveness_every = 50;                     // a device type query every N writes
+  bool lockstep = true;  // judge every reply against the reference controller too (Lockstep)
 };
 
 struct Counts {
@@ -246,6 +328,7 @@ struct Finding {
   std::vector<FuzzFrame> history;    // every write up to the one that showed it
   std::vector<FuzzFrame> reproducer; // minimized (empty until minimized)
   bool reproduced = false;           // the reproducer shows the finding again
+  std::string field = {};            // Verdict::field
 };
 
 // One device: sends writes, judges answers, probes liveness.
@@ -265,13 +348,23 @@ class Session {
   bool would_be_ignored(const FuzzFrame& frame) const;
   const Counts& counts() const { return counts_; }
   Transport& transport() { return transport_; }
+  // The lockstep oracle, or nullptr when SessionOptions::lockstep is off.
+  const Lockstep* lockstep() const { return lockstep_ ? &*lockstep_ : nullptr; }
+  // How far the device's time of execution can be from the time a write was
+  // sent: 0 in-process, else the longest reply latency seen and 5 ms.
+  Duration timing_uncertainty() const;
 
  private:
   Observation exchange(const FuzzFrame& frame, std::size_t expected_replies, std::size_t reply_bytes);
+  // Feeds the lockstep oracle the write just exchanged; its verdict.
+  std::optional<Verdict> lockstep_step(const FuzzFrame& frame, const Observation& seen);
   Transport& transport_;
   Profile profile_;
   SessionOptions options_;
   Oracle oracle_;
+  std::optional<Lockstep> lockstep_;
+  TimePoint sent_at_{};
+  Duration latency_max_{0};
   Counts counts_;
   TimePoint last_write_{};
   std::optional<Frame> first_device_type_;
