@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "process.hpp"
@@ -98,6 +99,46 @@ TEST(Fuzz, NoFaultNoFindingAndUsageErrors) {
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--sim", "--fault", "no-such-fault"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--sim", "--port", "/dev/null"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--port", "/nonexistent/tty"}).wait_exit(), 3);
+}
+
+// The lockstep oracle on every shipped profile, motion and stored writes
+// allowed: no finding on the reference controller, and the summary says
+// what it reached (issue 24).
+TEST(Fuzz, EveryShippedProfileGivesNoFindingInLockstep) {
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-profiles-" + std::to_string(getpid()));
+  std::size_t profiles = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(SABUS_SOURCE_DIR) / "vectors" / "profiles")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++profiles;
+    const auto r = sabus::test::shell("'" SABUS_BIN "' fuzz --sim --profile '" + e.path().string() +
+                                      "' --seed 1 --max-frames 4000 --allow-motion --allow-destructive --findings '" +
+                                      dir.string() + "' 2>&1");
+    EXPECT_EQ(r.status, 0) << e.path() << "\n" << r.out;
+    EXPECT_NE(r.out.find("\n0 finding(s)\n"), std::string::npos) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("\nlockstep: [0-9]+ of 43 NAK rules fired on the device.*; [0-9]+ of "
+                                                    "[0-9]+ reply fields compared; [0-9]+ resync\\(s\\)\n")))
+        << r.out;
+  }
+  EXPECT_GE(profiles, 13u);
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+// Over a pty (sabus sim --pty, the device's clock real time), a few seconds of
+// lockstep fuzzing with motion and stored writes: no finding.
+TEST(Fuzz, OverAPtyTheLockstepOracleGivesNoFinding) {
+  using namespace std::chrono_literals;
+  const std::string link = (fs::temp_directory_path() / ("sabus-fuzz-lockstep-pty-" + std::to_string(getpid()))).string();
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-pty-" + std::to_string(getpid()));
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", link});
+  ASSERT_EQ(sim.line(5s), "READY " + link);
+  const auto r = sabus::test::shell("'" SABUS_BIN "' fuzz --port '" + link +
+                                    "' --pace 0 --seed 3 --max-time 4 --allow-motion --allow-destructive --findings '" +
+                                    dir.string() + "' 2>&1");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("\n0 finding(s)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nlockstep: "), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir));
+  EXPECT_EQ(sim.interrupt(), 0);
 }
 
 // A session with no limit ends by a signal: SIGINT and SIGTERM stop it with

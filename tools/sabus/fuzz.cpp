@@ -159,7 +159,12 @@ int run_fuzz(const FuzzCliOptions& o) {
   // §4: no more than one request a second on a line (READING-NOTES 3, E-3).
   so.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
   Session session(transport, profile, so);
-  Generator generator({profile.address, o.allow_motion, o.allow_destructive, transport.can_send_parity_errors()}, seed);
+  GeneratorOptions go{profile.address, o.allow_motion, o.allow_destructive, transport.can_send_parity_errors(), {},
+                      profile.bus_peers};
+  for (const StoredSatellite& s : profile.store) go.names.push_back(s.name);
+  for (const PresetSatellite& p : profile.presets) go.names.push_back(p.data.name);
+  Generator generator(go, seed);
+  if (const Lockstep* l = session.lockstep()) generator.set_rules_fired(&l->coverage().rules_fired);
   DeviceFactory fresh;
   if (transport.in_process()) {
     const FaultSet faults = device.faults;
@@ -202,7 +207,7 @@ int run_fuzz(const FuzzCliOptions& o) {
     if (seen_kinds.count(v.kind)) return;  // one reproducer a kind
     seen_kinds.insert(v.kind);
     Finding f{v.kind, v.message, history, {}, false, v.field};
-    progress->line(fmt::format("FINDING {} after {} writes: {}", to_string(v.kind), frames, v.message));
+    progress->line(fmt::format("FINDING {} after {} writes, {:.1f} s: {}", to_string(v.kind), frames, elapsed(), v.message));
     progress->update(frames, findings.size(), fmt::format("minimizing the {} finding", to_string(v.kind)));
     minimize(f, profile, so, fresh, fresh ? nullptr : &session);
     // A new file: a finding of an earlier run with this seed stays as it is.

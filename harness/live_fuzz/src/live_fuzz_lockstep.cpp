@@ -127,6 +127,25 @@ AxisState::Motion motion_of(const Controller& c, std::size_t axis) {
   return (axis == 0 ? s.az : axis == 1 ? s.el : s.pol).motion;
 }
 
+// Whether a status reply shows the axis moving (§3.2 bytes 36-38: jog
+// pending, movement or auto move in progress); a reply without the byte:
+// as if it does (no resync from it).
+bool device_moving(const Frame& reply, std::size_t axis) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return true;
+  const StatusBlock* status = nullptr;
+  if (const auto* s = std::get_if<StatusReply>(&decoded.value())) status = &s->status;
+  if (const auto* s = std::get_if<ExtendedStatusReply>(&decoded.value())) status = &s->status;
+  if (!status) return true;
+  const std::uint8_t code = (axis == 0 ? status->az_status : axis == 1 ? status->el_status : status->pol_status) & 0x0F;
+  return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
+}
+
+// The §3.17 mode bytes.
+bool is_mode_byte(std::string_view field) {
+  return field == "current mode" || field == "current state" || field == "last exited mode" || field == "exit status";
+}
+
 // The model's reading of an axis in degrees, as its status block gives it.
 std::optional<double> reading_of(const Controller& c, std::size_t axis) {
   const StatusBlock b = c.status_block();
@@ -150,6 +169,17 @@ std::size_t comparable_reply_fields() {
   return names.size();
 }
 
+// How far to each side of the model's position a device's axis may stand
+// when their readings agree (inside the display's 0.1 deg).
+constexpr double kNudgesDeg[] = {0.03, -0.03, 0.08, -0.08};
+
+// How long the mode bytes are taken from the device after a move that ends
+// within the drift window on a line (Lockstep::step).
+constexpr Duration kSettle = std::chrono::seconds(2);
+
+// How long after one frame of a write the model executes the next on a line.
+constexpr Duration kBetweenFrames = std::chrono::milliseconds(1);
+
 // One run of the model over a write: its replies and the rule of each NAK.
 struct Lockstep::Run {
   std::unique_ptr<Bus> copy;  // null: the model itself
@@ -169,8 +199,11 @@ void Lockstep::rebuild(TimePoint now) {
   pristine_clock_.set(now);
   pristine_ = std::make_unique<Bus>(std::vector<Profile>{profile_}, pristine_clock_, FaultSet{}, Parity::kEvenBit7);
   pristine_->set_transcript(false);
+  splitter_ = std::make_unique<Receiver>(receiver_options(profile_, FaultSet{}, Parity::kEvenBit7));
   last_ = now;
   drifted_ = {};
+  moved_on_line_ = {};
+  settle_until_ = {};
 }
 
 Controller& Lockstep::model() { return bus_->controller(0); }
@@ -194,18 +227,45 @@ double Lockstep::drift_window(const AxisProfile& axis, Duration uncertainty) {
   return 2 * axis.fast_dps * seconds + axis.tolerance_deg + 0.1;
 }
 
-Lockstep::Run Lockstep::run(const Bus& from, TimePoint at, const FuzzFrame& frame) {
+struct FrameEnds : ReceiverSink {
+  std::vector<std::uint64_t> ends;  // stream offsets one past each frame
+  void on_frame(const FrameView& f) override { ends.push_back(f.offset + f.bytes.size()); }
+  void on_discard(const Discard&) override {}
+};
+
+std::vector<std::size_t> Lockstep::frame_cuts(const FuzzFrame& frame) {
+  const std::uint64_t base = splitter_->offset();
+  FrameEnds ends;
+  splitter_->feed(with_software_parity(frame.chars, frame.wrong_parity), ends);
+  std::vector<std::size_t> cuts;
+  for (std::uint64_t e : ends.ends)
+    if (e > base && e - base < frame.chars.size()) cuts.push_back(static_cast<std::size_t>(e - base));
+  return cuts;
+}
+
+Lockstep::Run Lockstep::run(const Bus& from, TimePoint at, const FuzzFrame& frame, bool in_place) {
   Run r;
-  if (&from != bus_.get()) {
+  if (!in_place) {
     r.copy = std::make_unique<Bus>(from);
     r.bus = r.copy.get();
   } else {
     r.bus = bus_.get();
   }
-  clock_->set(at);
-  r.bus->tick();
+  // One frame after the other: a controller executes a frame of a burst
+  // after the one before it (§1 State 5), not at the same instant (a jog of
+  // duration 0 has ended by the next frame).
+  const Bytes wire = with_software_parity(frame.chars, frame.wrong_parity);
   Bytes out;
-  r.bus->receive(with_software_parity(frame.chars, frame.wrong_parity), out);
+  std::size_t from_byte = 0;
+  TimePoint t = at;
+  for (std::size_t k = 0; k <= cuts_.size(); ++k) {
+    const std::size_t to_byte = k < cuts_.size() ? cuts_[k] : wire.size();
+    clock_->set(t);
+    r.bus->tick();
+    r.bus->receive(ByteView(wire).subspan(from_byte, to_byte - from_byte), out);
+    from_byte = to_byte;
+    t += spacing_;
+  }
   Receiver rx(ReceiverOptions::master());
   ReplySink sink;
   rx.feed(out, sink);
@@ -222,6 +282,9 @@ Lockstep::Run Lockstep::run(const Bus& from, TimePoint at, const FuzzFrame& fram
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                       const std::vector<Frame>& device) {
   const TimePoint at = std::max(sent_at, last_);
+  cuts_ = frame_cuts(frame);
+  // In-process the device executes a whole write at one instant, as the model.
+  spacing_ = uncertainty > Duration{0} ? kBetweenFrames : Duration{0};
   // The later and the earlier model first (copies of the model as it is),
   // then the model itself at the nominal time: a controller only moves
   // forward in time (Controller::update).
@@ -229,10 +292,41 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   if (uncertainty > Duration{0}) {
     runs.push_back(run(*bus_, at + uncertainty, frame));
     runs.push_back(run(*bus_, std::max(last_, at - uncertainty), frame));
+    // An axis that has moved on a line stands where the device's stand
+    // only to within what its readings resolve: a move to where the model
+    // already is may move the device's a hair, either way (§3.2 shows
+    // tenths). The model is also run with those axes a little to each side.
+    if (moved_on_line_[0] || moved_on_line_[1] || moved_on_line_[2])
+      for (const double nudge : kNudgesDeg) {
+        Bus nudged(*bus_);
+        ControllerState& st = nudged.controller(0).mutable_state();
+        for (std::size_t a = 0; a < 3; ++a) {
+          AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
+          if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle) ax.position += nudge;
+        }
+        runs.push_back(run(nudged, at, frame));
+      }
   }
-  runs.insert(runs.begin(), run(*bus_, at, frame));
-  clock_->set(at);
-  last_ = at;
+  runs.insert(runs.begin(), run(*bus_, at, frame, true));
+  last_ = at + spacing_ * static_cast<int>(cuts_.size());
+  clock_->set(last_);
+
+  // A move that ends within the drift window on a line: where the device's
+  // axis stands a hair from the model's, that move can end at once in one and
+  // take a few milliseconds in the other, and the mode it ran in (§3.17)
+  // end otherwise (finished, or stopped by the next command). For a while
+  // after one the mode bytes are taken from the device, not judged.
+  if (uncertainty > Duration{0}) {
+    const ControllerState& st = runs.front().bus->controller(0).state();
+    for (std::size_t a = 0; a < 3; ++a) {
+      const AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
+      const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
+      if ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
+          std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty))
+        settle_until_ = std::max(settle_until_, at + kSettle);
+    }
+  }
+  bool take_modes = false;  // the device's mode bytes, after such a move
 
   std::optional<Verdict> finding;
   auto report = [&](FindingKind kind, std::string message) {
@@ -288,6 +382,8 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     const CommandInfo* info = find_command(dev.command);
     if (!info) continue;
     const std::vector<Field> dev_fields = value_fields(dev);
+    const Bus& nominal_bus = *same.front()->bus;
+    auto nominal_state = [&]() -> const ControllerState& { return const_cast<Bus&>(nominal_bus).controller(0).state(); };
     std::vector<std::vector<Field>> model_fields;
     for (Run* r : same) model_fields.push_back(value_fields(r->replies[i]));
     std::map<std::string, std::size_t> occurrences;
@@ -335,7 +431,29 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         position_exact[*axis] = false;
         if (inside) continue;
       }
-      if (axis && is_fine_position(f.name) && (moving || drifted_[*axis] || !position_exact[*axis])) continue;
+      // Hundredths and counts resolve what a few milliseconds of timing
+      // move an axis: compared only while the model is exact on that axis
+      // (in-process, or on a line before the axis first moved).
+      if (is_mode_byte(f.name) && uncertainty > Duration{0} && at < settle_until_) {
+        take_modes = true;
+        continue;
+      }
+      // On a line, an axis whose readings agree may stand a little apart in
+      // the model and the device (the display resolves 0.1 deg): a move that
+      // ends within the drift window can start, end or turn differently in
+      // each. Its status and limit bits are then not compared; a device that
+      // goes on moving shows in its positions, beyond the window (§3.2).
+      if (axis && !is_position(f.name) && !is_fine_position(f.name) && uncertainty > Duration{0}) {
+        const AxisProfile& ap = *axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol;
+        const AxisState& ax = (*axis == 0 ? nominal_state().az : *axis == 1 ? nominal_state().el : nominal_state().pol);
+        const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
+                                ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
+                                 std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
+        if (short_move) continue;
+      }
+      if (axis && is_fine_position(f.name) &&
+          (moving || drifted_[*axis] || moved_on_line_[*axis] || !position_exact[*axis]))
+        continue;
       // A difference: named, the model's reply beside the device's.
       const std::string model_value = values.front() ? *values.front() : std::string("(no such field)");
       // An effect: the device did not follow what a command did: a motion
@@ -355,12 +473,23 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     }
   }
 
+  if (uncertainty > Duration{0})
+    for (std::size_t a = 0; a < 3; ++a)
+      for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
+
   // Keep the run the device agreed with most (the nominal one on a tie).
   std::size_t best = 0;
   for (std::size_t k = 1; k < runs.size(); ++k)
     if (runs[k].differences < runs[best].differences) best = k;
   if (runs[best].copy) bus_ = std::move(runs[best].copy);
   runs.clear();
+  if (take_modes && !finding)
+    for (const Frame& dev : device)
+      if (const auto decoded = decode_reply(dev))
+        if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) {
+          model().mutable_state().mode = ModeState{x->mode, x->state, x->last_mode, x->exit_status};
+          ++coverage_.resyncs;
+        }
 
   // Staying in step: an axis at rest in the model whose reading the device
   // gives within the drift window takes the device's reading (a move arriving
@@ -374,6 +503,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         if (!is_position(f.name)) continue;
         const auto axis = axis_of(f.name, dev);
         if (!axis || motion_of(m, *axis) != AxisState::Motion::kIdle) continue;
+        if (device_moving(dev, *axis)) continue;  // not at rest: nothing to take over
         bool heading = false;
         const auto dv = position_value(dev, f.name, &heading);
         if (!dv) continue;

@@ -39,7 +39,13 @@ Duration Session::timing_uncertainty() const {
 
 std::optional<Verdict> Session::lockstep_step(const FuzzFrame& frame, const Observation& seen) {
   if (!lockstep_) return std::nullopt;
-  return lockstep_->step(frame, sent_at_, timing_uncertainty(), seen.replies);
+  // When the device executed the write: just before its first reply byte
+  // came back (a device answers once it has executed, §1 State 5), which
+  // varies far less from write to write than the time it was sent; a
+  // constant offset (its turnaround, the reply's wire time) changes no
+  // difference of times. The time it was sent for a write with no reply.
+  const TimePoint executed = first_byte_at_ ? *first_byte_at_ : sent_at_;
+  return lockstep_->step(frame, executed, timing_uncertainty(), seen.replies);
 }
 
 bool Session::would_be_ignored(const FuzzFrame& frame) const {
@@ -54,6 +60,7 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
     if (since < options_.pace) t.pause(std::chrono::duration_cast<milliseconds>(options_.pace - since));
   }
   sent_at_ = t.now();
+  first_byte_at_.reset();
   t.send(frame.chars, frame.wrong_parity);
   last_write_ = t.now();
   counts_.bytes_sent += frame.chars.size();
@@ -83,6 +90,7 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
     const auto left = std::chrono::duration_cast<milliseconds>(window - (t.now() - sent_at));
     const bool have_all = expected_replies > 0 && sink.frames.size() >= expected_replies;
     const std::size_t n = t.receive(buf, have_all ? std::min(left, quiet) : std::max(left, 1ms));
+    if (n > 0 && !first_byte_at_) first_byte_at_ = t.now();
     if (n > 0 && !seen.first_byte_after)
       seen.first_byte_after = std::max(Duration{0}, std::chrono::duration_cast<Duration>(t.now() - request_end));
     counts_.bytes_received += n;

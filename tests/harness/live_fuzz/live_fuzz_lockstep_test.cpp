@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/protocol/codec.hpp"
 
@@ -178,6 +179,55 @@ TEST(LiveFuzzLockstep, AStopThatDoesNotStopIsAnEffectFinding) {
   ASSERT_TRUE(v);
   EXPECT_EQ(v->kind, FindingKind::kEffect);
   EXPECT_NE(v->message.find("the model expects"), std::string::npos) << v->message;
+}
+
+// On a line (a timing uncertainty), a jog seen moving a few milliseconds
+// after it started is what the model says too.
+TEST(LiveFuzzLockstep, AJogJustStartedOnALineIsNoFinding) {
+  const Duration uncertainty = 163ms;
+  Lockstep model(profile(), at_ms(1000));
+  Device device;
+  const FuzzFrame poll = write(0x31), jog = write(0x33, "OS0001");
+  EXPECT_EQ(model.step(poll, at_ms(1100), uncertainty, device.send(poll, at_ms(1100))), std::nullopt);
+  EXPECT_EQ(model.step(jog, at_ms(1200), uncertainty, device.send(jog, at_ms(1200))), std::nullopt);
+  const auto v = model.step(poll, at_ms(1204), uncertainty, device.send(poll, at_ms(1204)));
+  EXPECT_EQ(v, std::nullopt) << v->message;
+}
+
+// The whole session in-process, motion and stored writes allowed, on random
+// legal profiles (the sweep's generator): the lockstep oracle never fires on
+// the reference controller, and it compares fields and meets NAK rules.
+TEST(LiveFuzzLockstep, RandomLegalProfilesGiveNoFinding) {
+  for (const std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    const Profile p = random_profile(seed);
+    SCOPED_TRACE(p.name);
+    auto device = make_in_process_transport({p});
+    SessionOptions o;
+    o.allow_motion = o.allow_destructive = true;
+    Session session(*device, p, o);
+    GeneratorOptions go{p.address, true, true, true, {}, {}};
+    for (const StoredSatellite& s : p.store) go.names.push_back(s.name);
+    Generator generator(go, seed);
+    generator.set_rules_fired(&session.lockstep()->coverage().rules_fired);
+    for (int i = 0; i < 3000; ++i) {
+      FuzzFrame f = generator.next();
+      // As sabus fuzz does: a write the device must ignore is followed by a
+      // status poll, which also closes a frame it left open.
+      for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+        const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
+        f.chars.insert(f.chars.end(), poll.begin(), poll.end());
+      }
+      const auto v = session.step(f);
+      ASSERT_FALSE(v) << "write " << i << " (" << f.what << ", " << to_hex(f.chars) << "): " << to_string(v->kind) << ": "
+                      << v->message;
+      if (i % 50 == 49) {
+        const auto p = session.probe();
+        ASSERT_FALSE(p) << "probe after write " << i << ": " << to_string(p->kind) << ": " << p->message;
+      }
+    }
+    EXPECT_GE(session.lockstep()->coverage().rules_fired.size(), 10u);
+    EXPECT_GE(session.lockstep()->coverage().fields_compared.size(), 60u);
+  }
 }
 
 }  // namespace

@@ -1,19 +1,24 @@
 // The live fuzzer (`sabus fuzz`): generates and damages command frames from
 // the catalog, sends them to a device through a Transport, judges every
 // answer against the spec's rules (§1 ignore paths, §3 NAK and offline
-// replies, the catalog's reply lengths), probes liveness, minimizes each
-// finding by delta debugging and writes it as a conformance vector.
+// replies, the catalog's reply lengths) and against a reference controller
+// kept in step with it (NAK rules, values, effects: issue 24), probes
+// liveness, minimizes each finding by delta debugging and writes it as a
+// conformance vector.
 //
 // Small parts, each with its own tests:
 //   - is_safe_to_send: the bench-safety gate (READING-NOTES 26, E-26);
-//   - Generator: frames from the catalog, and damage to them;
+//   - Generator: frames from the catalog, damage to them, fields at the
+//     rules' edges, write/read-back and motion/stop sequences;
 //   - Oracle: which replies a frame may draw, from a reference §1 receiver;
+//   - Lockstep: what the reference controller answers the same writes;
 //   - ddmin: delta debugging over a sequence;
 //   - Session: one device, the exchange loop, findings;
 //   - finding_vector_yaml: a finding as a vector `sabus run` replays.
 #pragma once
 
 #include <chrono>
+#include <deque>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -63,6 +68,12 @@ struct GeneratorOptions {
   bool allow_motion = false;
   bool allow_destructive = false;
   bool parity_errors = true;  // the transport can send a wrong parity bit
+  // Satellite names the device holds (the profile's STORE list and presets):
+  // a name field takes one of them, blanks or a name no list holds.
+  std::vector<std::string> names = {};
+  // Other controllers on the line (Profile::bus_peers): a frame for one of
+  // them draws its reply, so a "foreign" address is none of them.
+  std::vector<std::uint8_t> peers = {};
 };
 
 // The mutation kinds, one table: id, name (in reports and vector comments).
@@ -80,7 +91,9 @@ struct GeneratorOptions {
   X(kUnknownCommand, "unknown command code")                            \
   X(kJunkPrefix, "junk before the frame")                               \
   X(kStxRestart, "STX restart inside a frame")                          \
-  X(kBurst, "burst of frames")
+  X(kBurst, "burst of frames")                                          \
+  X(kBoundary, "field at or just past a rule's boundary")               \
+  X(kSequence, "sequence")
 
 enum class Mutation : std::uint8_t {
 #define SABUS_X(id, name) id,
@@ -99,11 +112,23 @@ class Generator {
   Generator(GeneratorOptions options, std::uint64_t seed);
   // The next write. Always passes is_safe_to_send for the options.
   FuzzFrame next();
-  // One mutation of a random base frame (for tests).
+  // One mutation of a random base frame (for tests). kSequence queues the
+  // writes after the first for the next calls of next().
   FuzzFrame make(Mutation m);
+  // The NAK rules the device has fired so far (LockstepCoverage): boundary
+  // values go more often to the commands of the rules not yet fired.
+  void set_rules_fired(const std::set<std::string>* fired) { fired_ = fired; }
 
  private:
   Bytes pick_base();
+  // A well-framed base frame with one data field set to a value at or just
+  // past the edge of what its rules take (§3: index 0, 1, 20, 21; a choice
+  // set and one outside it; signs, blanks, hundredths).
+  Bytes boundary(Bytes frame);
+  Bytes pick_boundary_base();
+  std::deque<FuzzFrame> queued_;
+  Bytes tail_;  // the last bytes of the last write returned
+  const std::set<std::string>* fired_ = nullptr;
   std::uint8_t pick(std::initializer_list<std::uint8_t> bytes);
   GeneratorOptions options_;
   std::vector<Bytes> bases_;
@@ -248,12 +273,20 @@ class Lockstep {
 
  private:
   struct Run;
-  Run run(const Bus& from, TimePoint at, const FuzzFrame& frame);
+  // The model's replies to `frame` at `at`: on the model itself (in_place)
+  // or on a copy of `from`.
+  Run run(const Bus& from, TimePoint at, const FuzzFrame& frame, bool in_place = false);
   // Whether a controller fresh from the profile answers `field` of the
   // `reply`-th reply to `frame` otherwise than the model, and as the device.
   bool kept_as_before(const FuzzFrame& frame, std::size_t reply, std::string_view field, std::size_t occurrence,
                       const std::string& model_value, const std::string& device_value);
+  // Where the frames of a write end within it (a reference §1 receiver fed
+  // every write): the model executes them one after the other.
+  std::vector<std::size_t> frame_cuts(const FuzzFrame& frame);
   Profile profile_;
+  std::unique_ptr<Receiver> splitter_;
+  std::vector<std::size_t> cuts_;  // of the write being judged
+  Duration spacing_{0};            // between its frames
   std::unique_ptr<VirtualClock> clock_;
   std::unique_ptr<Bus> bus_;
   // A controller fresh from the profile that no write reaches: what a field
@@ -262,6 +295,8 @@ class Lockstep {
   std::unique_ptr<Bus> pristine_;
   TimePoint last_{};
   std::array<bool, 3> drifted_{};     // az, el, pol resynchronized: hundredths and counts not compared
+  std::array<bool, 3> moved_on_line_{};  // moved with a timing uncertainty: likewise
+  TimePoint settle_until_{};             // mode bytes taken from the device until then
   LockstepCoverage coverage_;
 };
 
@@ -364,6 +399,7 @@ class Session {
   Oracle oracle_;
   std::optional<Lockstep> lockstep_;
   TimePoint sent_at_{};
+  std::optional<TimePoint> first_byte_at_;  // of the last exchange's replies
   Duration latency_max_{0};
   Counts counts_;
   TimePoint last_write_{};
