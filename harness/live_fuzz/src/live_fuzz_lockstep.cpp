@@ -204,6 +204,7 @@ void Lockstep::rebuild(TimePoint now) {
   drifted_ = {};
   moved_on_line_ = {};
   settle_until_ = {};
+  half_turn_ = false;
 }
 
 Controller& Lockstep::model() { return bus_->controller(0); }
@@ -327,6 +328,18 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     }
   }
   bool take_modes = false;  // the device's mode bytes, after such a move
+  // An azimuth target at the half turn (+-180 deg, as a LOCATE due south of
+  // its site computes it): +180 and -180 are one bearing, and which one a
+  // controller computes (and so which way it turns) is decided by less than
+  // its readings show (§3.18 gives no rule). On a line the azimuth is not
+  // compared while such a move runs, and the model takes the device's
+  // azimuth once both are at rest.
+  if (uncertainty > Duration{0}) {
+    const AxisState& az = runs.front().bus->controller(0).state().az;
+    if ((az.motion == AxisState::Motion::kAutoMove || az.motion == AxisState::Motion::kRemoteAutoMove) &&
+        std::abs(std::abs(az.target) - 180.0) <= drift_window(profile_.az, uncertainty))
+      half_turn_ = true;
+  }
 
   std::optional<Verdict> finding;
   auto report = [&](FindingKind kind, std::string message) {
@@ -434,6 +447,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       // Hundredths and counts resolve what a few milliseconds of timing
       // move an axis: compared only while the model is exact on that axis
       // (in-process, or on a line before the axis first moved).
+      if (axis && *axis == 0 && half_turn_) continue;
       if (is_mode_byte(f.name) && uncertainty > Duration{0} && at < settle_until_) {
         take_modes = true;
         continue;
@@ -511,6 +525,11 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         const auto reading = reading_of(m, *axis);
         if (!reading) continue;
         const long delta = std::lround(difference(*dv, *reading, heading) * 10);
+        if (*axis == 0 && half_turn_) {
+          half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
+        } else if (std::abs(difference(*dv, *reading, heading)) > drift_window(*axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol, uncertainty)) {
+          continue;
+        }
         if (delta == 0) continue;
         AxisState& s = *axis == 0 ? m.mutable_state().az : *axis == 1 ? m.mutable_state().el : m.mutable_state().pol;
         s.position += delta / 10.0;

@@ -98,9 +98,9 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
     if (n == 0 && have_all) break;
   }
   rx.finish(sink);
-  // The device executed the write between sent_at_ and its first reply byte.
-  if (seen.first_byte_after)
-    latency_max_ = std::max(latency_max_, std::chrono::duration_cast<Duration>(request_end - sent_at_) + *seen.first_byte_after);
+  // The device executed the write between sent_at_ and its first reply byte
+  // (measured, not the request's wire time at the baud rate: a pty has none).
+  if (first_byte_at_) latency_max_ = std::max(latency_max_, std::chrono::duration_cast<Duration>(*first_byte_at_ - sent_at_));
   seen.replies = std::move(sink.frames);
   seen.garbage = std::move(sink.garbage);
   for (const Frame& f : seen.replies) {
