@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "process.hpp"
@@ -26,9 +27,14 @@ std::string read_file(const fs::path& p) {
 // A fault, and the exit status of `sabus run --sim --fault F` on its
 // reproducer: 1, a vector fails (also where no reply of the faulty device can
 // be read: it sends bytes, so it is reachable and its vectors run).
+// `kind`: the finding kind expected first (the lockstep oracle's: nak-rule,
+// value, effect), nullptr for any; `allow`: the session and the runs with
+// --allow-motion --allow-destructive.
 struct Case {
   const char* fault;
   int run_exit;
+  const char* kind = nullptr;
+  bool allow = false;
 };
 
 class FuzzFindsFault : public ::testing::TestWithParam<Case> {};
@@ -37,19 +43,31 @@ TEST_P(FuzzFindsFault, AndItsReproducerFailsUnderRun) {
   const std::string fault = GetParam().fault;
   const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-" + fault + "-" + std::to_string(getpid()));
   fs::remove_all(dir);
-  Process fuzz({SABUS_BIN, "fuzz", "--sim", "--fault", fault, "--seed", "1", "--max-frames", "500", "--findings", dir.string()});
+  const bool allow = GetParam().allow;
+  auto with_allow = [allow](std::vector<std::string> args) {
+    if (allow) args.insert(args.end(), {"--allow-motion", "--allow-destructive"});
+    return args;
+  };
+  Process fuzz(with_allow({SABUS_BIN, "fuzz", "--sim", "--fault", fault, "--seed", "1", "--max-frames", allow ? "3000" : "500",
+                           "--findings", dir.string()}));
   EXPECT_EQ(fuzz.wait_exit(), 1);
   std::vector<fs::path> files;
   if (fs::exists(dir))
     for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
   ASSERT_FALSE(files.empty()) << "no finding written for " << fault;
+  std::sort(files.begin(), files.end());
+  if (GetParam().kind) {  // the first finding: fuzz-1-1-KIND.yaml
+    EXPECT_EQ(files.front().filename().string(), "fuzz-1-1-" + std::string(GetParam().kind) + ".yaml");
+  }
   for (const fs::path& file : files) {
     const std::string text = read_file(file);
     EXPECT_NE(text.find("--seed 1"), std::string::npos) << text;
     EXPECT_NE(text.find("paragraph: framing"), std::string::npos) << text;
     EXPECT_EQ(Process({SABUS_BIN, "vectors", "lint", file.string()}).wait_exit(), 0) << text;
-    EXPECT_EQ(Process({SABUS_BIN, "run", "--sim", "--fault", fault, "--vectors", file.string()}).wait_exit(), GetParam().run_exit) << text;
-    EXPECT_EQ(Process({SABUS_BIN, "run", "--sim", "--vectors", file.string()}).wait_exit(), 0) << text;
+    EXPECT_EQ(Process(with_allow({SABUS_BIN, "run", "--sim", "--fault", fault, "--vectors", file.string()})).wait_exit(),
+              GetParam().run_exit)
+        << text;
+    EXPECT_EQ(Process(with_allow({SABUS_BIN, "run", "--sim", "--vectors", file.string()})).wait_exit(), 0) << text;
   }
   fs::remove_all(dir);
 }
@@ -58,7 +76,15 @@ INSTANTIATE_TEST_SUITE_P(Faults, FuzzFindsFault,
                          ::testing::Values(Case{"nak-bad-check-byte", 1}, Case{"answers-foreign-address", 1},
                                            Case{"ignores-parity", 1}, Case{"drops-reply-byte", 1},
                                            Case{"silent-unknown-command", 1}, Case{"executes-overlong", 1},
-                                           Case{"lrc-skips-byte0", 1}, Case{"reply-address-0x30", 1}),
+                                           Case{"lrc-skips-byte0", 1}, Case{"reply-address-0x30", 1},
+                                           // The lockstep oracle's (issue 24): a reply in form, its
+                                           // value or the rule behind it wrong.
+                                           Case{"store-count-off-by-one", 1, "value"},
+                                           Case{"query-name-zero-based", 1, "value"},
+                                           Case{"mode-enum-off-by-one", 1, "value"},
+                                           Case{"empty-slot-zeros", 1, "value"},
+                                           Case{"extended-status-speed-bit", 1, "effect"},
+                                           Case{"write-nav-keeps-store", 1, "nak-rule", true}),
                          [](const auto& info) {
                            std::string s = info.param.fault;
                            for (auto& c : s)
@@ -73,6 +99,46 @@ TEST(Fuzz, NoFaultNoFindingAndUsageErrors) {
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--sim", "--fault", "no-such-fault"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--sim", "--port", "/dev/null"}).wait_exit(), 2);
   EXPECT_EQ(Process({SABUS_BIN, "fuzz", "--port", "/nonexistent/tty"}).wait_exit(), 3);
+}
+
+// The lockstep oracle on every shipped profile, motion and stored writes
+// allowed: no finding on the reference controller, and the summary says
+// what it reached (issue 24).
+TEST(Fuzz, EveryShippedProfileGivesNoFindingInLockstep) {
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-profiles-" + std::to_string(getpid()));
+  std::size_t profiles = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(SABUS_SOURCE_DIR) / "vectors" / "profiles")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++profiles;
+    const auto r = sabus::test::shell("'" SABUS_BIN "' fuzz --sim --profile '" + e.path().string() +
+                                      "' --seed 1 --max-frames 4000 --allow-motion --allow-destructive --findings '" +
+                                      dir.string() + "' 2>&1");
+    EXPECT_EQ(r.status, 0) << e.path() << "\n" << r.out;
+    EXPECT_NE(r.out.find("\n0 finding(s)\n"), std::string::npos) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("\nlockstep: [0-9]+ of 43 NAK rules fired on the device.*; [0-9]+ of "
+                                                    "[0-9]+ reply fields compared; [0-9]+ resync\\(s\\)\n")))
+        << r.out;
+  }
+  EXPECT_GE(profiles, 13u);
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+// Over a pty (sabus sim --pty, the device's clock real time), a few seconds of
+// lockstep fuzzing with motion and stored writes: no finding.
+TEST(Fuzz, OverAPtyTheLockstepOracleGivesNoFinding) {
+  using namespace std::chrono_literals;
+  const std::string link = (fs::temp_directory_path() / ("sabus-fuzz-lockstep-pty-" + std::to_string(getpid()))).string();
+  const fs::path dir = fs::temp_directory_path() / ("sabus-fuzz-test-pty-" + std::to_string(getpid()));
+  Process sim({SABUS_BIN, "sim", "--pty", "--link", link});
+  ASSERT_EQ(sim.line(5s), "READY " + link);
+  const auto r = sabus::test::shell("'" SABUS_BIN "' fuzz --port '" + link +
+                                    "' --pace 0 --seed 3 --max-time 4 --allow-motion --allow-destructive --findings '" +
+                                    dir.string() + "' 2>&1");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("\n0 finding(s)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nlockstep: "), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir));
+  EXPECT_EQ(sim.interrupt(), 0);
 }
 
 // A session with no limit ends by a signal: SIGINT and SIGTERM stop it with

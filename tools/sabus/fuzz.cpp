@@ -129,6 +129,16 @@ void print_totals(const Session& session, const Transport& transport, double wal
   if (transport.baud() > 0 && pty) std::cout << fmt::format(" wire_s={:.3f} (at that baud rate; a pseudo-terminal has none, so no line_busy)", wire_s);
   else if (transport.baud() > 0) std::cout << fmt::format(" line_busy={:.1f}%", 100.0 * wire_s / wall);
   std::cout << "\n";
+  if (const Lockstep* l = session.lockstep()) {
+    // What the lockstep oracle reached: the rules the device NAKed by, of
+    // all the reference controller knows, and the reply fields compared.
+    const LockstepCoverage& cov = l->coverage();
+    std::string rules;
+    for (const std::string& r : cov.rules_fired) rules += (rules.empty() ? "" : ", ") + r;
+    std::cout << fmt::format("lockstep: {} of {} NAK rules fired on the device{}; {} of {} reply fields compared; {} resync(s)\n",
+                             cov.rules_fired.size(), all_nak_rules().size(), rules.empty() ? "" : " (" + rules + ")",
+                             cov.fields_compared.size(), comparable_reply_fields(), cov.resyncs);
+  }
   if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
   std::cout << fmt::format("{} finding(s)\n", findings.size());
   for (std::size_t i = 0; i < findings.size(); ++i)
@@ -149,7 +159,12 @@ int run_fuzz(const FuzzCliOptions& o) {
   // §4: no more than one request a second on a line (READING-NOTES 3, E-3).
   so.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
   Session session(transport, profile, so);
-  Generator generator({profile.address, o.allow_motion, o.allow_destructive, transport.can_send_parity_errors()}, seed);
+  GeneratorOptions go{profile.address, o.allow_motion, o.allow_destructive, transport.can_send_parity_errors(), {},
+                      profile.bus_peers};
+  for (const StoredSatellite& s : profile.store) go.names.push_back(s.name);
+  for (const PresetSatellite& p : profile.presets) go.names.push_back(p.data.name);
+  Generator generator(go, seed);
+  if (const Lockstep* l = session.lockstep()) generator.set_rules_fired(&l->coverage().rules_fired);
   DeviceFactory fresh;
   if (transport.in_process()) {
     const FaultSet faults = device.faults;
@@ -191,8 +206,8 @@ int run_fuzz(const FuzzCliOptions& o) {
   auto record = [&](const live_fuzz::Verdict& v) {
     if (seen_kinds.count(v.kind)) return;  // one reproducer a kind
     seen_kinds.insert(v.kind);
-    Finding f{v.kind, v.message, history, {}, false};
-    progress->line(fmt::format("FINDING {} after {} writes: {}", to_string(v.kind), frames, v.message));
+    Finding f{v.kind, v.message, history, {}, false, v.field};
+    progress->line(fmt::format("FINDING {} after {} writes, {:.1f} s: {}", to_string(v.kind), frames, elapsed(), v.message));
     progress->update(frames, findings.size(), fmt::format("minimizing the {} finding", to_string(v.kind)));
     minimize(f, profile, so, fresh, fresh ? nullptr : &session);
     // A new file: a finding of an earlier run with this seed stays as it is.

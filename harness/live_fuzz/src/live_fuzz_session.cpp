@@ -28,7 +28,25 @@ FuzzFrame liveness_probe(std::uint8_t address) {
 }
 
 Session::Session(Transport& transport, const Profile& profile, SessionOptions options)
-    : transport_(transport), profile_(profile), options_(options), oracle_(profile) {}
+    : transport_(transport), profile_(profile), options_(options), oracle_(profile) {
+  if (options_.lockstep) lockstep_.emplace(profile, transport_.now());
+}
+
+Duration Session::timing_uncertainty() const {
+  if (transport_.in_process()) return Duration{0};
+  return latency_max_ + std::chrono::milliseconds(5);
+}
+
+std::optional<Verdict> Session::lockstep_step(const FuzzFrame& frame, const Observation& seen) {
+  if (!lockstep_) return std::nullopt;
+  // When the device executed the write: just before its first reply byte
+  // came back (a device answers once it has executed, §1 State 5), which
+  // varies far less from write to write than the time it was sent; a
+  // constant offset (its turnaround, the reply's wire time) changes no
+  // difference of times. The time it was sent for a write with no reply.
+  const TimePoint executed = first_byte_at_ ? *first_byte_at_ : sent_at_;
+  return lockstep_->step(frame, executed, timing_uncertainty(), seen.replies);
+}
 
 bool Session::would_be_ignored(const FuzzFrame& frame) const {
   Oracle copy = oracle_;
@@ -41,6 +59,8 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
     const auto since = t.now() - last_write_;
     if (since < options_.pace) t.pause(std::chrono::duration_cast<milliseconds>(options_.pace - since));
   }
+  sent_at_ = t.now();
+  first_byte_at_.reset();
   t.send(frame.chars, frame.wrong_parity);
   last_write_ = t.now();
   counts_.bytes_sent += frame.chars.size();
@@ -70,6 +90,7 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
     const auto left = std::chrono::duration_cast<milliseconds>(window - (t.now() - sent_at));
     const bool have_all = expected_replies > 0 && sink.frames.size() >= expected_replies;
     const std::size_t n = t.receive(buf, have_all ? std::min(left, quiet) : std::max(left, 1ms));
+    if (n > 0 && !first_byte_at_) first_byte_at_ = t.now();
     if (n > 0 && !seen.first_byte_after)
       seen.first_byte_after = std::max(Duration{0}, std::chrono::duration_cast<Duration>(t.now() - request_end));
     counts_.bytes_received += n;
@@ -77,6 +98,9 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
     if (n == 0 && have_all) break;
   }
   rx.finish(sink);
+  // The device executed the write between sent_at_ and its first reply byte
+  // (measured, not the request's wire time at the baud rate: a pty has none).
+  if (first_byte_at_) latency_max_ = std::max(latency_max_, std::chrono::duration_cast<Duration>(*first_byte_at_ - sent_at_));
   seen.replies = std::move(sink.frames);
   seen.garbage = std::move(sink.garbage);
   for (const Frame& f : seen.replies) {
@@ -98,6 +122,7 @@ std::optional<Verdict> Session::step(const FuzzFrame& frame) {
   const std::vector<Frame> accepted = oracle_.accept(frame);
   const Observation seen = exchange(frame, accepted.size(), expected_reply_bytes(accepted));
   tail_.assign(frame.chars.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(4, frame.chars.size())), frame.chars.end());
+  const std::optional<Verdict> model = lockstep_step(frame, seen);
   if (auto v = oracle_.judge(accepted, seen)) return v;
   // Late: the first reply byte after the profile's turnaround, the allowance
   // and what the host adds (timing.hpp kHostLatency).
@@ -109,7 +134,7 @@ std::optional<Verdict> Session::step(const FuzzFrame& frame) {
                                                   " ms after the request; the profile's turnaround is " +
                                                   std::to_string(profile_.turnaround_ms) + " ms"};
   }
-  return std::nullopt;
+  return model;
 }
 
 std::optional<Verdict> Session::probe() {
@@ -118,6 +143,7 @@ std::optional<Verdict> Session::probe() {
   const std::vector<Frame> accepted = oracle_.accept(q);
   const Observation seen = exchange(q, accepted.size(), expected_reply_bytes(accepted));
   tail_.clear();
+  const std::optional<Verdict> model = lockstep_step(q, seen);
   // No byte at all: dead. Bytes that are no reply frame are judged below.
   if (seen.replies.empty() && seen.garbage.empty())
     return Verdict{FindingKind::kDead, "no answer to the liveness probe (device type query, §3.1)"};
@@ -129,10 +155,20 @@ std::optional<Verdict> Session::probe() {
       return Verdict{FindingKind::kReset, "the device type changed from " + to_hex(encode_frame(*first_device_type_)) + " to " +
                                               to_hex(encode_frame(reply)) + " (a reset?)"};
   }
-  return std::nullopt;
+  return model;
+}
+
+// The lockstep oracle's kinds: a replay must start with the device as the
+// model starts, from its profile.
+static bool from_the_model(FindingKind kind) {
+  return kind == FindingKind::kNakRule || kind == FindingKind::kValue || kind == FindingKind::kEffect;
 }
 
 bool Session::shows(const std::vector<FuzzFrame>& frames, FindingKind kind) {
+  // On the same device the state a lockstep finding rests on (positions,
+  // stored data) is not restored: such a replay would prove nothing.
+  if (from_the_model(kind) && (!transport_.in_process() || counts_.writes > 0)) return false;
+  if (lockstep_) lockstep_->rebuild(transport_.now());
   if (!transport_.in_process() || counts_.writes > 0) {
     // The same device: back to §1 State 1 with a liveness probe first.
     oracle_.reset();

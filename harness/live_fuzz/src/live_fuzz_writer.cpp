@@ -64,10 +64,18 @@ struct ReplySink : ReceiverSink {
   void on_discard(const Discard&) override { garbage = true; }
 };
 
+// What the reference controller (this profile, no faults) answers a step:
+// the reply's form, the reply itself and the rule of a NAK.
+struct Expectation {
+  std::string reply;  // ack, nak, offline, silence, any
+  std::optional<Frame> frame;
+  std::string rule;
+};
+
 // What the reference controller (this profile, no faults) answers each step.
-std::vector<std::string> reference_expectations(const std::vector<FuzzFrame>& steps, const Profile& profile) {
+std::vector<Expectation> reference_expectations(const std::vector<FuzzFrame>& steps, const Profile& profile) {
   auto t = make_in_process_transport({profile});
-  std::vector<std::string> out;
+  std::vector<Expectation> out;
   for (const FuzzFrame& s : steps) {
     t->send(s.chars, s.wrong_parity);
     ReceiverOptions ro = ReceiverOptions::master();
@@ -76,13 +84,39 @@ std::vector<std::string> reference_expectations(const std::vector<FuzzFrame>& st
     std::uint8_t buf[512];
     for (std::size_t n; (n = t->receive(buf, 1ms)) > 0;) rx.feed(ByteView(buf, n), sink);
     rx.finish(sink);
-    if (sink.garbage || sink.frames.size() > 1) out.push_back("any");
-    else if (sink.frames.empty()) out.push_back("silence");
-    else if (sink.frames[0].kind == FrameKind::kNak) out.push_back("nak");
-    else if (is_offline_reply(sink.frames[0])) out.push_back("offline");
-    else out.push_back("ack");
+    const auto rules = t->take_nak_rules();
+    Expectation e;
+    if (sink.garbage || sink.frames.size() > 1) e.reply = "any";
+    else if (sink.frames.empty()) e.reply = "silence";
+    else if (sink.frames[0].kind == FrameKind::kNak) e.reply = "nak";
+    else if (is_offline_reply(sink.frames[0])) e.reply = "offline";
+    else e.reply = "ack";
+    if (sink.frames.size() == 1) e.frame = sink.frames[0];
+    if (e.reply == "nak" && rules && rules->size() == 1) e.rule = rules->front();
+    out.push_back(std::move(e));
   }
   return out;
+}
+
+// The lockstep oracle's kinds (Lockstep): the vector checks what the model
+// knows, the rule of a NAK and the value of the field that differed.
+bool from_the_model(FindingKind kind) {
+  return kind == FindingKind::kNakRule || kind == FindingKind::kValue || kind == FindingKind::kEffect;
+}
+
+// The reference's text of `field` in an ACK reply (matcher_text), or nullopt.
+std::optional<std::string> reference_field(const Expectation& e, std::string_view field) {
+  if (e.reply != "ack" || !e.frame) return std::nullopt;
+  for (const FieldDescription& fd : describe_frame(encode_frame(*e.frame)).fields)
+    if (fd.name == field) return matcher_text(fd);
+  return std::nullopt;
+}
+
+// A position is checked by the vectors' motion matchers, never a literal
+// (the linter's rule): the finding's field is not written for one.
+bool is_position_field(std::string_view field) {
+  return field == "azimuth" || field == "elevation" || field == "polarization" || field == "position" ||
+         field == "azimuth count" || field == "elevation count" || field == "az hundredths" || field == "el hundredths";
 }
 
 }  // namespace
@@ -90,7 +124,16 @@ std::vector<std::string> reference_expectations(const std::vector<FuzzFrame>& st
 std::string finding_vector_yaml(const Finding& finding, const Profile& profile, const FindingContext& context) {
   const std::vector<FuzzFrame>& writes = finding.reproducer.empty() ? finding.history : finding.reproducer;
   const std::vector<FuzzFrame> steps = one_reply_each(writes, profile);
-  const std::vector<std::string> expect = reference_expectations(steps, profile);
+  const std::vector<Expectation> expect = reference_expectations(steps, profile);
+  // The step whose reply shows a value or effect finding: the last ACK that
+  // has the field.
+  std::optional<std::size_t> field_step;
+  if (from_the_model(finding.kind) && !finding.field.empty() && !is_position_field(finding.field))
+    for (std::size_t i = steps.size(); i-- > 0;)
+      if (reference_field(expect[i], finding.field)) {
+        field_step = i;
+        break;
+      }
   bool parity = false, motion = false, destructive = false;
   for (const FuzzFrame& s : steps) {
     parity |= !s.wrong_parity.empty();
@@ -145,7 +188,18 @@ std::string finding_vector_yaml(const Finding& finding, const Profile& profile, 
       y << YAML::EndSeq << YAML::EndMap;
     }
     if (needs_length_mismatch(s.chars)) y << YAML::Key << "length_mismatch" << YAML::Value << true;
-    y << YAML::Key << "expect" << YAML::Value << expect[i];
+    const Expectation& e = expect[i];
+    y << YAML::Key << "expect" << YAML::Value;
+    if (field_step == i) {
+      y << YAML::Flow << YAML::BeginMap << YAML::Key << "reply" << YAML::Value << e.reply << YAML::Key << "fields"
+        << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << finding.field << YAML::Value;
+      quoted(y, *reference_field(e, finding.field)) << YAML::EndMap << YAML::EndMap;
+    } else if (from_the_model(finding.kind) && !e.rule.empty()) {
+      y << YAML::Flow << YAML::BeginMap << YAML::Key << "reply" << YAML::Value << e.reply << YAML::Key << "rule"
+        << YAML::Value << e.rule << YAML::EndMap;
+    } else {
+      y << e.reply;
+    }
     y << YAML::EndMap;
   }
   y << YAML::EndSeq << YAML::EndMap << YAML::EndSeq << YAML::EndMap;

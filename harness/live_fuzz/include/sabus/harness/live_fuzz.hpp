@@ -1,27 +1,35 @@
 // The live fuzzer (`sabus fuzz`): generates and damages command frames from
 // the catalog, sends them to a device through a Transport, judges every
 // answer against the spec's rules (§1 ignore paths, §3 NAK and offline
-// replies, the catalog's reply lengths), probes liveness, minimizes each
-// finding by delta debugging and writes it as a conformance vector.
+// replies, the catalog's reply lengths) and against a reference controller
+// kept in step with it (NAK rules, values, effects: issue 24), probes
+// liveness, minimizes each finding by delta debugging and writes it as a
+// conformance vector.
 //
 // Small parts, each with its own tests:
 //   - is_safe_to_send: the bench-safety gate (READING-NOTES 26, E-26);
-//   - Generator: frames from the catalog, and damage to them;
+//   - Generator: frames from the catalog, damage to them, fields at the
+//     rules' edges, write/read-back and motion/stop sequences;
 //   - Oracle: which replies a frame may draw, from a reference §1 receiver;
+//   - Lockstep: what the reference controller answers the same writes;
 //   - ddmin: delta debugging over a sequence;
 //   - Session: one device, the exchange loop, findings;
 //   - finding_vector_yaml: a finding as a vector `sabus run` replays.
 #pragma once
 
 #include <chrono>
+#include <deque>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <random>
+#include <set>
+#include <array>
 #include <string>
 #include <vector>
 
+#include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/transport.hpp"
 #include "sabus/protocol/frame.hpp"
@@ -60,6 +68,12 @@ struct GeneratorOptions {
   bool allow_motion = false;
   bool allow_destructive = false;
   bool parity_errors = true;  // the transport can send a wrong parity bit
+  // Satellite names the device holds (the profile's STORE list and presets):
+  // a name field takes one of them, blanks or a name no list holds.
+  std::vector<std::string> names = {};
+  // Other controllers on the line (Profile::bus_peers): a frame for one of
+  // them draws its reply, so a "foreign" address is none of them.
+  std::vector<std::uint8_t> peers = {};
 };
 
 // The mutation kinds, one table: id, name (in reports and vector comments).
@@ -77,7 +91,9 @@ struct GeneratorOptions {
   X(kUnknownCommand, "unknown command code")                            \
   X(kJunkPrefix, "junk before the frame")                               \
   X(kStxRestart, "STX restart inside a frame")                          \
-  X(kBurst, "burst of frames")
+  X(kBurst, "burst of frames")                                          \
+  X(kBoundary, "field at or just past a rule's boundary")               \
+  X(kSequence, "sequence")
 
 enum class Mutation : std::uint8_t {
 #define SABUS_X(id, name) id,
@@ -96,11 +112,23 @@ class Generator {
   Generator(GeneratorOptions options, std::uint64_t seed);
   // The next write. Always passes is_safe_to_send for the options.
   FuzzFrame next();
-  // One mutation of a random base frame (for tests).
+  // One mutation of a random base frame (for tests). kSequence queues the
+  // writes after the first for the next calls of next().
   FuzzFrame make(Mutation m);
+  // The NAK rules the device has fired so far (LockstepCoverage): boundary
+  // values go more often to the commands of the rules not yet fired.
+  void set_rules_fired(const std::set<std::string>* fired) { fired_ = fired; }
 
  private:
   Bytes pick_base();
+  // A well-framed base frame with one data field set to a value at or just
+  // past the edge of what its rules take (§3: index 0, 1, 20, 21; a choice
+  // set and one outside it; signs, blanks, hundredths).
+  Bytes boundary(Bytes frame);
+  Bytes pick_boundary_base();
+  std::deque<FuzzFrame> queued_;
+  Bytes tail_;  // the last bytes of the last write returned
+  const std::set<std::string>* fired_ = nullptr;
   std::uint8_t pick(std::initializer_list<std::uint8_t> bytes);
   GeneratorOptions options_;
   std::vector<Bytes> bases_;
@@ -140,7 +168,16 @@ struct Observation {
     "of the message.")                                                                                               \
   X(kReset, "device-reset", "3.1",                                                                                   \
     "The SA Bus specification requires that command character 30h must trigger the return of the six character "    \
-    "device type string.")
+    "device type string.")                                                                                          \
+  X(kNakRule, "nak-rule", "1",                                                                                       \
+    "A remote device replies with a not-acknowledged (NAK) character, 15 hex, if it receives an invalid command or " \
+    "data.")                                                                                                         \
+  X(kValue, "value", "1",                                                                                            \
+    "replies with a response message containing its own address and status information relating to its present "   \
+    "condition")                                                                                                     \
+  X(kEffect, "effect", "1",                                                                                          \
+    "The user should query the controller later to see if the command was actually carried out, or is still in "    \
+    "progress.")
 
 enum class FindingKind : std::uint8_t {
 #define SABUS_X(id, name, paragraph, quote) id,
@@ -154,6 +191,7 @@ std::string_view quote_of(FindingKind k);
 struct Verdict {
   FindingKind kind;
   std::string message;
+  std::string field = {};  // the reply field that differs (value, effect), as describe_frame names it
 };
 
 // The spec's answer rules for one device profile. It keeps a reference §1
@@ -183,6 +221,85 @@ class Oracle {
 // The longest reply `accepted` can draw (catalog lengths; the longest reply of
 // the catalog when a length is unknown), for reply windows.
 std::size_t expected_reply_bytes(const std::vector<Frame>& accepted);
+
+// ---- lockstep -----------------------------------------------------------------
+
+// What the lockstep oracle has seen in a session, for the summary.
+struct LockstepCoverage {
+  std::set<std::string> rules_fired;      // NAK rules the device NAKed by (as the model names them)
+  std::set<std::string> fields_compared;  // "31h azimuth": reply fields compared with the model
+  std::size_t resyncs = 0;                // positions taken from the device within the drift window
+};
+
+// How many reply fields the lockstep oracle can compare: every field of the
+// field classes' table but the device's (field_classes.hpp), counted once
+// for each command whose reply has it.
+std::size_t comparable_reply_fields();
+
+// The lockstep oracle: a reference controller (the project's Bus, this
+// profile, no faults) on its own virtual clock, fed every write the session
+// sends (the same characters and wrong-parity marks, through the controller's
+// own §1 receiver) at the time it was sent, its replies compared with the
+// device's (issue 24):
+//   - ACK vs NAK: the model's NAK names its rule (nak-rule);
+//   - each reply field by its class (field_classes.hpp): fixed, echo,
+//     profile, stored and state fields exactly; motion fields within a window
+//     while an axis moves or has drifted; device fields never (value or effect,
+//     see classify()).
+// Time on a line is known only to within the exchange's latency: the model
+// is also run `uncertainty` earlier and later (copies of the bus), and a
+// device reply is accepted when it is one the model gives somewhere in that
+// span; the copy that matched is kept, so the model stays in step.
+class Lockstep {
+ public:
+  Lockstep(const Profile& profile, TimePoint start);
+  Lockstep(const Lockstep&) = delete;
+  Lockstep& operator=(const Lockstep&) = delete;
+  // One write sent at `sent_at` (the device's clock), and the replies the
+  // device gave to it, in order. `uncertainty`: how far the device's
+  // execution time can be from `sent_at` (0 in-process).
+  std::optional<Verdict> step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                              const std::vector<Frame>& device);
+  // Back to the profile's state (after the device was restored, or before a replay).
+  void rebuild(TimePoint now);
+  const LockstepCoverage& coverage() const { return coverage_; }
+  // The model (for tests).
+  Controller& model();
+
+  // The spread a position may have on this axis for `uncertainty` of timing
+  // (fast speed both ways), the axis's arrival tolerance and the display's
+  // 0.1 deg: within it a device at rest is resynchronized, not reported.
+  static double drift_window(const AxisProfile& axis, Duration uncertainty);
+
+ private:
+  struct Run;
+  // The model's replies to `frame` at `at`: on the model itself (in_place)
+  // or on a copy of `from`.
+  Run run(const Bus& from, TimePoint at, const FuzzFrame& frame, bool in_place = false);
+  // Whether a controller fresh from the profile answers `field` of the
+  // `reply`-th reply to `frame` otherwise than the model, and as the device.
+  bool kept_as_before(const FuzzFrame& frame, std::size_t reply, std::string_view field, std::size_t occurrence,
+                      const std::string& model_value, const std::string& device_value);
+  // Where the frames of a write end within it (a reference §1 receiver fed
+  // every write): the model executes them one after the other.
+  std::vector<std::size_t> frame_cuts(const FuzzFrame& frame);
+  Profile profile_;
+  std::unique_ptr<Receiver> splitter_;
+  std::vector<std::size_t> cuts_;  // of the write being judged
+  Duration spacing_{0};            // between its frames
+  std::unique_ptr<VirtualClock> clock_;
+  std::unique_ptr<Bus> bus_;
+  // A controller fresh from the profile that no write reaches: what a field
+  // reads when no command of the session has changed it (classify an effect).
+  VirtualClock pristine_clock_;
+  std::unique_ptr<Bus> pristine_;
+  TimePoint last_{};
+  std::array<bool, 3> drifted_{};     // az, el, pol resynchronized: hundredths and counts not compared
+  std::array<bool, 3> moved_on_line_{};  // moved with a timing uncertainty: likewise
+  TimePoint settle_until_{};             // mode bytes taken from the device until then
+  bool half_turn_ = false;               // an azimuth move to +-180 on a line: azimuth not compared
+  LockstepCoverage coverage_;
+};
 
 // ---- minimizer ----------------------------------------------------------------
 
@@ -233,6 +350,7 @@ struct SessionOptions {
   std::chrono::milliseconds pace{0};                   // §4: at least this long between writes
   std::chrono::milliseconds turnaround_allowance{50};  // beyond the profile's turnaround: late
   std::size_t liveness_every = 50;                     // a device type query every N writes
+  bool lockstep = true;  // judge every reply against the reference controller too (Lockstep)
 };
 
 struct Counts {
@@ -246,6 +364,7 @@ struct Finding {
   std::vector<FuzzFrame> history;    // every write up to the one that showed it
   std::vector<FuzzFrame> reproducer; // minimized (empty until minimized)
   bool reproduced = false;           // the reproducer shows the finding again
+  std::string field = {};            // Verdict::field
 };
 
 // One device: sends writes, judges answers, probes liveness.
@@ -265,13 +384,24 @@ class Session {
   bool would_be_ignored(const FuzzFrame& frame) const;
   const Counts& counts() const { return counts_; }
   Transport& transport() { return transport_; }
+  // The lockstep oracle, or nullptr when SessionOptions::lockstep is off.
+  const Lockstep* lockstep() const { return lockstep_ ? &*lockstep_ : nullptr; }
+  // How far the device's time of execution can be from the time a write was
+  // sent: 0 in-process, else the longest reply latency seen and 5 ms.
+  Duration timing_uncertainty() const;
 
  private:
   Observation exchange(const FuzzFrame& frame, std::size_t expected_replies, std::size_t reply_bytes);
+  // Feeds the lockstep oracle the write just exchanged; its verdict.
+  std::optional<Verdict> lockstep_step(const FuzzFrame& frame, const Observation& seen);
   Transport& transport_;
   Profile profile_;
   SessionOptions options_;
   Oracle oracle_;
+  std::optional<Lockstep> lockstep_;
+  TimePoint sent_at_{};
+  std::optional<TimePoint> first_byte_at_;  // of the last exchange's replies
+  Duration latency_max_{0};
   Counts counts_;
   TimePoint last_write_{};
   std::optional<Frame> first_device_type_;

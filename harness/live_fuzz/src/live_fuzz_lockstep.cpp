@@ -1,0 +1,544 @@
+// The live fuzzer's lockstep oracle (issue 24): a reference controller kept in
+// step with the device, every reply compared with the model's by the class of
+// each field (field_classes.hpp).
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/protocol/catalog.hpp"
+#include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/field_classes.hpp"
+
+namespace sabus::harness::live_fuzz {
+namespace {
+
+struct ReplySink : ReceiverSink {
+  std::vector<Frame> frames;
+  void on_frame(const FrameView& f) override { frames.push_back(f.to_frame()); }
+  void on_discard(const Discard&) override {}
+};
+
+enum class ReplyForm : std::uint8_t { kAck, kNak, kOffline };
+ReplyForm form_of_reply(const Frame& f) {
+  return f.kind == FrameKind::kNak ? ReplyForm::kNak : is_offline_reply(f) ? ReplyForm::kOffline : ReplyForm::kAck;
+}
+
+// The axis (0 az, 1 el, 2 pol) a motion field of a reply is about; §3.24's
+// `position` is the axis the reply echoes.
+std::optional<std::size_t> axis_of(std::string_view field, const Frame& reply) {
+  if (field == "azimuth" || field == "az limits" || field == "az status" || field == "azimuth count" ||
+      field == "az hundredths")
+    return 0;
+  if (field == "elevation" || field == "el limits" || field == "el status" || field == "elevation count" ||
+      field == "el hundredths")
+    return 1;
+  if (field == "polarization" || field == "pol limits" || field == "pol status") return 2;
+  if (field == "position" && !reply.data.empty()) {
+    if (reply.data[0] == 'A') return 0;
+    if (reply.data[0] == 'E') return 1;
+    if (reply.data[0] == 'P') return 2;
+  }
+  return std::nullopt;
+}
+
+bool is_position(std::string_view field) {
+  return field == "azimuth" || field == "elevation" || field == "polarization" || field == "position";
+}
+// The same position in a finer unit: compared only at rest and in step.
+bool is_fine_position(std::string_view field) {
+  return field == "azimuth count" || field == "elevation count" || field == "az hundredths" || field == "el hundredths";
+}
+
+// A position field's value in degrees (a fluxgate azimuth: its heading), as
+// the codecs decode the reply; nullopt for '*' or another reply.
+std::optional<double> position_value(const Frame& reply, std::string_view field, bool* heading = nullptr) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return std::nullopt;
+  const StatusBlock* status = nullptr;
+  if (const auto* s = std::get_if<StatusReply>(&decoded.value())) status = &s->status;
+  if (const auto* s = std::get_if<ExtendedStatusReply>(&decoded.value())) status = &s->status;
+  auto deg = [](const std::optional<std::int32_t>& t) -> std::optional<double> {
+    if (!t) return std::nullopt;
+    return *t / 10.0;
+  };
+  if (status) {
+    if (field == "azimuth") {
+      if (status->azimuth.kind == fields::AzimuthReading::Kind::kError) return std::nullopt;
+      if (heading) *heading = status->azimuth.kind == fields::AzimuthReading::Kind::kHeading;
+      return status->azimuth.tenths / 10.0;
+    }
+    if (field == "elevation") return deg(status->elevation);
+    if (field == "polarization") return deg(status->polarization);
+  }
+  if (const auto* j = std::get_if<JogPositionReply>(&decoded.value()); j && field == "position") return deg(j->position);
+  return std::nullopt;
+}
+
+// A difference of two readings; headings the short way round (a fluxgate's
+// 359.9 and 0.0 are 0.1 apart).
+double difference(double a, double b, bool heading) {
+  double d = a - b;
+  if (heading) d = std::remainder(d, 360.0);
+  return d;
+}
+
+struct Field {
+  std::string name, raw;
+};
+
+// The value fields of a reply (framing fields and "no data" left out), as
+// describe_frame reads them.
+std::vector<Field> value_fields(const Frame& reply) {
+  std::vector<Field> out;
+  const CommandInfo* info = find_command(reply.command);
+  if (!info) return out;
+  for (const FieldDescription& fd : describe_frame(encode_frame(reply)).fields)
+    if (field_class(info->reply, fd.name)) out.push_back({fd.name, fd.raw});
+  return out;
+}
+
+// The raw text of the `occurrence`-th field called `name`, or nullptr.
+const std::string* find_field(const std::vector<Field>& fields, std::string_view name, std::size_t occurrence) {
+  for (const Field& f : fields)
+    if (f.name == name && occurrence-- == 0) return &f.raw;
+  return nullptr;
+}
+
+std::string fields_text(const std::vector<Field>& fields) {
+  std::string s;
+  for (const Field& f : fields) {
+    s += (s.empty() ? "" : ", ") + f.name + "=" + f.raw;
+  }
+  return s;
+}
+
+std::string summary(const Frame& f) { return describe_frame(encode_frame(f)).summary; }
+
+// A reply field as the coverage counts it: "0x31 azimuth".
+std::string field_key(std::uint8_t command, std::string_view field) {
+  return describe_byte(command).substr(0, 4) + " " + std::string(field);
+}
+
+AxisState::Motion motion_of(const Controller& c, std::size_t axis) {
+  const ControllerState& s = c.state();
+  return (axis == 0 ? s.az : axis == 1 ? s.el : s.pol).motion;
+}
+
+// Whether a status reply shows the axis moving (§3.2 bytes 36-38: jog
+// pending, movement or auto move in progress); a reply without the byte:
+// as if it does (no resync from it).
+bool device_moving(const Frame& reply, std::size_t axis) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return true;
+  const StatusBlock* status = nullptr;
+  if (const auto* s = std::get_if<StatusReply>(&decoded.value())) status = &s->status;
+  if (const auto* s = std::get_if<ExtendedStatusReply>(&decoded.value())) status = &s->status;
+  if (!status) return true;
+  const std::uint8_t code = (axis == 0 ? status->az_status : axis == 1 ? status->el_status : status->pol_status) & 0x0F;
+  return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
+}
+
+// The §3.17 mode bytes.
+bool is_mode_byte(std::string_view field) {
+  return field == "current mode" || field == "current state" || field == "last exited mode" || field == "exit status";
+}
+
+// The model's reading of an axis in degrees, as its status block gives it.
+std::optional<double> reading_of(const Controller& c, std::size_t axis) {
+  const StatusBlock b = c.status_block();
+  if (axis == 0) {
+    if (b.azimuth.kind == fields::AzimuthReading::Kind::kError) return std::nullopt;
+    return b.azimuth.tenths / 10.0;
+  }
+  const auto& t = axis == 1 ? b.elevation : b.polarization;
+  if (!t) return std::nullopt;
+  return *t / 10.0;
+}
+
+}  // namespace
+
+std::size_t comparable_reply_fields() {
+  std::set<std::string> names;
+  for (const CommandInfo& info : catalog())
+    for (const ReplyFieldClass& c : reply_field_classes())
+      if (c.reply == info.reply && c.cls != FieldClass::kDevice)
+        names.insert(field_key(info.code, c.field));
+  return names.size();
+}
+
+// How far to each side of the model's position a device's axis may stand
+// when their readings agree (inside the display's 0.1 deg).
+constexpr double kNudgesDeg[] = {0.03, -0.03, 0.08, -0.08};
+
+// How long the mode bytes are taken from the device after a move that ends
+// within the drift window on a line (Lockstep::step).
+constexpr Duration kSettle = std::chrono::seconds(2);
+
+// How long after one frame of a write the model executes the next on a line.
+constexpr Duration kBetweenFrames = std::chrono::milliseconds(1);
+
+// One run of the model over a write: its replies and the rule of each NAK.
+struct Lockstep::Run {
+  std::unique_ptr<Bus> copy;  // null: the model itself
+  Bus* bus = nullptr;
+  std::vector<Frame> replies;
+  std::vector<std::optional<std::string>> rules;  // per reply: the NAK rule
+  std::size_t differences = 0;                    // fields that differ from the device's
+};
+
+Lockstep::Lockstep(const Profile& profile, TimePoint start) : profile_(profile) { rebuild(start); }
+
+void Lockstep::rebuild(TimePoint now) {
+  clock_ = std::make_unique<VirtualClock>();
+  clock_->set(now);
+  bus_ = std::make_unique<Bus>(std::vector<Profile>{profile_}, *clock_, FaultSet{}, Parity::kEvenBit7);
+  bus_->set_transcript(false);
+  pristine_clock_.set(now);
+  pristine_ = std::make_unique<Bus>(std::vector<Profile>{profile_}, pristine_clock_, FaultSet{}, Parity::kEvenBit7);
+  pristine_->set_transcript(false);
+  splitter_ = std::make_unique<Receiver>(receiver_options(profile_, FaultSet{}, Parity::kEvenBit7));
+  last_ = now;
+  drifted_ = {};
+  moved_on_line_ = {};
+  settle_until_ = {};
+  half_turn_ = false;
+}
+
+Controller& Lockstep::model() { return bus_->controller(0); }
+
+bool Lockstep::kept_as_before(const FuzzFrame& frame, std::size_t reply, std::string_view field, std::size_t occurrence,
+                              const std::string& model_value, const std::string& device_value) {
+  Bus fresh(*pristine_);
+  Bytes out;
+  fresh.receive(with_software_parity(frame.chars, frame.wrong_parity), out);
+  Receiver rx(ReceiverOptions::master());
+  ReplySink sink;
+  rx.feed(out, sink);
+  rx.finish(sink);
+  if (reply >= sink.frames.size()) return false;
+  const std::string* v = find_field(value_fields(sink.frames[reply]), field, occurrence);
+  return v && *v != model_value && *v == device_value;
+}
+
+double Lockstep::drift_window(const AxisProfile& axis, Duration uncertainty) {
+  const double seconds = std::chrono::duration<double>(uncertainty).count();
+  return 2 * axis.fast_dps * seconds + axis.tolerance_deg + 0.1;
+}
+
+struct FrameEnds : ReceiverSink {
+  std::vector<std::uint64_t> ends;  // stream offsets one past each frame
+  void on_frame(const FrameView& f) override { ends.push_back(f.offset + f.bytes.size()); }
+  void on_discard(const Discard&) override {}
+};
+
+std::vector<std::size_t> Lockstep::frame_cuts(const FuzzFrame& frame) {
+  const std::uint64_t base = splitter_->offset();
+  FrameEnds ends;
+  splitter_->feed(with_software_parity(frame.chars, frame.wrong_parity), ends);
+  std::vector<std::size_t> cuts;
+  for (std::uint64_t e : ends.ends)
+    if (e > base && e - base < frame.chars.size()) cuts.push_back(static_cast<std::size_t>(e - base));
+  return cuts;
+}
+
+Lockstep::Run Lockstep::run(const Bus& from, TimePoint at, const FuzzFrame& frame, bool in_place) {
+  Run r;
+  if (!in_place) {
+    r.copy = std::make_unique<Bus>(from);
+    r.bus = r.copy.get();
+  } else {
+    r.bus = bus_.get();
+  }
+  // One frame after the other: a controller executes a frame of a burst
+  // after the one before it (§1 State 5), not at the same instant (a jog of
+  // duration 0 has ended by the next frame).
+  const Bytes wire = with_software_parity(frame.chars, frame.wrong_parity);
+  Bytes out;
+  std::size_t from_byte = 0;
+  TimePoint t = at;
+  for (std::size_t k = 0; k <= cuts_.size(); ++k) {
+    const std::size_t to_byte = k < cuts_.size() ? cuts_[k] : wire.size();
+    clock_->set(t);
+    r.bus->tick();
+    r.bus->receive(ByteView(wire).subspan(from_byte, to_byte - from_byte), out);
+    from_byte = to_byte;
+    t += spacing_;
+  }
+  Receiver rx(ReceiverOptions::master());
+  ReplySink sink;
+  rx.feed(out, sink);
+  rx.finish(sink);
+  r.replies = std::move(sink.frames);
+  std::vector<std::string> rules = r.bus->take_nak_rules();
+  std::size_t next = 0;
+  for (const Frame& f : r.replies)
+    r.rules.push_back(f.kind == FrameKind::kNak && next < rules.size() ? std::optional<std::string>(rules[next++])
+                                                                         : std::nullopt);
+  return r;
+}
+
+std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                                      const std::vector<Frame>& device) {
+  const TimePoint at = std::max(sent_at, last_);
+  cuts_ = frame_cuts(frame);
+  // In-process the device executes a whole write at one instant, as the model.
+  spacing_ = uncertainty > Duration{0} ? kBetweenFrames : Duration{0};
+  // The later and the earlier model first (copies of the model as it is),
+  // then the model itself at the nominal time: a controller only moves
+  // forward in time (Controller::update).
+  std::vector<Run> runs;
+  if (uncertainty > Duration{0}) {
+    runs.push_back(run(*bus_, at + uncertainty, frame));
+    runs.push_back(run(*bus_, std::max(last_, at - uncertainty), frame));
+    // An axis that has moved on a line stands where the device's stand
+    // only to within what its readings resolve: a move to where the model
+    // already is may move the device's a hair, either way (§3.2 shows
+    // tenths). The model is also run with those axes a little to each side.
+    if (moved_on_line_[0] || moved_on_line_[1] || moved_on_line_[2])
+      for (const double nudge : kNudgesDeg) {
+        Bus nudged(*bus_);
+        ControllerState& st = nudged.controller(0).mutable_state();
+        for (std::size_t a = 0; a < 3; ++a) {
+          AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
+          if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle) ax.position += nudge;
+        }
+        runs.push_back(run(nudged, at, frame));
+      }
+  }
+  runs.insert(runs.begin(), run(*bus_, at, frame, true));
+  last_ = at + spacing_ * static_cast<int>(cuts_.size());
+  clock_->set(last_);
+
+  // A move that ends within the drift window on a line: where the device's
+  // axis stands a hair from the model's, that move can end at once in one and
+  // take a few milliseconds in the other, and the mode it ran in (§3.17)
+  // end otherwise (finished, or stopped by the next command). For a while
+  // after one the mode bytes are taken from the device, not judged.
+  if (uncertainty > Duration{0}) {
+    const ControllerState& st = runs.front().bus->controller(0).state();
+    for (std::size_t a = 0; a < 3; ++a) {
+      const AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
+      const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
+      if ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
+          std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty))
+        settle_until_ = std::max(settle_until_, at + kSettle);
+    }
+  }
+  bool take_modes = false;  // the device's mode bytes, after such a move
+  // An azimuth target at the half turn (+-180 deg, as a LOCATE due south of
+  // its site computes it): +180 and -180 are one bearing, and which one a
+  // controller computes (and so which way it turns) is decided by less than
+  // its readings show (§3.18 gives no rule). On a line the azimuth is not
+  // compared while such a move runs, and the model takes the device's
+  // azimuth once both are at rest.
+  if (uncertainty > Duration{0}) {
+    const AxisState& az = runs.front().bus->controller(0).state().az;
+    if ((az.motion == AxisState::Motion::kAutoMove || az.motion == AxisState::Motion::kRemoteAutoMove) &&
+        std::abs(std::abs(az.target) - 180.0) <= drift_window(profile_.az, uncertainty))
+      half_turn_ = true;
+  }
+
+  std::optional<Verdict> finding;
+  auto report = [&](FindingKind kind, std::string message) {
+    if (!finding) finding = Verdict{kind, std::move(message)};
+  };
+
+  // Answers vs silence: the framing oracle judges these first against the
+  // reference receiver; here only what the model adds (a command it leaves
+  // unanswered, none today).
+  const bool counts_match =
+      std::any_of(runs.begin(), runs.end(), [&](const Run& r) { return r.replies.size() == device.size(); });
+  if (!counts_match) {
+    const Run& m = runs.front();
+    if (device.size() > m.replies.size())
+      report(FindingKind::kReplyToIgnored, std::to_string(device.size()) + " replies where the model gives " +
+                                               std::to_string(m.replies.size()) + "; the first: " + summary(device.front()));
+    else
+      report(FindingKind::kNoReply, "the model answers " + summary(m.replies[device.size()]) + "; the device is silent");
+  }
+
+  for (std::size_t i = 0; i < device.size() && !finding; ++i) {
+    const Frame& dev = device[i];
+    std::vector<Run*> with(0);
+    for (Run& r : runs)
+      if (i < r.replies.size()) with.push_back(&r);
+    if (with.empty()) break;
+    const Run& nominal = *with.front();
+    const ReplyForm dev_form = form_of_reply(dev);
+    std::vector<Run*> same;
+    for (Run* r : with)
+      if (form_of_reply(r->replies[i]) == dev_form) same.push_back(r);
+    if (same.empty()) {
+      const Frame& m = nominal.replies[i];
+      const auto& rule = nominal.rules[i];
+      std::string model = form_of_reply(m) == ReplyForm::kNak
+                              ? "the model NAKs by rule " + (rule ? *rule : std::string("?")) +
+                                    (rule ? " (§" + std::string(paragraph(*find_nak_rule(*rule))) + ": " +
+                                                std::string(description(*find_nak_rule(*rule))) + ")"
+                                          : std::string())
+                              : "the model answers " + summary(m) + " [" + fields_text(value_fields(m)) + "]";
+      const std::string dev_text = dev_form == ReplyForm::kNak ? "device NAKed" : dev_form == ReplyForm::kOffline ? "device answered offline" : "device ACKed";
+      report(dev_form == ReplyForm::kOffline || form_of_reply(m) == ReplyForm::kOffline ? FindingKind::kValue
+                                                                                         : FindingKind::kNakRule,
+             dev_text + " (" + summary(dev) + "); " + model);
+      break;
+    }
+    if (dev_form == ReplyForm::kNak) {
+      if (same.front()->rules[i]) coverage_.rules_fired.insert(*same.front()->rules[i]);
+      continue;
+    }
+    if (dev_form == ReplyForm::kOffline) continue;
+    // Both ACK: field by field.
+    const CommandInfo* info = find_command(dev.command);
+    if (!info) continue;
+    const std::vector<Field> dev_fields = value_fields(dev);
+    const Bus& nominal_bus = *same.front()->bus;
+    auto nominal_state = [&]() -> const ControllerState& { return const_cast<Bus&>(nominal_bus).controller(0).state(); };
+    std::vector<std::vector<Field>> model_fields;
+    for (Run* r : same) model_fields.push_back(value_fields(r->replies[i]));
+    std::map<std::string, std::size_t> occurrences;
+    // Whether the device's position on each axis is one a model gives exactly.
+    std::array<bool, 3> position_exact{true, true, true};
+    for (const Field& f : dev_fields) {
+      const ReplyFieldClass* cls = field_class(info->reply, f.name);
+      const std::size_t occurrence = occurrences[f.name]++;
+      if (!cls || cls->cls == FieldClass::kDevice) continue;  // the spec leaves it to the device
+      coverage_.fields_compared.insert(field_key(dev.command, f.name));
+      std::vector<const std::string*> values;
+      for (std::size_t k = 0; k < same.size(); ++k) {
+        const std::string* v = find_field(model_fields[k], f.name, occurrence);
+        values.push_back(v);
+        if (v && *v != f.raw) ++same[k]->differences;
+      }
+      const bool equal_any = std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; });
+      if (equal_any) continue;
+      const std::optional<std::size_t> axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, dev) : std::nullopt;
+      bool moving = false;
+      if (axis)
+        for (Run* r : same) moving |= motion_of(r->bus->controller(0), *axis) != AxisState::Motion::kIdle;
+      if (axis && is_position(f.name)) {
+        // A window from the motion model: every run's reading, widened by the
+        // drift the exchange's timing and the arrival tolerance allow.
+        bool heading = false;
+        const auto dv = position_value(dev, f.name, &heading);
+        const AxisProfile& ap = *axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol;
+        const double w = drift_window(ap, uncertainty);
+        bool inside = false;
+        if (dv) {
+          const auto nv = position_value(same.front()->replies[i], f.name);
+          if (nv) {
+            double lo = 0, hi = 0;
+            for (Run* r : same)
+              if (auto v = position_value(r->replies[i], f.name)) {
+                const double d = difference(*v, *nv, heading);
+                lo = std::min(lo, d);
+                hi = std::max(hi, d);
+              }
+            const double d = difference(*dv, *nv, heading);
+            inside = d >= lo - w - 1e-9 && d <= hi + w + 1e-9;
+          }
+        }
+        position_exact[*axis] = false;
+        if (inside) continue;
+      }
+      // Hundredths and counts resolve what a few milliseconds of timing
+      // move an axis: compared only while the model is exact on that axis
+      // (in-process, or on a line before the axis first moved).
+      if (axis && *axis == 0 && half_turn_) continue;
+      if (is_mode_byte(f.name) && uncertainty > Duration{0} && at < settle_until_) {
+        take_modes = true;
+        continue;
+      }
+      // On a line, an axis whose readings agree may stand a little apart in
+      // the model and the device (the display resolves 0.1 deg): a move that
+      // ends within the drift window can start, end or turn differently in
+      // each. Its status and limit bits are then not compared; a device that
+      // goes on moving shows in its positions, beyond the window (§3.2).
+      if (axis && !is_position(f.name) && !is_fine_position(f.name) && uncertainty > Duration{0}) {
+        const AxisProfile& ap = *axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol;
+        const AxisState& ax = (*axis == 0 ? nominal_state().az : *axis == 1 ? nominal_state().el : nominal_state().pol);
+        const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
+                                ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
+                                 std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
+        if (short_move) continue;
+      }
+      if (axis && is_fine_position(f.name) &&
+          (moving || drifted_[*axis] || moved_on_line_[*axis] || !position_exact[*axis]))
+        continue;
+      // A difference: named, the model's reply beside the device's.
+      const std::string model_value = values.front() ? *values.front() : std::string("(no such field)");
+      // An effect: the device did not follow what a command did: a motion
+      // field (a stop that does not stop, a move that ends elsewhere), or a
+      // field the session's commands changed in the model (a controller fresh
+      // from the profile reads otherwise) that the device still reads as that
+      // fresh controller does (a write not read back, a mode not entered).
+      // A value: any other difference (a wrong count, name, code or sign).
+      const bool effect = cls->cls == FieldClass::kMotion || kept_as_before(frame, i, f.name, occurrence, model_value, f.raw);
+      report(effect ? FindingKind::kEffect : FindingKind::kValue,
+             "field '" + f.name + "' (§" + std::string(cls->paragraph) + ", " + std::string(to_string(cls->cls)) + ": " +
+                 std::string(cls->rests_on) + ") is " + f.raw + "; the model expects " + model_value +
+                 (moving ? " (the axis moving: outside the motion window)" : "") + ". Device: " + summary(dev) + " [" +
+                 fields_text(dev_fields) + "]; model: [" + fields_text(model_fields.front()) + "]");
+      finding->field = f.name;
+      break;
+    }
+  }
+
+  if (uncertainty > Duration{0})
+    for (std::size_t a = 0; a < 3; ++a)
+      for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
+
+  // Keep the run the device agreed with most (the nominal one on a tie).
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < runs.size(); ++k)
+    if (runs[k].differences < runs[best].differences) best = k;
+  if (runs[best].copy) bus_ = std::move(runs[best].copy);
+  runs.clear();
+  if (take_modes && !finding)
+    for (const Frame& dev : device)
+      if (const auto decoded = decode_reply(dev))
+        if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) {
+          model().mutable_state().mode = ModeState{x->mode, x->state, x->last_mode, x->exit_status};
+          ++coverage_.resyncs;
+        }
+
+  // Staying in step: an axis at rest in the model whose reading the device
+  // gives within the drift window takes the device's reading (a move arriving
+  // elsewhere within its tolerance, a stop a few milliseconds apart: §3.2).
+  if (!finding) {
+    Controller& m = model();
+    for (const Frame& dev : device) {
+      if (form_of_reply(dev) != ReplyForm::kAck) continue;
+      const std::vector<Field> fields = value_fields(dev);
+      for (const Field& f : fields) {
+        if (!is_position(f.name)) continue;
+        const auto axis = axis_of(f.name, dev);
+        if (!axis || motion_of(m, *axis) != AxisState::Motion::kIdle) continue;
+        if (device_moving(dev, *axis)) continue;  // not at rest: nothing to take over
+        bool heading = false;
+        const auto dv = position_value(dev, f.name, &heading);
+        if (!dv) continue;
+        // The model's reading of the axis now (§3.2 bytes 14-31).
+        const auto reading = reading_of(m, *axis);
+        if (!reading) continue;
+        const long delta = std::lround(difference(*dv, *reading, heading) * 10);
+        if (*axis == 0 && half_turn_) {
+          half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
+        } else if (std::abs(difference(*dv, *reading, heading)) > drift_window(*axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol, uncertainty)) {
+          continue;
+        }
+        if (delta == 0) continue;
+        AxisState& s = *axis == 0 ? m.mutable_state().az : *axis == 1 ? m.mutable_state().el : m.mutable_state().pol;
+        s.position += delta / 10.0;
+        drifted_[*axis] = true;
+        ++coverage_.resyncs;
+      }
+    }
+  }
+  return finding;
+}
+
+}  // namespace sabus::harness::live_fuzz

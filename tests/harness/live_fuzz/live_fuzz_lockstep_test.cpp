@@ -1,0 +1,234 @@
+// The lockstep oracle (harness/live_fuzz, Lockstep): every reply judged
+// against a reference controller kept in step with the device. The "device"
+// here is the in-process reference controller on its own clock, with a fault
+// or its replies edited, or run a little later than the model.
+#include <gtest/gtest.h>
+
+#include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/profile_generator.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/protocol/codec.hpp"
+
+namespace sabus::harness::live_fuzz {
+namespace {
+
+using namespace std::chrono_literals;
+
+// rc3000-1.59 at '2' (0x32), two satellites in its STORE list.
+Profile profile() {
+  Profile p;
+  for (const char* name : {"SBS 6", "GALAXY 3"}) {
+    StoredSatellite s;
+    s.name = name;
+    s.az_deg = 10;
+    s.el_deg = 30;
+    p.store.push_back(s);
+  }
+  return p;
+}
+
+FuzzFrame write(std::uint8_t code, std::string_view data = "") {
+  return {encode_frame({FrameKind::kCommand, '2', code, Bytes(data.begin(), data.end())}), {}, "test"};
+}
+
+struct Sink : ReceiverSink {
+  std::vector<Frame> frames;
+  void on_frame(const FrameView& f) override { frames.push_back(f.to_frame()); }
+  void on_discard(const Discard&) override {}
+};
+
+// A device: the reference controller (with faults) on its own virtual clock.
+struct Device {
+  explicit Device(FaultSet faults = {}) : t(make_in_process_transport({profile()}, faults)) {}
+  std::vector<Frame> send(const FuzzFrame& f, TimePoint at) {
+    t->clock().set(at);
+    t->bus().tick();
+    t->send(f.chars, f.wrong_parity);
+    Receiver rx(ReceiverOptions::master());
+    Sink sink;
+    std::uint8_t buf[512];
+    while (t->pending() > 0) rx.feed(ByteView(buf, t->receive(buf, 0ms)), sink);
+    rx.finish(sink);
+    return sink.frames;
+  }
+  std::unique_ptr<InProcessTransport> t;
+};
+
+TimePoint at_ms(long ms) { return TimePoint{} + std::chrono::milliseconds(ms); }
+
+// Edits the text of a reply field in place (describe_frame's offsets), the
+// check byte made again.
+Frame with_field(Frame reply, std::string_view field, std::string_view text) {
+  Bytes bytes = encode_frame(reply);
+  for (const FieldDescription& fd : describe_frame(bytes).fields)
+    if (fd.name == field) {
+      EXPECT_EQ(fd.last - fd.first + 1, text.size());
+      std::copy(text.begin(), text.end(), bytes.begin() + static_cast<std::ptrdiff_t>(fd.first));
+    }
+  bytes.back() = lrc(ByteView(bytes).first(bytes.size() - 1));
+  return decode_frame(bytes).value();
+}
+
+TEST(LiveFuzzLockstep, TheReferenceControllerAgreesWithItself) {
+  Lockstep model(profile(), at_ms(0));
+  Device device;
+  long t = 0;
+  for (const FuzzFrame& f : {write(0x30), write(0x31), write(0x35, "01"), write(0x40), write(0x3A, "01"), write(0x3C, "21"),
+                             write(0x33, "WF2000"), write(0x31), write(0x40), write(0x33, "XS0000"), write(0x40)}) {
+    t += 300;
+    EXPECT_EQ(model.step(f, at_ms(t), Duration{0}, device.send(f, at_ms(t))), std::nullopt) << to_hex(f.chars);
+  }
+  EXPECT_GE(model.coverage().fields_compared.size(), 20u);
+  EXPECT_EQ(model.coverage().rules_fired.count("TleIndex"), 1u);
+}
+
+TEST(LiveFuzzLockstep, AReplyWithOneWrongFieldIsAValueFindingNamingTheField) {
+  Lockstep model(profile(), at_ms(0));
+  Device device;
+  const FuzzFrame query = write(0x35, "01");  // §3.6: entry 1 and how many the STORE list holds
+  const std::vector<Frame> right = device.send(query, at_ms(10));
+  ASSERT_EQ(right.size(), 1u);
+  const Frame wrong = with_field(right[0], "total", "09");
+  const auto v = model.step(query, at_ms(10), Duration{0}, {wrong});
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->kind, FindingKind::kValue);
+  EXPECT_EQ(v->field, "total");
+  EXPECT_NE(v->message.find("field 'total'"), std::string::npos) << v->message;
+  EXPECT_NE(v->message.find("is \"09\"; the model expects \""), std::string::npos) << v->message;
+  // The same reply unedited: no finding.
+  EXPECT_EQ(model.step(query, at_ms(20), Duration{0}, device.send(query, at_ms(20))), std::nullopt);
+}
+
+TEST(LiveFuzzLockstep, AnAckWhereTheModelNaksIsANakRuleFindingNamingTheRule) {
+  Lockstep model(profile(), at_ms(0));
+  Device device(FaultSet{Fault::kUnimplementedAcked});
+  const FuzzFrame signal = write(0x38, "@@");  // §3.9: not implemented on the RC3000 (E-16)
+  const auto v = model.step(signal, at_ms(10), Duration{0}, device.send(signal, at_ms(10)));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->kind, FindingKind::kNakRule);
+  EXPECT_NE(v->message.find("device ACKed"), std::string::npos) << v->message;
+  EXPECT_NE(v->message.find("the model NAKs by rule NotImplemented (§3:"), std::string::npos) << v->message;
+  // The reverse: a NAK where the model answers.
+  const FuzzFrame read_1 = write(0x3C, "01");
+  const Frame nak{FrameKind::kNak, '2', 0x3C, {}};
+  const auto r = model.step(read_1, at_ms(20), Duration{0}, {nak});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->kind, FindingKind::kNakRule);
+  EXPECT_NE(r->message.find("device NAKed"), std::string::npos) << r->message;
+  EXPECT_NE(r->message.find("the model answers ACK 3Ch"), std::string::npos) << r->message;
+}
+
+// A device that executes every write 300 ms after the model's time (0.6 deg
+// at the azimuth's 2 deg/s): inside the window of a 400 ms timing
+// uncertainty, outside that of none.
+TEST(LiveFuzzLockstep, AMovingAxisInsideItsWindowIsNoFinding) {
+  for (const Duration uncertainty : {Duration{400ms}, Duration{0}}) {
+    SCOPED_TRACE(uncertainty.count());
+    Lockstep model(profile(), at_ms(0));
+    Device device;
+    const FuzzFrame jog = write(0x33, "WF5000"), status = write(0x31);
+    EXPECT_EQ(model.step(jog, at_ms(100), uncertainty, device.send(jog, at_ms(100))), std::nullopt);
+    const auto v = model.step(status, at_ms(2100), uncertainty, device.send(status, at_ms(1800)));
+    if (uncertainty > Duration{0}) {
+      EXPECT_EQ(v, std::nullopt) << v->message;
+    } else {
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->kind, FindingKind::kEffect);
+      EXPECT_EQ(v->field, "azimuth");
+      EXPECT_NE(v->message.find("outside the motion window"), std::string::npos) << v->message;
+    }
+  }
+}
+
+// A jog stopped 150 ms later on the device than in the model ends 0.3 deg
+// further: at rest, within the drift window of a 200 ms uncertainty, the
+// model takes the device's reading and then agrees exactly.
+TEST(LiveFuzzLockstep, ATolerableDriftIsResynchronizedNotReported) {
+  const Duration uncertainty = 200ms;
+  Lockstep model(profile(), at_ms(0));
+  Device device;
+  const FuzzFrame jog = write(0x33, "WF5000"), stop = write(0x33, "XS0000"), status = write(0x31);
+  EXPECT_EQ(model.step(jog, at_ms(100), uncertainty, device.send(jog, at_ms(100))), std::nullopt);
+  EXPECT_EQ(model.step(stop, at_ms(1100), uncertainty, device.send(stop, at_ms(1250))), std::nullopt);
+  const std::vector<Frame> first = device.send(status, at_ms(3000));
+  EXPECT_EQ(model.step(status, at_ms(3000), uncertainty, first), std::nullopt);
+  EXPECT_EQ(model.coverage().resyncs, 1u);
+  const auto az = [](const Frame& f) { return describe_frame(encode_frame(f)).fields.at(5).raw; };
+  EXPECT_EQ(az(first.at(0)), "\"   2.3\"");
+  EXPECT_EQ(model.model().status_block().azimuth.tenths, 23);
+  // In step again: the next poll agrees, nothing more to resynchronize.
+  EXPECT_EQ(model.step(status, at_ms(3500), uncertainty, device.send(status, at_ms(3500))), std::nullopt);
+  EXPECT_EQ(model.coverage().resyncs, 1u);
+  // Beyond the window (a stop that did not stop for 2 s more) it is a finding.
+  Lockstep strict(profile(), at_ms(0));
+  Device late;
+  EXPECT_EQ(strict.step(jog, at_ms(100), uncertainty, late.send(jog, at_ms(100))), std::nullopt);
+  // The reply to the stop already shows the azimuth 4 deg further.
+  const auto v = strict.step(stop, at_ms(1100), uncertainty, late.send(stop, at_ms(3100)));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->kind, FindingKind::kEffect);
+  EXPECT_EQ(v->field, "azimuth");
+}
+
+TEST(LiveFuzzLockstep, AStopThatDoesNotStopIsAnEffectFinding) {
+  Lockstep model(profile(), at_ms(0));
+  Device device(FaultSet{Fault::kJogIgnoresDuration});
+  const FuzzFrame jog = write(0x33, "WF1000"), status = write(0x31);
+  EXPECT_EQ(model.step(jog, at_ms(100), Duration{0}, device.send(jog, at_ms(100))), std::nullopt);
+  const auto v = model.step(status, at_ms(3000), Duration{0}, device.send(status, at_ms(3000)));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->kind, FindingKind::kEffect);
+  EXPECT_NE(v->message.find("the model expects"), std::string::npos) << v->message;
+}
+
+// On a line (a timing uncertainty), a jog seen moving a few milliseconds
+// after it started is what the model says too.
+TEST(LiveFuzzLockstep, AJogJustStartedOnALineIsNoFinding) {
+  const Duration uncertainty = 163ms;
+  Lockstep model(profile(), at_ms(1000));
+  Device device;
+  const FuzzFrame poll = write(0x31), jog = write(0x33, "OS0001");
+  EXPECT_EQ(model.step(poll, at_ms(1100), uncertainty, device.send(poll, at_ms(1100))), std::nullopt);
+  EXPECT_EQ(model.step(jog, at_ms(1200), uncertainty, device.send(jog, at_ms(1200))), std::nullopt);
+  const auto v = model.step(poll, at_ms(1204), uncertainty, device.send(poll, at_ms(1204)));
+  EXPECT_EQ(v, std::nullopt) << v->message;
+}
+
+// The whole session in-process, motion and stored writes allowed, on random
+// legal profiles (the sweep's generator): the lockstep oracle never fires on
+// the reference controller, and it compares fields and meets NAK rules.
+TEST(LiveFuzzLockstep, RandomLegalProfilesGiveNoFinding) {
+  for (const std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    const Profile p = random_profile(seed);
+    SCOPED_TRACE(p.name);
+    auto device = make_in_process_transport({p});
+    SessionOptions o;
+    o.allow_motion = o.allow_destructive = true;
+    Session session(*device, p, o);
+    GeneratorOptions go{p.address, true, true, true, {}, {}};
+    for (const StoredSatellite& s : p.store) go.names.push_back(s.name);
+    Generator generator(go, seed);
+    generator.set_rules_fired(&session.lockstep()->coverage().rules_fired);
+    for (int i = 0; i < 3000; ++i) {
+      FuzzFrame f = generator.next();
+      // As sabus fuzz does: a write the device must ignore is followed by a
+      // status poll, which also closes a frame it left open.
+      for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+        const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
+        f.chars.insert(f.chars.end(), poll.begin(), poll.end());
+      }
+      const auto v = session.step(f);
+      ASSERT_FALSE(v) << "write " << i << " (" << f.what << ", " << to_hex(f.chars) << "): " << to_string(v->kind) << ": "
+                      << v->message;
+      if (i % 50 == 49) {
+        const auto p = session.probe();
+        ASSERT_FALSE(p) << "probe after write " << i << ": " << to_string(p->kind) << ": " << p->message;
+      }
+    }
+    EXPECT_GE(session.lockstep()->coverage().rules_fired.size(), 10u);
+    EXPECT_GE(session.lockstep()->coverage().fields_compared.size(), 60u);
+  }
+}
+
+}  // namespace
+}  // namespace sabus::harness::live_fuzz
