@@ -193,8 +193,8 @@ FuzzFrame Generator::make(Mutation m) {
       // STX where the address belongs (§1 State 2 c).
       Bytes g = pick_base();
       const std::size_t cut = uniform(1, g.size() - 2);
-      Bytes cut_frame(g.begin(), g.begin() + static_cast<std::ptrdiff_t>(cut));
-      f.insert(f.begin(), cut_frame.begin(), cut_frame.end());
+      g.resize(cut);
+      f.insert(f.begin(), g.begin(), g.end());
       break;
     }
     case Mutation::kBurst: {

@@ -11,6 +11,7 @@
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/field_classes.hpp"
+#include "sabus/protocol/messages.hpp"
 
 namespace sabus::harness::live_fuzz {
 namespace {
@@ -141,7 +142,25 @@ bool device_moving(const Frame& reply, std::size_t axis) {
   return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
 }
 
+// §3.7 'S', 'D', 'A' (ERRATA E-89, E-90): how a STOW, a DEPLOY or a search
+// moves the antenna, in what order and for how long, the spec leaves to the
+// controller; the model's is one reading.
+bool device_led_mode(std::uint8_t mode) {
+  const auto name = meanings::mode_name(mode);
+  return name == "STOW_MODE" || name == "DEPLOY_MODE" || name == "SPIRAL_REMOTE_MODE";
+}
+
+// The mode a reply shows the device in (§3.17 byte 45), if it is a 40h reply.
+std::optional<std::uint8_t> device_mode(const Frame& reply) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return std::nullopt;
+  if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) return x->mode;
+  return std::nullopt;
+}
+
 // The §3.17 mode bytes.
+constexpr std::size_t kNoAxis = static_cast<std::size_t>(-1);
+
 bool is_mode_byte(std::string_view field) {
   return field == "current mode" || field == "current state" || field == "last exited mode" || field == "exit status";
 }
@@ -205,6 +224,7 @@ void Lockstep::rebuild(TimePoint now) {
   moved_on_line_ = {};
   settle_until_ = {};
   half_turn_ = false;
+  device_led_ = false;
 }
 
 Controller& Lockstep::model() { return bus_->controller(0); }
@@ -341,6 +361,28 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       half_turn_ = true;
   }
 
+  // While the model or the device runs a STOW, a DEPLOY or a search, the
+  // positions, motion bits and mode bytes are the device's: not compared,
+  // and taken over once both are at rest out of it (E-89, E-90). A stop
+  // still has to stop: after it the model is at rest and compares again.
+  if (device_led_mode(runs.front().bus->controller(0).state().mode.mode)) device_led_ = true;
+  for (const Frame& dev : device)
+    if (const auto mode = device_mode(dev); mode && device_led_mode(*mode)) device_led_ = true;
+  // Stopped out of one (a STOP_KEY, MOVE_STOPPED or MODE_CHANGED exit) and at
+  // rest in the model: the device must be at rest too, so its motion bits are
+  // compared again; its positions and mode bytes are still its own.
+  bool stopped_out = false;
+  if (device_led_) {
+    const Controller& nominal = runs.front().bus->controller(0);
+    const ModeState& ms = nominal.state().mode;
+    bool at_rest = true;
+    for (std::size_t a = 0; a < 3; ++a) at_rest = at_rest && motion_of(nominal, a) == AxisState::Motion::kIdle;
+    const std::string exit = meanings::exit_name(ms.last_mode, ms.exit_status);
+    stopped_out = at_rest && !device_led_mode(ms.mode) && device_led_mode(ms.last_mode) &&
+                  (exit.ends_with("_STOP_KEY") || exit.ends_with("_MOVE_STOPPED") ||
+                   exit.find("_MODE_CHANGE") != std::string::npos);
+  }
+
   std::optional<Verdict> finding;
   auto report = [&](FindingKind kind, std::string message) {
     if (!finding) finding = Verdict{kind, std::move(message)};
@@ -415,16 +457,26 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       }
       const bool equal_any = std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; });
       if (equal_any) continue;
-      const std::optional<std::size_t> axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, dev) : std::nullopt;
+      // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
+      // reports an optional's value as maybe unset through this loop).
+      const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, dev).value_or(kNoAxis) : kNoAxis;
+      const bool has_axis = axis != kNoAxis;
+      if (device_led_ && (has_axis || is_mode_byte(f.name))) {
+        const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name);
+        if (!(motion_bits && stopped_out)) {
+          take_modes = take_modes || is_mode_byte(f.name);
+          continue;
+        }
+      }
       bool moving = false;
-      if (axis)
-        for (Run* r : same) moving |= motion_of(r->bus->controller(0), *axis) != AxisState::Motion::kIdle;
-      if (axis && is_position(f.name)) {
+      if (has_axis)
+        for (Run* r : same) moving |= motion_of(r->bus->controller(0), axis) != AxisState::Motion::kIdle;
+      if (has_axis && is_position(f.name)) {
         // A window from the motion model: every run's reading, widened by the
         // drift the exchange's timing and the arrival tolerance allow.
         bool heading = false;
         const auto dv = position_value(dev, f.name, &heading);
-        const AxisProfile& ap = *axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol;
+        const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
         const double w = drift_window(ap, uncertainty);
         bool inside = false;
         if (dv) {
@@ -441,13 +493,13 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
             inside = d >= lo - w - 1e-9 && d <= hi + w + 1e-9;
           }
         }
-        position_exact[*axis] = false;
+        position_exact[axis] = false;
         if (inside) continue;
       }
       // Hundredths and counts resolve what a few milliseconds of timing
       // move an axis: compared only while the model is exact on that axis
       // (in-process, or on a line before the axis first moved).
-      if (axis && *axis == 0 && half_turn_) continue;
+      if (has_axis && axis == 0 && half_turn_) continue;
       if (is_mode_byte(f.name) && uncertainty > Duration{0} && at < settle_until_) {
         take_modes = true;
         continue;
@@ -457,17 +509,17 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       // ends within the drift window can start, end or turn differently in
       // each. Its status and limit bits are then not compared; a device that
       // goes on moving shows in its positions, beyond the window (§3.2).
-      if (axis && !is_position(f.name) && !is_fine_position(f.name) && uncertainty > Duration{0}) {
-        const AxisProfile& ap = *axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol;
-        const AxisState& ax = (*axis == 0 ? nominal_state().az : *axis == 1 ? nominal_state().el : nominal_state().pol);
+      if (has_axis && !is_position(f.name) && !is_fine_position(f.name) && uncertainty > Duration{0}) {
+        const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
+        const AxisState& ax = (axis == 0 ? nominal_state().az : axis == 1 ? nominal_state().el : nominal_state().pol);
         const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
                                 ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
                                  std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
         if (short_move) continue;
       }
-      if (axis && is_fine_position(f.name) &&
-          (moving || drifted_[*axis] || moved_on_line_[*axis] || !position_exact[*axis]))
-        continue;
+      if (has_axis && is_fine_position(f.name)) {
+        if (moving || drifted_[axis] || moved_on_line_[axis] || !position_exact[axis]) continue;
+      }
       // A difference: named, the model's reply beside the device's.
       const std::string model_value = values.front() ? *values.front() : std::string("(no such field)");
       // An effect: the device did not follow what a command did: a motion
@@ -525,7 +577,11 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         const auto reading = reading_of(m, *axis);
         if (!reading) continue;
         const long delta = std::lround(difference(*dv, *reading, heading) * 10);
-        if (*axis == 0 && half_turn_) {
+        if (device_led_ && !device_led_mode(m.state().mode.mode)) {
+          // Out of a STOW, DEPLOY or search and at rest: the device's position.
+        } else if (device_led_) {
+          continue;
+        } else if (*axis == 0 && half_turn_) {
           half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
         } else if (std::abs(difference(*dv, *reading, heading)) > drift_window(*axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol, uncertainty)) {
           continue;
@@ -536,6 +592,17 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         drifted_[*axis] = true;
         ++coverage_.resyncs;
       }
+    }
+    // Judged again once the model is out of such a mode and at rest, and the
+    // device's extended status shows every axis at rest.
+    if (device_led_ && !device_led_mode(m.state().mode.mode)) {
+      bool model_at_rest = true, device_at_rest = false;
+      for (std::size_t a = 0; a < 3; ++a) model_at_rest = model_at_rest && motion_of(m, a) == AxisState::Motion::kIdle;
+      // A 40h reply: its positions taken above and its mode bytes with them.
+      for (const Frame& dev : device)
+        device_at_rest = device_at_rest || (device_mode(dev).has_value() && !device_moving(dev, 0) &&
+                                            !device_moving(dev, 1) && !device_moving(dev, 2));
+      if (model_at_rest && device_at_rest) device_led_ = false;
     }
   }
   return finding;

@@ -40,6 +40,7 @@ struct Sink : ReceiverSink {
 // A device: the reference controller (with faults) on its own virtual clock.
 struct Device {
   explicit Device(FaultSet faults = {}) : t(make_in_process_transport({profile()}, faults)) {}
+  explicit Device(const Profile& p, FaultSet faults = {}) : t(make_in_process_transport({p}, faults)) {}
   std::vector<Frame> send(const FuzzFrame& f, TimePoint at) {
     t->clock().set(at);
     t->bus().tick();
@@ -192,6 +193,41 @@ TEST(LiveFuzzLockstep, AJogJustStartedOnALineIsNoFinding) {
   EXPECT_EQ(model.step(jog, at_ms(1200), uncertainty, device.send(jog, at_ms(1200))), std::nullopt);
   const auto v = model.step(poll, at_ms(1204), uncertainty, device.send(poll, at_ms(1204)));
   EXPECT_EQ(v, std::nullopt) << v->message;
+}
+
+// §3.7 'A' (ERRATA E-90): how a search moves is the controller's. A device
+// whose spiral takes other steps than the model's is no finding; its stop
+// still has to stop, and after it both are compared again.
+TEST(LiveFuzzLockstep, ASearchOtherThanTheModelsIsNoFindingButItsStopIs) {
+  Profile wide = profile();
+  wide.az.tolerance_deg = wide.el.tolerance_deg = 2.5;  // the reference's legs: 5 deg, not 1
+  const FuzzFrame search = write(0x36, "AE"), status = write(0x31), extended = write(0x40), stop = write(0x36, "KA");
+  for (const bool stop_ignored : {false, true}) {
+    SCOPED_TRACE(stop_ignored ? "the device's search ignores the stop" : "the device's search stops");
+    Lockstep model(profile(), at_ms(0));
+    Device device(wide, stop_ignored ? FaultSet{Fault::kSearchIgnoresStop} : FaultSet{});
+    auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), Duration{0}, device.send(f, at_ms(ms))); };
+    std::optional<Verdict> v = step(search, 100);
+    for (long ms = 1100; ms < 4000 && !v; ms += 1000) {
+      v = step(status, ms);
+      if (!v) v = step(extended, ms + 50);
+    }
+    EXPECT_EQ(v, std::nullopt) << v->message;
+    if (!v) v = step(stop, 4000);
+    if (!v) v = step(status, 6000);
+    if (!stop_ignored) {
+      EXPECT_EQ(v, std::nullopt) << v->message;
+      if (!v) v = step(extended, 6100);
+      EXPECT_EQ(v, std::nullopt) << v->message;
+      // Out of the search and at rest: judged as before, positions included.
+      if (!v) v = step(write(0x33, "WF1000"), 7000);
+      if (!v) v = step(status, 7500);
+      EXPECT_EQ(v, std::nullopt) << v->message;
+    } else {
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
+    }
+  }
 }
 
 // The whole session in-process, motion and stored writes allowed, on random

@@ -297,6 +297,9 @@ class Lockstep {
   std::array<bool, 3> drifted_{};     // az, el, pol resynchronized: hundredths and counts not compared
   std::array<bool, 3> moved_on_line_{};  // moved with a timing uncertainty: likewise
   TimePoint settle_until_{};             // mode bytes taken from the device until then
+  // A STOW, DEPLOY or search in the model or the device: motion and mode
+  // bytes are the device's until both are at rest out of it (E-89, E-90).
+  bool device_led_ = false;
   bool half_turn_ = false;               // an azimuth move to +-180 on a line: azimuth not compared
   LockstepCoverage coverage_;
 };
