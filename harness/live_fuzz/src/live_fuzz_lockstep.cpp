@@ -239,7 +239,8 @@ bool Lockstep::kept_as_before(const FuzzFrame& frame, std::size_t reply, std::st
   rx.feed(out, sink);
   rx.finish(sink);
   if (reply >= sink.frames.size()) return false;
-  const std::string* v = find_field(value_fields(sink.frames[reply]), field, occurrence);
+  const std::vector<Field> fields = value_fields(sink.frames[reply]);  // find_field points into it
+  const std::string* v = find_field(fields, field, occurrence);
   return v && *v != model_value && *v == device_value;
 }
 
