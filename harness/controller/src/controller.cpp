@@ -222,21 +222,28 @@ bool Controller::in_mode(enums::Mode mode) const { return state_.mode.mode == mo
 
 // ERRATA E-89: stow_exit_conditions and deploy_exit_conditions pair a
 // MOVE_STOPPED and a MODE_CHANGED (once spelled MODE_CHANGE) entry with each
-// moving state: the one of the state the STOW or DEPLOY is in.
+// moving state: the one of the state the STOW or DEPLOY is in; a search, a
+// STOP_KEY and a MODE_CHANGED entry in locate_exit_conditions (E-90).
 std::string Controller::moving_exit(bool stopped) const {
   if (in_mode("LOCATE_MODE")) return locate_exit(stopped);
-  if (in_mode("SPIRAL_REMOTE_MODE")) return search_exit(stopped);
-  if (!in_mode("STOW_MODE") && !in_mode("DEPLOY_MODE")) return "";
+  const bool search = in_mode("SPIRAL_REMOTE_MODE");
+  if (!search && !in_mode("STOW_MODE") && !in_mode("DEPLOY_MODE")) return "";
   if (stopped && in_mode("STOW_MODE") && faults_.has(Fault::kStowStopExitFinished)) return "STOW_FINISHED_NORMALLY";
   if (stopped && in_mode("DEPLOY_MODE") && faults_.has(Fault::kDeployStopExitFinished))
     return "DEPLOY_FINISHED_NORMALLY";
+  if (stopped && search && faults_.has(Fault::kSearchStopExitNoPeak)) return "SPIRAL_NO_PEAK_FOUND";
   const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
   const auto* exits = enums::exit_list_for_mode(state_.mode.mode, enum_reading());
   const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
   if (!state || !exits) return "";
-  for (std::string_view suffix : stopped ? std::vector<std::string_view>{"_MOVE_STOPPED"}
+  // E-90: the spiral's exits drop the state's "SEARCH_"
+  // (SPIRAL_SEARCH_STEPPING_UP_IN_ELEVATION -> SPIRAL_STEPPING_UP_IN_ELEVATION_STOP_KEY).
+  std::string stem(*state);
+  if (search && stem.starts_with("SPIRAL_SEARCH_")) stem.replace(0, 14, "SPIRAL_");
+  const std::string_view stop_suffix = search ? "_STOP_KEY" : "_MOVE_STOPPED";
+  for (std::string_view suffix : stopped ? std::vector<std::string_view>{stop_suffix}
                                          : std::vector<std::string_view>{"_MODE_CHANGED", "_MODE_CHANGE"}) {
-    std::string name = std::string(*state) + std::string(suffix);
+    std::string name = stem + std::string(suffix);
     if (exits->value_of(name)) return name;
   }
   return "";
@@ -256,22 +263,6 @@ std::string Controller::locate_exit(bool stop_key) const {
                                  "LOCATE_SECOND_ELEV_MOVEMENT"})
         if (*name == m) movement = m;
   return movement + (stop_key ? "_STOP_KEY" : "_MODE_CHANGED");
-}
-
-// ERRATA E-90: locate_exit_conditions pair a STOP_KEY and a MODE_CHANGED
-// entry with each moving state of the spiral search, named without the
-// state's "SEARCH_" (SPIRAL_SEARCH_STEPPING_UP_IN_ELEVATION ->
-// SPIRAL_STEPPING_UP_IN_ELEVATION_STOP_KEY).
-std::string Controller::search_exit(bool stop_key) const {
-  if (stop_key && faults_.has(Fault::kSearchStopExitNoPeak)) return "SPIRAL_NO_PEAK_FOUND";
-  const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
-  const auto* exits = enums::exit_list_for_mode(state_.mode.mode, enum_reading());
-  const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
-  if (!state || !exits) return "";
-  std::string stem(*state);
-  if (const auto at = stem.find("SPIRAL_SEARCH_"); at == 0) stem.replace(0, 14, "SPIRAL_");
-  const std::string name = stem + (stop_key ? "_STOP_KEY" : "_MODE_CHANGED");
-  return exits->value_of(name) ? name : "";
 }
 
 // ---- motion ------------------------------------------------------------------

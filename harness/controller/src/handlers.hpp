@@ -33,8 +33,8 @@ struct Handlers {
   static Outcome stored(Outcome o);
   static void take_remote_control(C& c);
   static bool track_busy(const C& c);
-  // Faults locate-ignores-stop and stow-ignores-stop: a stop ('X' or the
-  // Stop key) leaves a LOCATE or a STOW running.
+  // Faults locate-, stow-, deploy- and search-ignores-stop: a stop ('X' or
+  // the Stop key) leaves a LOCATE, STOW, DEPLOY or search running.
   static bool stop_ignored_by_fault(const C& c);
   static bool implemented(const C& c, std::uint8_t code);
 

@@ -119,12 +119,10 @@ class Controller {
   // The §3.17 locate_exit_conditions entry of a LOCATE left before it
   // completes, by a stop (`stop_key`) or by another mode (ERRATA E-82).
   std::string locate_exit(bool stop_key) const;
-  // The exit of a LOCATE, STOW or DEPLOY left while it moves (E-82, E-89):
+  // The exit of a LOCATE, STOW, DEPLOY or search left while it moves (E-82, E-89, E-90):
   // stopped (a stop or the Stop key) or taken over by another mode; "" in
   // any other mode or state.
   std::string moving_exit(bool stopped) const;
-  // The §3.17 exit of a spiral search left while it moves (E-90).
-  std::string search_exit(bool stop_key) const;
 
   bool stow_limit(AxisId a) const;
   bool moving() const;
