@@ -32,14 +32,22 @@ while (($#)); do
 done
 
 # The profile a fault needs to be visible at all (a switch of the profile
-# the fault's rule rests on); every other fault runs on rc3000-1.59.
+# the fault's rule rests on), or to be reached within a minute (a limit, a
+# LOCATE's geometry: the fast mount's 20 deg/s); every other fault runs on
+# rc3000-1.59.
 profile_for() {
   case $1 in
     circular-pol-acked|stow-without-capability) echo circular-no-stow ;;
     remote-disabled-answers|offline-without-f) echo remote-disabled ;;
     pulse-count-stale|pulse-count-no-offset|form2b-negative-mirrored) echo pulse-counts ;;
     hundredths-always-zero|form2c-sign-dropped|locate-northern-latitude) echo southern-slow-mount ;;
-    locate-ignores-heading) echo dual-port-dvb-fluxgate ;;
+    # A site without latitude and longitude: a LOCATE waits for them (E-59).
+    locate-without-site-completes) echo dual-port-dvb-fluxgate ;;
+    # A pot-sensed azimuth whose 0.0 is not true north (heading 90).
+    locate-ignores-heading|locate-azimuth-counterclockwise|locate-eastern-longitude|az-limit-bits-missing)
+      echo fast-mount-manual-nav ;;
+    # An axis alarm to reset (§3.7 'R').
+    drive-reset-keeps-alarm) echo az-jammed ;;
     *) echo rc3000-1.59 ;;
   esac
 }

@@ -160,11 +160,14 @@ int run_fuzz(const FuzzCliOptions& o) {
   so.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
   Session session(transport, profile, so);
   GeneratorOptions go{profile.address, o.allow_motion, o.allow_destructive, transport.can_send_parity_errors(), {},
-                      profile.bus_peers};
+                      profile.bus_peers, &profile};
   for (const StoredSatellite& s : profile.store) go.names.push_back(s.name);
   for (const PresetSatellite& p : profile.presets) go.names.push_back(p.data.name);
   Generator generator(go, seed);
-  if (const Lockstep* l = session.lockstep()) generator.set_rules_fired(&l->coverage().rules_fired);
+  if (const Lockstep* l = session.lockstep()) {
+    generator.set_rules_fired(&l->coverage().rules_fired);
+    generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  }
   DeviceFactory fresh;
   if (transport.in_process()) {
     const FaultSet faults = device.faults;

@@ -1,9 +1,13 @@
 // The live fuzzer's generator and its safety gate: frames from the catalog
 // and the structured builder, damaged with the runner's modifiers.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
 #include <set>
 
 #include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/look_angles.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/protocol/catalog.hpp"
@@ -27,6 +31,11 @@ bool allowed(const Effects& e, bool allow_motion, bool allow_destructive) {
   return (!e.moves_antenna || allow_motion) && (!e.changes_stored_data || allow_destructive);
 }
 
+Bytes with_byte(Bytes f, std::size_t at, std::uint8_t b) {
+  f[at] = b;
+  return f;
+}
+
 Bytes relrc(Bytes f) {
   if (f.size() >= 2) f.back() = lrc(ByteView(f).first(f.size() - 1));
   return f;
@@ -37,14 +46,15 @@ Bytes relrc(Bytes f) {
 constexpr std::uint8_t kInteresting[] = {' ', '0', '1', '9', '-', '+', '.', '/', ':', '@', 'A', 'Z', 'a', 'z', 0x7F, '~'};
 
 // A stored write and the read that shows it (§3.10/§3.11, §3.12/§3.13,
-// §3.20/§3.21, §3.23/§3.22, §3.19/§3.6): `index` when the read takes the
+// §3.20/§3.21, §3.23/§3.22 and §3.6, §3.19/§3.6): `index` when the read takes the
 // write's slot index (data bytes 3-4).
 struct ReadBack {
   std::uint8_t write, read;
   bool index;
 };
 constexpr ReadBack kReadBacks[] = {
-    {0x39, 0x3A, true}, {0x3B, 0x3C, true}, {0x43, 0x44, true}, {0x46, 0x45, false}, {0x42, 0x35, false}};
+    {0x39, 0x3A, true}, {0x3B, 0x3C, true}, {0x43, 0x44, true}, {0x46, 0x45, false}, {0x42, 0x35, false},
+    {0x46, 0x35, false}};  // §3.23 NOTE: a navigation write deletes the STORE list
 
 // The stops of a motion (§3.4 'X', §3.7 'K' with the Stop key, §3.25 the
 // Stop key): the command and its data.
@@ -62,6 +72,50 @@ constexpr std::string_view kIndexes[] = {"00", "01", "02", "09", "10", "11", "19
 constexpr std::string_view kNumbers[] = {"0",     "-0",     "0.0",   "-0.1",   "0.1",   "1.23",  "-2.57", "89.9",
                                          "90.0",  "90.1",   "-90.0", "-90.1",  "179.9", "180.0", "180.1", "-180.0",
                                          "-180.1", "359.9", "360.0", "999.9", "-999.9", "9999",  "1",     "-1"};
+
+// An arrival sequence (Generator::arrival) aims no farther from where the
+// model stands than its axis covers in this long at fast speed (a limit a
+// little farther), waits for
+// the model to be at rest this long, and gives up after this long.
+constexpr double kReachSeconds = 6.0;
+constexpr double kLimitReachSeconds = 15.0;  // a limit: this far
+constexpr Duration kRestFor = std::chrono::milliseconds(500);
+constexpr Duration kArrivalLimit = std::chrono::seconds(30);
+// §3.23 NOTE: a navigation write deletes the STORE list, which the reads
+// and counts of §3.6 need entries in: for this long from the session's start
+// (the model's clock) no write carries a 46h frame.
+constexpr Duration kStoreKeptFor = std::chrono::seconds(15);
+constexpr std::uint8_t kDeletesStore = 0x46;
+
+// Whether `chars`, after `before`, carries a frame of `command` (a start
+// byte, an address byte and the command, as is_safe_to_send reads frames).
+bool carries_command(ByteView chars, ByteView before, std::uint8_t command) {
+  Bytes all(before.begin(), before.end());
+  all.insert(all.end(), chars.begin(), chars.end());
+  for (std::size_t i = 0; i + 2 < all.size(); ++i)
+    if (is_start_byte(all[i] & 0x7F) && is_valid_address(all[i + 1] & 0x7F) && (all[i + 2] & 0x7F) == command) return true;
+  return false;
+}
+
+// While it waits, a status poll every this many writes.
+constexpr std::size_t kPollEvery = 10;
+
+std::string fixed(double value, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+// A target on one axis and whether it is a limit (+1 the clockwise/up end of
+// the range, -1 the other, 0 none).
+struct Target {
+  double deg;
+  int limit;
+};
+
+const AxisState& axis_state(const Controller& c, std::size_t a) {
+  return a == 0 ? c.state().az : a == 1 ? c.state().el : c.state().pol;
+}
 
 }  // namespace
 
@@ -217,7 +271,9 @@ FuzzFrame Generator::make(Mutation m) {
           if (keep(b)) out.push_back(&b);
         return out;
       };
-      const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 1) == 0);
+      const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 2) == 0);
+      if (!stored && options_.allow_motion && !arriving_ && uniform(0, 1) == 0)
+        if (auto a = arrival()) return *a;
       if (stored) {
         // A write (at a boundary half the time), then the read that shows it.
         const ReadBack& rb = kReadBacks[uniform(0, std::size(kReadBacks) - 1)];
@@ -240,7 +296,12 @@ FuzzFrame Generator::make(Mutation m) {
         if (moves.empty()) return make(Mutation::kBoundary);
         f = *moves[uniform(0, moves.size() - 1)];
         if (uniform(0, 2) == 0) f = boundary(std::move(f));
-        for (std::size_t k = uniform(0, 2); k > 0; --k) queued_.push_back({frame(0x31, ""), {}, "status while moving"});
+        else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
+        // The first poll after a while: the motion has begun when it is
+        // stopped (a STOW, DEPLOY or search is judged by how it stops).
+        for (std::size_t k = uniform(1, 2); k > 0; --k)
+          queued_.push_back({frame(0x31, ""), {}, "status while moving",
+                             std::chrono::milliseconds(queued_.empty() ? uniform(200, 1500) : 0)});
         const Stop& stop = kStops[uniform(0, std::size(kStops) - 1)];
         queued_.push_back({frame(stop.code, stop.data), {}, "stop"});
         queued_.push_back({frame(0x31, ""), {}, "status after the stop"});
@@ -256,6 +317,146 @@ FuzzFrame Generator::make(Mutation m) {
   if (!(mod == Modifiers{})) f = apply_modifiers(std::move(f), mod);
   out.chars = std::move(f);
   return out;
+}
+
+std::optional<FuzzFrame> Generator::arrival() {
+  if (!model_ || !options_.profile) return std::nullopt;
+  const Profile& p = *options_.profile;
+  const ModelView view = model_();
+  const Controller& m = *view.controller;
+  auto uniform = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_); };
+  auto real = [&](double lo, double hi) { return lo >= hi ? lo : std::uniform_real_distribution<double>(lo, hi)(rng_); };
+  // Within reach of where the model stands; a limit one time in four, a
+  // negative position one time in four where the reach has one (§3.3's
+  // signed forms), rounded to what the form carries.
+  auto target = [&](std::size_t a, double step) -> Target {
+    const AxisProfile& ap = a == 0 ? p.az : a == 1 ? p.el : p.pol;
+    const double from = axis_state(m, a).position, reach = ap.fast_dps * kReachSeconds;
+    const double lo = std::max(ap.min_deg, from - reach), hi = std::min(ap.max_deg, from + reach);
+    const std::size_t r = uniform(0, 3);
+    if (r == 0) {  // the nearer limit, or a step toward it where it is far
+      const int toward = ap.max_deg - from <= from - ap.min_deg ? +1 : -1;
+      const double edge = toward > 0 ? ap.max_deg : ap.min_deg;
+      if (std::abs(edge - from) <= ap.fast_dps * kLimitReachSeconds) return {edge, toward};
+      return {std::round((from + toward * reach) / step) * step, 0};
+    }
+    const double t = r == 1 && lo < -step ? real(lo, std::min(hi, -step)) : real(lo, hi);
+    return {std::clamp(std::round(t / step) * step, ap.min_deg, ap.max_deg), 0};
+  };
+  // The forms this profile takes (§3.3: 2B needs count sensors, 2C the
+  // hundredths, 3 a linear feed; §3.18 a site, which it may lack: then the
+  // LOCATE waits for it, E-59).
+  std::vector<char> forms = {'A', 'L'};
+  if (p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver) forms.push_back('B');
+  if (p.hundredths) forms.push_back('C');
+  if (p.pol_type != PolType::kCircular) forms.push_back('P');
+  const char form = forms[uniform(0, forms.size() - 1)];
+  std::map<std::string, std::string> fields;
+  std::string_view form_id;
+  std::uint8_t code = 0x32;
+  std::array<int, 3> limits{};
+  auto counts = [&](double deg) { return std::to_string(p.count_offset + std::lround(deg * p.counts_per_degree)); };
+  switch (form) {
+    case 'A': case 'B': {
+      const Target az = target(0, 0.1), el = target(1, 0.1);
+      limits = {az.limit, el.limit, 0};
+      form_id = form == 'A' ? "2A" : "2B";
+      if (form == 'A') fields = {{"azimuth", fixed(az.deg, 1)}, {"elevation", fixed(el.deg, 1)}};
+      else fields = {{"azimuth count", counts(az.deg)}, {"elevation count", counts(el.deg)}};
+      break;
+    }
+    case 'C': {
+      const std::size_t a = uniform(0, 1);
+      const Target t = target(a, 0.01);
+      limits[a] = t.limit;
+      form_id = "2C";
+      fields = {{"axis", a == 0 ? "A" : "E"}, {"target", fixed(t.deg, 2)}};
+      break;
+    }
+    case 'P': {
+      const Target t = target(2, 0.1);
+      limits[2] = t.limit;
+      form_id = "3";
+      fields = {{"pol target", fixed(t.deg, 1)}};
+      break;
+    }
+    default: {
+      // A satellite whose look angles the model's axes reach within a few
+      // seconds, where the site is known; any longitude otherwise.
+      code = 0x41;
+      form_id = "data";
+      double longitude = real(-180.0, 180.0);
+      const look::SiteOf site = look::site_of(m.state().navigation, p.az_sensor, p.fluxgate_heading);
+      if (site.site) {
+        // Seconds to get there at fast speed (the slower axis).
+        auto seconds_to = [&](double lon) -> std::optional<double> {
+          const look::Pointing aim = look::pointing(*site.site, lon);
+          const auto az = look::azimuth_position(p.az, aim.azimuth_deg, m.state().az.position);
+          if (!az || aim.elevation_deg < p.el.min_deg || aim.elevation_deg > p.el.max_deg) return std::nullopt;
+          return std::max(std::abs(*az - m.state().az.position) / p.az.fast_dps,
+                          std::abs(aim.elevation_deg - m.state().el.position) / p.el.fast_dps);
+        };
+        std::vector<double> near;
+        std::optional<double> nearest, best;
+        for (double lon = -180.0; lon <= 180.0; lon += 0.5)
+          if (const auto t = seconds_to(lon)) {
+            if (*t <= kReachSeconds) near.push_back(lon);
+            if (!best || *t < *best) best = t, nearest = lon;
+          }
+        if (!near.empty()) longitude = near[uniform(0, near.size() - 1)];
+        else if (nearest) longitude = *nearest;  // none that near: the nearest the axes reach
+      }
+      fields = {{"sat name", "FUZZ LOC"}, {"longitude", fixed(longitude, 1)}, {"inclination", "0"}, {"band", "1"},
+                {"pol offset", "0.0"}, {"receive polarization", "N"}, {"position update", "A"}};
+    }
+  }
+  auto request = build_request(*find_command(code), form_id, fields);
+  if (!request) return std::nullopt;
+  FuzzFrame move{encode_request(request.value(), options_.address), {}, "sequence: arrival"};
+  arriving_ = true;
+  arrival_start_ = view.now;
+  at_rest_since_.reset();
+  writes_since_poll_ = 0;
+  // Once at rest: what the controller says, then a jog further into a
+  // limit the move ended at (§3.4: NAKed while the limit is asserted).
+  auto frame = [&](std::uint8_t c, std::string_view data) {
+    return encode_frame({FrameKind::kCommand, options_.address, c, Bytes(data.begin(), data.end())});
+  };
+  after_arrival_ = {{frame(0x31, ""), {}, "status after the arrival"}, {frame(0x40, ""), {}, "extended status after the arrival"}};
+  static constexpr std::string_view kIntoLimit[3][2] = {{"ES0500", "WS0500"}, {"DS0500", "US0500"}, {"OS0500", "LS0500"}};
+  for (std::size_t a = 0; a < 3; ++a)
+    if (limits[a] != 0 && uniform(0, 1) == 0) {
+      after_arrival_.push_back({frame(0x33, kIntoLimit[a][limits[a] > 0 ? 1 : 0]), {}, "jog into the limit"});
+      after_arrival_.push_back({frame(0x31, ""), {}, "status after the jog"});
+      break;
+    }
+  return move;
+}
+
+std::optional<FuzzFrame> Generator::while_arriving() {
+  if (!arriving_) return std::nullopt;
+  const ModelView view = model_();
+  bool at_rest = true;
+  for (std::size_t a = 0; a < 3; ++a) at_rest = at_rest && axis_state(*view.controller, a).motion == AxisState::Motion::kIdle;
+  if (!at_rest) at_rest_since_.reset();
+  else if (!at_rest_since_) at_rest_since_ = view.now;
+  if ((at_rest_since_ && view.now - *at_rest_since_ >= kRestFor) || view.now - arrival_start_ >= kArrivalLimit) {
+    arriving_ = false;
+    queued_.insert(queued_.end(), after_arrival_.begin(), after_arrival_.end());
+    after_arrival_.clear();
+    return std::nullopt;
+  }
+  if (++writes_since_poll_ >= kPollEvery) {
+    writes_since_poll_ = 0;
+    return FuzzFrame{encode_frame({FrameKind::kCommand, options_.address, 0x31, {}}), {}, "status while arriving"};
+  }
+  // Anything that cannot move the antenna (nor start another sequence).
+  for (;;) {
+    const auto m = static_cast<Mutation>(std::uniform_int_distribution<unsigned>(0, static_cast<unsigned>(Mutation::kCount) - 1)(rng_));
+    if (m == Mutation::kSequence) continue;
+    FuzzFrame f = make(m);
+    if (is_safe_to_send(f.chars, false, options_.allow_destructive, tail_)) return f;
+  }
 }
 
 Bytes Generator::pick_boundary_base() {
@@ -338,6 +539,11 @@ FuzzFrame Generator::next() {
     // them alike, so it never has to refuse one of these).
     auto safe = [&](const FuzzFrame& w) {
       if (!is_safe_to_send(w.chars, options_.allow_motion, options_.allow_destructive, tail_)) return false;
+      if (model_) {
+        const TimePoint now = model_().now;
+        if (!session_start_) session_start_ = now;
+        if (now - *session_start_ < kStoreKeptFor && carries_command(w.chars, tail_, kDeletesStore)) return false;
+      }
       tail_.assign(w.chars.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(4, w.chars.size())), w.chars.end());
       return true;
     };
@@ -347,6 +553,11 @@ FuzzFrame Generator::next() {
       if (safe(q)) return q;
       continue;
     }
+    if (auto w = while_arriving()) {
+      if (safe(*w)) return *w;
+      continue;
+    }
+    if (!queued_.empty()) continue;  // the arrival's last writes
     FuzzFrame f = make(static_cast<Mutation>(which(rng_)));
     if (safe(f)) return f;
   }

@@ -142,6 +142,23 @@ bool device_moving(const Frame& reply, std::size_t axis) {
   return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
 }
 
+// Whether a reply's status block shows any axis moving; nullopt for a reply
+// without one.
+std::optional<bool> shows_moving(const Frame& reply) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return std::nullopt;
+  if (!std::holds_alternative<StatusReply>(decoded.value()) && !std::holds_alternative<ExtendedStatusReply>(decoded.value()))
+    return std::nullopt;
+  return device_moving(reply, 0) || device_moving(reply, 1) || device_moving(reply, 2);
+}
+
+// An exit status by which a stop ends a mode (§3.17 exit lists): the
+// movement's STOP_KEY or MOVE_STOPPED entry, or MODE_CHANGED.
+bool is_stop_exit(std::uint8_t mode, std::uint8_t exit_status) {
+  const std::string exit = meanings::exit_name(mode, exit_status);
+  return exit.ends_with("_STOP_KEY") || exit.ends_with("_MOVE_STOPPED") || exit.find("_MODE_CHANGE") != std::string::npos;
+}
+
 // §3.7 'S', 'D', 'A' (ERRATA E-89, E-90): how a STOW, a DEPLOY or a search
 // moves the antenna, in what order and for how long, the spec leaves to the
 // controller; the model's is one reading.
@@ -155,6 +172,14 @@ std::optional<std::uint8_t> device_mode(const Frame& reply) {
   const auto decoded = decode_reply(reply);
   if (!decoded) return std::nullopt;
   if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) return x->mode;
+  return std::nullopt;
+}
+
+// A 40h reply's fields, if it is one.
+std::optional<ExtendedStatusReply> extended_status(const Frame& reply) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return std::nullopt;
+  if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) return *x;
   return std::nullopt;
 }
 
@@ -224,10 +249,11 @@ void Lockstep::rebuild(TimePoint now) {
   moved_on_line_ = {};
   settle_until_ = {};
   half_turn_ = false;
-  device_led_ = false;
+  device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
 
 Controller& Lockstep::model() { return bus_->controller(0); }
+const Controller& Lockstep::model() const { return bus_->controller(0); }
 
 bool Lockstep::kept_as_before(const FuzzFrame& frame, std::size_t reply, std::string_view field, std::size_t occurrence,
                               const std::string& model_value, const std::string& device_value) {
@@ -333,12 +359,15 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   last_ = at + spacing_ * static_cast<int>(cuts_.size());
   clock_->set(last_);
 
-  // A move that ends within the drift window on a line: where the device's
-  // axis stands a hair from the model's, that move can end at once in one and
+  // The model only roughly where the device is: on a line (timing), or an
+  // axis taken over from the device's readings (to their tenths).
+  // A move that ends within the drift window then: where the device's axis
+  // stands a hair from the model's, that move can end at once in one and
   // take a few milliseconds in the other, and the mode it ran in (§3.17)
   // end otherwise (finished, or stopped by the next command). For a while
   // after one the mode bytes are taken from the device, not judged.
-  if (uncertainty > Duration{0}) {
+  const bool inexact = uncertainty > Duration{0} || drifted_[0] || drifted_[1] || drifted_[2];
+  if (inexact) {
     const ControllerState& st = runs.front().bus->controller(0).state();
     for (std::size_t a = 0; a < 3; ++a) {
       const AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
@@ -369,20 +398,34 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   if (device_led_mode(runs.front().bus->controller(0).state().mode.mode)) device_led_ = true;
   for (const Frame& dev : device)
     if (const auto mode = device_mode(dev); mode && device_led_mode(*mode)) device_led_ = true;
+  // Where such a mode leaves the axes the model knows only to the tenths the
+  // device's readings show: counts and hundredths are not compared after it.
+  if (device_led_) drifted_ = {true, true, true};
   // Stopped out of one (a STOP_KEY, MOVE_STOPPED or MODE_CHANGED exit) and at
   // rest in the model: the device must be at rest too, so its motion bits are
   // compared again; its positions and mode bytes are still its own.
+  // Left for a move of another command (§3.3, §3.18: MODE_CHANGED) rather
+  // than stopped: no stop to judge; the new move is the device's too until
+  // both are at rest.
   bool stopped_out = false;
   if (device_led_) {
     const Controller& nominal = runs.front().bus->controller(0);
     const ModeState& ms = nominal.state().mode;
-    bool at_rest = true;
-    for (std::size_t a = 0; a < 3; ++a) at_rest = at_rest && motion_of(nominal, a) == AxisState::Motion::kIdle;
-    const std::string exit = meanings::exit_name(ms.last_mode, ms.exit_status);
-    stopped_out = at_rest && !device_led_mode(ms.mode) && device_led_mode(ms.last_mode) &&
-                  (exit.ends_with("_STOP_KEY") || exit.ends_with("_MOVE_STOPPED") ||
-                   exit.find("_MODE_CHANGE") != std::string::npos);
+    bool at_rest = true, driving = false;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const AxisState::Motion m = motion_of(nominal, a);
+      at_rest = at_rest && m == AxisState::Motion::kIdle;
+      driving = driving || (m != AxisState::Motion::kIdle && m != AxisState::Motion::kStopping);
+    }
+    if (model_was_led_ && !device_led_mode(ms.mode) && driving) handed_over_ = true;
+    stopped_out = !handed_over_ && at_rest && !device_led_mode(ms.mode) && device_led_mode(ms.last_mode) &&
+                  is_stop_exit(ms.last_mode, ms.exit_status);
   }
+  model_was_led_ = device_led_mode(runs.front().bus->controller(0).state().mode.mode);
+  // The write that stopped it: whether the device's last status before it
+  // showed the device moving (then its exit must be a stop's too).
+  if (stopped_out && !stopped_out_) moving_when_stopped_ = device_seen_moving_;
+  stopped_out_ = stopped_out;
 
   std::optional<Verdict> finding;
   auto report = [&](FindingKind kind, std::string message) {
@@ -465,6 +508,20 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       if (device_led_ && (has_axis || is_mode_byte(f.name))) {
         const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name);
         if (!(motion_bits && stopped_out)) {
+          // How it ends is the device's, but not by what: stopped while it
+          // moved, it exits by a stop, not as finished or without a peak.
+          if (f.name == "exit status" && stopped_out && moving_when_stopped_)
+            if (const auto x = extended_status(dev);
+                x && x->last_mode == nominal_state().mode.last_mode && !is_stop_exit(x->last_mode, x->exit_status)) {
+              report(FindingKind::kValue,
+                     "field 'exit status' (§3.17, state: how the last mode ended) is " + f.raw + " (" +
+                         meanings::exit_name(x->last_mode, x->exit_status) + ") after a stop that found the device moving in " +
+                         std::string(meanings::mode_name(x->last_mode)) +
+                         "; a stop ends it with a STOP_KEY, MOVE_STOPPED or MODE_CHANGED entry (§3.7, ERRATA E-90). Device: " +
+                         summary(dev) + " [" + fields_text(dev_fields) + "]; model: [" + fields_text(model_fields.front()) + "]");
+              finding->field = f.name;
+              break;
+            }
           take_modes = take_modes || is_mode_byte(f.name);
           continue;
         }
@@ -501,16 +558,19 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       // move an axis: compared only while the model is exact on that axis
       // (in-process, or on a line before the axis first moved).
       if (has_axis && axis == 0 && half_turn_) continue;
-      if (is_mode_byte(f.name) && uncertainty > Duration{0} && at < settle_until_) {
+      if (is_mode_byte(f.name) && inexact && at < settle_until_) {
         take_modes = true;
         continue;
       }
-      // On a line, an axis whose readings agree may stand a little apart in
+      // Inexact, an axis whose readings agree may stand a little apart in
       // the model and the device (the display resolves 0.1 deg): a move that
       // ends within the drift window can start, end or turn differently in
       // each. Its status and limit bits are then not compared; a device that
       // goes on moving shows in its positions, beyond the window (§3.2).
-      if (has_axis && !is_position(f.name) && !is_fine_position(f.name) && uncertainty > Duration{0}) {
+      // Not after a stop out of a STOW, DEPLOY or search: there the motion
+      // bits are all that is judged, and the earlier and later runs give the
+      // line's timing.
+      if (has_axis && !is_position(f.name) && !is_fine_position(f.name) && inexact && !(device_led_ && stopped_out)) {
         const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
         const AxisState& ax = (axis == 0 ? nominal_state().az : axis == 1 ? nominal_state().el : nominal_state().pol);
         const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
@@ -543,6 +603,9 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   if (uncertainty > Duration{0})
     for (std::size_t a = 0; a < 3; ++a)
       for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
+
+  for (const Frame& dev : device)
+    if (const auto moving = shows_moving(dev)) device_seen_moving_ = *moving;
 
   // Keep the run the device agreed with most (the nominal one on a tie).
   std::size_t best = 0;
@@ -603,7 +666,10 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       for (const Frame& dev : device)
         device_at_rest = device_at_rest || (device_mode(dev).has_value() && !device_moving(dev, 0) &&
                                             !device_moving(dev, 1) && !device_moving(dev, 2));
-      if (model_at_rest && device_at_rest) device_led_ = false;
+      if (model_at_rest && device_at_rest) {
+        device_led_ = false;
+        stopped_out_ = handed_over_ = moving_when_stopped_ = false;
+      }
     }
   }
   return finding;

@@ -55,6 +55,7 @@ bool Session::would_be_ignored(const FuzzFrame& frame) const {
 
 Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_replies, std::size_t reply_bytes) {
   Transport& t = transport_;
+  if (frame.pause.count() > 0) t.pause(frame.pause);
   if (options_.pace.count() > 0 && last_write_ != TimePoint{}) {
     const auto since = t.now() - last_write_;
     if (since < options_.pace) t.pause(std::chrono::duration_cast<milliseconds>(options_.pace - since));

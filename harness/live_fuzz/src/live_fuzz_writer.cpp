@@ -44,7 +44,7 @@ std::vector<FuzzFrame> one_reply_each(const std::vector<FuzzFrame>& writes, cons
     auto cut = [&](std::size_t to) {
       if (to <= from) return;
       FuzzFrame s{Bytes(w.chars.begin() + static_cast<std::ptrdiff_t>(from), w.chars.begin() + static_cast<std::ptrdiff_t>(to)),
-                  {}, w.what};
+                  {}, w.what, from == 0 ? w.pause : 0ms};
       for (std::size_t i : w.wrong_parity)
         if (i >= from && i < to) s.wrong_parity.push_back(i - from);
       out.push_back(std::move(s));
@@ -77,6 +77,7 @@ std::vector<Expectation> reference_expectations(const std::vector<FuzzFrame>& st
   auto t = make_in_process_transport({profile});
   std::vector<Expectation> out;
   for (const FuzzFrame& s : steps) {
+    if (s.pause.count() > 0) t->pause(s.pause);
     t->send(s.chars, s.wrong_parity);
     ReceiverOptions ro = ReceiverOptions::master();
     Receiver rx(ro);
@@ -178,6 +179,8 @@ std::string finding_vector_yaml(const Finding& finding, const Profile& profile, 
   y << YAML::Key << "steps" << YAML::Value << YAML::BeginSeq;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const FuzzFrame& s = steps[i];
+    if (s.pause.count() > 0)  // the time the write waited for (a move running)
+      y << YAML::BeginMap << YAML::Key << "wait_ms" << YAML::Value << s.pause.count() << YAML::EndMap;
     y << YAML::BeginMap;
     y << YAML::Key << "send" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "raw" << YAML::Value;
     quoted(y, to_hex(s.chars)) << YAML::EndMap << YAML::Comment(printable_text(s.what));

@@ -241,10 +241,12 @@ TEST(LiveFuzzLockstep, RandomLegalProfilesGiveNoFinding) {
     SessionOptions o;
     o.allow_motion = o.allow_destructive = true;
     Session session(*device, p, o);
-    GeneratorOptions go{p.address, true, true, true, {}, {}};
+    GeneratorOptions go{p.address, true, true, true, {}, {}, &p};
     for (const StoredSatellite& s : p.store) go.names.push_back(s.name);
     Generator generator(go, seed);
-    generator.set_rules_fired(&session.lockstep()->coverage().rules_fired);
+    const Lockstep* l = session.lockstep();
+    generator.set_rules_fired(&l->coverage().rules_fired);
+    generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
     for (int i = 0; i < 3000; ++i) {
       FuzzFrame f = generator.next();
       // As sabus fuzz does: a write the device must ignore is followed by a
@@ -263,6 +265,90 @@ TEST(LiveFuzzLockstep, RandomLegalProfilesGiveNoFinding) {
     }
     EXPECT_GE(session.lockstep()->coverage().rules_fired.size(), 10u);
     EXPECT_GE(session.lockstep()->coverage().fields_compared.size(), 60u);
+  }
+}
+
+// An arrival sequence (Generator::arrival): a move, then writes that cannot
+// move anything while the model moves, then, once it rests, status and
+// extended status; the reference device agrees all along.
+TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
+  const Profile p = profile();
+  auto device = make_in_process_transport({p});
+  SessionOptions o;
+  o.allow_motion = true;
+  Session session(*device, p, o);
+  GeneratorOptions go{p.address, true, false, true, {}, {}, &p};
+  Generator generator(go, 3);
+  const Lockstep* l = session.lockstep();
+  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  auto at_rest = [&] {
+    const ControllerState& s = l->model().state();
+    return s.az.motion == AxisState::Motion::kIdle && s.el.motion == AxisState::Motion::kIdle &&
+           s.pol.motion == AxisState::Motion::kIdle;
+  };
+  std::size_t arrivals = 0, moved = 0;
+  bool arriving = false;
+  double az0 = 0, el0 = 0;
+  TimePoint start{};
+  std::string last;
+  for (int i = 0; i < 60000 && arrivals < 4; ++i) {
+    FuzzFrame f = generator.next();
+    if (f.what == "sequence: arrival") {
+      arriving = true;
+      start = l->now();
+      az0 = l->model().state().az.position;
+      el0 = l->model().state().el.position;
+    } else if (f.what == "status after the arrival") {
+      ASSERT_TRUE(arriving) << "status after an arrival that did not begin";
+      // At rest, or given up after the generator's 30 s.
+      EXPECT_TRUE(at_rest() || l->now() - start >= 30s) << "the arrival ended early with the model moving";
+      arriving = false;
+      ++arrivals;
+      const ControllerState& s = l->model().state();
+      if (std::abs(s.az.position - az0) > 0.05 || std::abs(s.el.position - el0) > 0.05) ++moved;
+      EXPECT_GE(s.az.position, p.az.min_deg);
+      EXPECT_LE(s.az.position, p.az.max_deg);
+    } else if (arriving) {
+      EXPECT_TRUE(is_safe_to_send(f.chars, false, false)) << "a write that can move while arriving: " << f.what;
+    }
+    if (last == "status after the arrival") EXPECT_EQ(f.what, "extended status after the arrival");
+    last = f.what;
+    for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+      const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
+      f.chars.insert(f.chars.end(), poll.begin(), poll.end());
+    }
+    const auto v = session.step(f);
+    ASSERT_FALSE(v) << "write " << i << " (" << f.what << "): " << v->message;
+  }
+  EXPECT_EQ(arrivals, 4u);
+  EXPECT_GE(moved, 2u);
+}
+
+// §3.7 'D' stopped (ERRATA E-90): how a DEPLOY ends is the device's, but a
+// stop that finds it moving ends it by a stop: DEPLOY_FINISHED_NORMALLY after
+// it is a value finding naming the exit status.
+TEST(LiveFuzzLockstep, AStopThatFindsTheDeviceMovingEndsItsModeByAStop) {
+  Profile p = profile();
+  p.el.deploy_deg = 10.0;  // 35 s from the power-on 45 at 1 deg/s
+  const FuzzFrame deploy = write(0x36, "DD"), status = write(0x31), extended = write(0x40), stop = write(0x36, "KA");
+  for (const bool faulty : {false, true}) {
+    SCOPED_TRACE(faulty ? "deploy-stop-exit-finished" : "no fault");
+    Lockstep model(p, at_ms(0));
+    Device device(p, faulty ? FaultSet{Fault::kDeployStopExitFinished} : FaultSet{});
+    auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), Duration{0}, device.send(f, at_ms(ms))); };
+    std::optional<Verdict> v = step(deploy, 100);
+    if (!v) v = step(status, 1100);  // moving
+    if (!v) v = step(stop, 1200);
+    if (!v) v = step(status, 3000);
+    if (!v) v = step(extended, 3100);
+    if (faulty) {
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->kind, FindingKind::kValue);
+      EXPECT_EQ(v->field, "exit status");
+      EXPECT_NE(v->message.find("DEPLOY_FINISHED_NORMALLY"), std::string::npos) << v->message;
+    } else {
+      EXPECT_EQ(v, std::nullopt) << v->message;
+    }
   }
 }
 

@@ -43,6 +43,9 @@ struct FuzzFrame {
   Bytes chars;
   std::vector<std::size_t> wrong_parity;
   std::string what;
+  // Waited before the write goes out (a move given time to run before it
+  // is polled or stopped); a replay and the finding's vector wait as long.
+  std::chrono::milliseconds pause{0};
   bool operator==(const FuzzFrame&) const = default;
 };
 
@@ -74,6 +77,9 @@ struct GeneratorOptions {
   // Other controllers on the line (Profile::bus_peers): a frame for one of
   // them draws its reply, so a "foreign" address is none of them.
   std::vector<std::uint8_t> peers = {};
+  // The device's profile: arrival sequences draw targets inside its ranges
+  // and the forms it has (none: no arrival sequences).
+  const Profile* profile = nullptr;
 };
 
 // The mutation kinds, one table: id, name (in reports and vector comments).
@@ -118,8 +124,31 @@ class Generator {
   // The NAK rules the device has fired so far (LockstepCoverage): boundary
   // values go more often to the commands of the rules not yet fired.
   void set_rules_fired(const std::set<std::string>* fired) { fired_ = fired; }
+  // The model the lockstep oracle keeps (Lockstep::model): an arrival
+  // sequence aims within reach of where it stands and lasts while it moves.
+  struct ModelView {
+    const Controller* controller;
+    TimePoint now;  // the model's clock
+  };
+  void set_model(std::function<ModelView()> model) { model_ = std::move(model); }
 
  private:
+  // A move to a target the model can reach in a few seconds (at a range
+  // edge now and then, negative now and then), by one of the forms the
+  // profile has; then, while the model moves, writes that cannot move
+  // anything with a status poll every tenth, and once it rests its status,
+  // extended status and, at a limit, a jog further into it (§3.4). nullopt
+  // when no model or profile is set.
+  std::optional<FuzzFrame> arrival();
+  // The next write while an arrival sequence waits for the model to rest.
+  std::optional<FuzzFrame> while_arriving();
+  std::function<ModelView()> model_;
+  bool arriving_ = false;
+  TimePoint arrival_start_{};
+  std::optional<TimePoint> at_rest_since_;  // the model's axes all at rest since then
+  std::size_t writes_since_poll_ = 0;
+  std::optional<TimePoint> session_start_;  // the model's clock at the first write
+  std::deque<FuzzFrame> after_arrival_;
   Bytes pick_base();
   // A well-framed base frame with one data field set to a value at or just
   // past the edge of what its rules take (§3: index 0, 1, 20, 21; a choice
@@ -263,8 +292,11 @@ class Lockstep {
   // Back to the profile's state (after the device was restored, or before a replay).
   void rebuild(TimePoint now);
   const LockstepCoverage& coverage() const { return coverage_; }
-  // The model (for tests).
+  // The model (for tests, and for the generator's arrival sequences).
   Controller& model();
+  const Controller& model() const;
+  // The model's clock: when it executed the last write.
+  TimePoint now() const { return last_; }
 
   // The spread a position may have on this axis for `uncertainty` of timing
   // (fast speed both ways), the axis's arrival tolerance and the display's
@@ -300,6 +332,11 @@ class Lockstep {
   // A STOW, DEPLOY or search in the model or the device: motion and mode
   // bytes are the device's until both are at rest out of it (E-89, E-90).
   bool device_led_ = false;
+  bool stopped_out_ = false;          // the model stopped out of it, at rest
+  bool handed_over_ = false;          // left for another command's move, not stopped
+  bool model_was_led_ = false;        // the model in such a mode after the last write
+  bool moving_when_stopped_ = false;  // the device's last status before that stop showed it moving
+  bool device_seen_moving_ = false;   // the device's last status block showed an axis moving
   bool half_turn_ = false;               // an azimuth move to +-180 on a line: azimuth not compared
   LockstepCoverage coverage_;
 };
