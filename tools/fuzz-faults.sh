@@ -14,7 +14,7 @@
 #   tools/fuzz-faults.sh [--max-time S] [--seed N] [--random N] [--no-faults] [--no-clean] [FAULT[@PROFILE] ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-sabus=$PWD/build/tools/sabus
+sabus=${SABUS:-$PWD/build/tools/sabus}  # SABUS: another build of it
 [[ -x $sabus ]] || { echo "build first: $sabus" >&2; exit 2; }
 
 max_time=60 seed=1 random=0 faults_on=1 clean_on=1

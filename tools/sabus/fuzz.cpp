@@ -230,7 +230,16 @@ int run_fuzz(const FuzzCliOptions& o) {
     history.push_back(liveness_probe(profile.address));
     record(*first);
   }
+  // The model where the device is (its positions and mode): a device on a
+  // bench is no fresh controller. Again after each finding of the model's
+  // kinds, whose divergence would otherwise be reported again.
+  auto synchronize = [&] {
+    std::string taken;
+    if (auto s = session.synchronize(&history, &taken)) record(*s);
+    if (!taken.empty()) progress->line("lockstep: the model takes from the device: " + taken);
+  };
   try {
+    synchronize();
     while (g_stop_signal == 0 && (o.max_frames == 0 || frames < o.max_frames) && (o.max_time <= 0 || elapsed() < o.max_time) &&
            findings.size() < o.max_findings) {
       FuzzFrame f = generator.next();
@@ -261,6 +270,8 @@ int run_fuzz(const FuzzCliOptions& o) {
           }
         }
       }
+      if (v && (v->kind == FindingKind::kNakRule || v->kind == FindingKind::kValue || v->kind == FindingKind::kEffect))
+        synchronize();
     }
   } catch (const TransportLost& e) {
     aborted = std::string("the device is lost: ") + e.what();

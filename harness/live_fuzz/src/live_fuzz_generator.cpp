@@ -36,6 +36,12 @@ Bytes with_byte(Bytes f, std::size_t at, std::uint8_t b) {
   return f;
 }
 
+// `f` with the 4 digits at `at` set to `value`.
+Bytes with_digits(Bytes f, std::size_t at, std::size_t value) {
+  for (std::size_t k = 4; k-- > 0; value /= 10) f[at + k] = static_cast<std::uint8_t>('0' + value % 10);
+  return f;
+}
+
 Bytes relrc(Bytes f) {
   if (f.size() >= 2) f.back() = lrc(ByteView(f).first(f.size() - 1));
   return f;
@@ -272,8 +278,14 @@ FuzzFrame Generator::make(Mutation m) {
         return out;
       };
       const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 2) == 0);
-      if (!stored && options_.allow_motion && !arriving_ && uniform(0, 1) == 0)
-        if (auto a = arrival()) return *a;
+      // An arrival and a motion with its stop take turns: an arrival takes
+      // seconds, and a motion sequence waits while one runs.
+      if (!stored && options_.allow_motion && !arriving_ && !last_was_arrival_)
+        if (auto a = arrival()) {
+          last_was_arrival_ = true;
+          return *a;
+        }
+      if (!stored) last_was_arrival_ = false;
       if (stored) {
         // A write (at a boundary half the time), then the read that shows it.
         const ReadBack& rb = kReadBacks[uniform(0, std::size(kReadBacks) - 1)];
@@ -295,13 +307,27 @@ FuzzFrame Generator::make(Mutation m) {
         });
         if (moves.empty()) return make(Mutation::kBoundary);
         f = *moves[uniform(0, moves.size() - 1)];
-        if (uniform(0, 2) == 0) f = boundary(std::move(f));
+        const auto legal = uniform(0, 1) == 0 ? legal_move(nullptr) : std::nullopt;
+        if (legal) f = *legal;  // a move that runs a while when stopped
+        else if (uniform(0, 2) == 0) f = boundary(std::move(f));
         else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
+        else if (f.size() == 11 && (f[2] == 0x33 || f[2] == 0x47) && f[3] != 'X') {
+          // A jog that lasts (§3.4: 4 digits of milliseconds), and half the
+          // time one about another axis after it, which ends the first.
+          static constexpr std::string_view kDirections = "EWDUOL";  // two per axis: az, el, pol
+          f = relrc(with_digits(std::move(f), 5, uniform(1000, 4000)));
+          const std::size_t axis = kDirections.find(static_cast<char>(f[3])) / 2;
+          if (axis < 3 && uniform(0, 1) == 0) {
+            const std::size_t other = (axis + uniform(1, 2)) % 3;
+            Bytes g = relrc(with_byte(f, 3, static_cast<std::uint8_t>(kDirections[other * 2 + uniform(0, 1)])));
+            queued_.push_back({frame(0x31, ""), {}, "status while jogging", std::chrono::milliseconds(uniform(100, 500))});
+            queued_.push_back({std::move(g), {}, "jog about another axis"});
+          }
+        }
         // The first poll after a while: the motion has begun when it is
         // stopped (a STOW, DEPLOY or search is judged by how it stops).
-        for (std::size_t k = uniform(1, 2); k > 0; --k)
-          queued_.push_back({frame(0x31, ""), {}, "status while moving",
-                             std::chrono::milliseconds(queued_.empty() ? uniform(200, 1500) : 0)});
+        for (std::size_t k = uniform(1, 2), first = 1; k > 0; --k, first = 0)
+          queued_.push_back({frame(0x31, ""), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 1500) : 0)});
         const Stop& stop = kStops[uniform(0, std::size(kStops) - 1)];
         queued_.push_back({frame(stop.code, stop.data), {}, "stop"});
         queued_.push_back({frame(0x31, ""), {}, "status after the stop"});
@@ -320,6 +346,31 @@ FuzzFrame Generator::make(Mutation m) {
 }
 
 std::optional<FuzzFrame> Generator::arrival() {
+  std::array<int, 3> limits{};
+  const auto move = legal_move(&limits);
+  if (!move) return std::nullopt;
+  arriving_ = true;
+  arrival_start_ = model_().now;
+  at_rest_since_.reset();
+  writes_since_poll_ = 0;
+  auto uniform = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_); };
+  // Once at rest: what the controller says, then a jog further into a
+  // limit the move ended at (§3.4: NAKed while the limit is asserted).
+  auto frame = [&](std::uint8_t c, std::string_view data) {
+    return encode_frame({FrameKind::kCommand, options_.address, c, Bytes(data.begin(), data.end())});
+  };
+  after_arrival_ = {{frame(0x31, ""), {}, "status after the arrival"}, {frame(0x40, ""), {}, "extended status after the arrival"}};
+  static constexpr std::string_view kIntoLimit[3][2] = {{"ES0500", "WS0500"}, {"DS0500", "US0500"}, {"OS0500", "LS0500"}};
+  for (std::size_t a = 0; a < 3; ++a)
+    if (limits[a] != 0 && uniform(0, 1) == 0) {
+      after_arrival_.push_back({frame(0x33, kIntoLimit[a][limits[a] > 0 ? 1 : 0]), {}, "jog into the limit"});
+      after_arrival_.push_back({frame(0x31, ""), {}, "status after the jog"});
+      break;
+    }
+  return FuzzFrame{*move, {}, "sequence: arrival"};
+}
+
+std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out) {
   if (!model_ || !options_.profile) return std::nullopt;
   const Profile& p = *options_.profile;
   const ModelView view = model_();
@@ -412,25 +463,8 @@ std::optional<FuzzFrame> Generator::arrival() {
   }
   auto request = build_request(*find_command(code), form_id, fields);
   if (!request) return std::nullopt;
-  FuzzFrame move{encode_request(request.value(), options_.address), {}, "sequence: arrival"};
-  arriving_ = true;
-  arrival_start_ = view.now;
-  at_rest_since_.reset();
-  writes_since_poll_ = 0;
-  // Once at rest: what the controller says, then a jog further into a
-  // limit the move ended at (§3.4: NAKed while the limit is asserted).
-  auto frame = [&](std::uint8_t c, std::string_view data) {
-    return encode_frame({FrameKind::kCommand, options_.address, c, Bytes(data.begin(), data.end())});
-  };
-  after_arrival_ = {{frame(0x31, ""), {}, "status after the arrival"}, {frame(0x40, ""), {}, "extended status after the arrival"}};
-  static constexpr std::string_view kIntoLimit[3][2] = {{"ES0500", "WS0500"}, {"DS0500", "US0500"}, {"OS0500", "LS0500"}};
-  for (std::size_t a = 0; a < 3; ++a)
-    if (limits[a] != 0 && uniform(0, 1) == 0) {
-      after_arrival_.push_back({frame(0x33, kIntoLimit[a][limits[a] > 0 ? 1 : 0]), {}, "jog into the limit"});
-      after_arrival_.push_back({frame(0x31, ""), {}, "status after the jog"});
-      break;
-    }
-  return move;
+  if (limits_out) *limits_out = limits;
+  return encode_request(request.value(), options_.address);
 }
 
 std::optional<FuzzFrame> Generator::while_arriving() {

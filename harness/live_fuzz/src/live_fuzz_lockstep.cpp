@@ -6,6 +6,8 @@
 #include <map>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/protocol/catalog.hpp"
@@ -183,6 +185,13 @@ std::optional<ExtendedStatusReply> extended_status(const Frame& reply) {
   return std::nullopt;
 }
 
+// Whether `position` lies within `window` of a limit or the stow position
+// of the axis.
+bool near_a_limit(const AxisProfile& a, double position, double window) {
+  return std::abs(position - a.min_deg) <= window || std::abs(position - a.max_deg) <= window ||
+         (a.has_stow_limit && std::abs(position - a.stow_deg) <= window);
+}
+
 // The §3.17 mode bytes.
 constexpr std::size_t kNoAxis = static_cast<std::size_t>(-1);
 
@@ -249,6 +258,7 @@ void Lockstep::rebuild(TimePoint now) {
   moved_on_line_ = {};
   settle_until_ = {};
   half_turn_ = false;
+  at_limit_agreed_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
 
@@ -268,6 +278,16 @@ bool Lockstep::kept_as_before(const FuzzFrame& frame, std::size_t reply, std::st
   const std::vector<Field> fields = value_fields(sink.frames[reply]);  // find_field points into it
   const std::string* v = find_field(fields, field, occurrence);
   return v && *v != model_value && *v == device_value;
+}
+
+std::optional<double> Lockstep::count_degrees(std::string_view raw) const {
+  std::uint32_t count = 0;
+  for (const char c : raw) {
+    if (c < '0' || c > '9') return std::nullopt;
+    count = count * 10 + static_cast<std::uint32_t>(c - '0');
+  }
+  if (raw.empty() || profile_.counts_per_degree <= 0) return std::nullopt;
+  return (static_cast<double>(count) - profile_.count_offset) / profile_.counts_per_degree;
 }
 
 double Lockstep::drift_window(const AxisProfile& axis, Duration uncertainty) {
@@ -325,6 +345,58 @@ Lockstep::Run Lockstep::run(const Bus& from, TimePoint at, const FuzzFrame& fram
     r.rules.push_back(f.kind == FrameKind::kNak && next < rules.size() ? std::optional<std::string>(rules[next++])
                                                                          : std::nullopt);
   return r;
+}
+
+void Lockstep::take_positions(const std::vector<Frame>& device, const std::function<bool(std::size_t, double)>& take) {
+  Controller& m = model();
+  for (const Frame& dev : device) {
+    if (form_of_reply(dev) != ReplyForm::kAck) continue;
+    for (const Field& f : value_fields(dev)) {
+      if (!is_position(f.name)) continue;
+      const auto axis = axis_of(f.name, dev);
+      if (!axis || motion_of(m, *axis) != AxisState::Motion::kIdle) continue;
+      if (device_moving(dev, *axis)) continue;  // not at rest: nothing to take over
+      bool heading = false;
+      const auto dv = position_value(dev, f.name, &heading);
+      if (!dv) continue;
+      // The model's reading of the axis now (§3.2 bytes 14-31).
+      const auto reading = reading_of(m, *axis);
+      if (!reading) continue;
+      const double distance = difference(*dv, *reading, heading);
+      const long delta = std::lround(distance * 10);
+      if (!take(*axis, distance) || delta == 0) continue;
+      AxisState& s = *axis == 0 ? m.mutable_state().az : *axis == 1 ? m.mutable_state().el : m.mutable_state().pol;
+      s.position += delta / 10.0;
+      drifted_[*axis] = true;
+      ++coverage_.resyncs;
+    }
+  }
+}
+
+std::string Lockstep::adopt(const FuzzFrame& frame, TimePoint sent_at, const std::vector<Frame>& device) {
+  const TimePoint at = std::max(sent_at, last_);
+  cuts_ = frame_cuts(frame);
+  spacing_ = Duration{0};
+  run(*bus_, at, frame, true);
+  last_ = at;
+  clock_->set(last_);
+  std::string taken;
+  auto note = [&](std::string s) { taken += (taken.empty() ? "" : "; ") + s; };
+  static constexpr const char* kAxes[] = {"azimuth", "elevation", "polarization"};
+  take_positions(device, [&](std::size_t axis, double distance) {
+    if (std::lround(distance * 10) != 0) note(std::string(kAxes[axis]) + " moved by " + fmt::format("{:.1f}", distance));
+    return true;
+  });
+  for (const Frame& dev : device)
+    if (const auto x = extended_status(dev)) {
+      const ModeState mode{x->mode, x->state, x->last_mode, x->exit_status};
+      if (mode == model().state().mode) continue;
+      note(fmt::format("mode {} (state 0x{:02x}, last exited {}, exit 0x{:02x})", meanings::mode_name(x->mode), x->state,
+                       meanings::mode_name(x->last_mode), x->exit_status));
+      model().mutable_state().mode = mode;
+      ++coverage_.resyncs;
+    }
+  return taken;
 }
 
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
@@ -473,7 +545,19 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       break;
     }
     if (dev_form == ReplyForm::kNak) {
-      if (same.front()->rules[i]) coverage_.rules_fired.insert(*same.front()->rules[i]);
+      const auto& rule = same.front()->rules[i];
+      if (rule) coverage_.rules_fired.insert(*rule);
+      // §3.4: the device refused a jog into a limit, as the model did: it
+      // has the axis at that limit too, so its limit bits must say so.
+      if (rule && *rule == name(NakRule::kJogIntoLimit)) {
+        const Controller& c = same.front()->bus->controller(0);
+        for (std::size_t a = 0; a < 3; ++a) {
+          const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
+          const double pos = (a == 0 ? c.state().az : a == 1 ? c.state().el : c.state().pol).position;
+          if (motion_of(c, a) == AxisState::Motion::kIdle && (std::abs(pos - ap.max_deg) < 1e-6 || std::abs(pos - ap.min_deg) < 1e-6))
+            at_limit_agreed_[a] = true;
+        }
+      }
       continue;
     }
     if (dev_form == ReplyForm::kOffline) continue;
@@ -576,10 +660,27 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
                                 ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
                                  std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
-        if (short_move) continue;
+        const bool limit_bits = f.name.ends_with(" limits");
+        const bool agreed_limit = limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle;
+        if (short_move && !agreed_limit) continue;
+        // An axis a hair from a limit or the stow position in the model may
+        // be at it in the device, or the reverse (§3.2 bytes 32-34).
+        if (limit_bits && !agreed_limit && near_a_limit(ap, ax.position, drift_window(ap, uncertainty))) continue;
       }
-      if (has_axis && is_fine_position(f.name)) {
-        if (moving || drifted_[axis] || moved_on_line_[axis] || !position_exact[axis]) continue;
+      if (has_axis && is_fine_position(f.name) &&
+          (moving || drifted_[axis] || moved_on_line_[axis] || !position_exact[axis])) {
+        // Inexact: a count is still a position (§3.16: count_offset + deg x
+        // counts_per_degree), judged in the axis's window as its reading is
+        // (one count more); a hundredths digit is not.
+        const bool count = f.name.ends_with(" count");
+        const auto dc = count ? count_degrees(f.raw) : std::nullopt;
+        if (!dc) continue;
+        const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
+        const double w = drift_window(ap, uncertainty) + 1.0 / profile_.counts_per_degree;
+        bool inside = false;
+        for (const std::string* v : values)
+          if (const auto mc = v ? count_degrees(*v) : std::nullopt) inside = inside || std::abs(*dc - *mc) <= w + 1e-9;
+        if (inside) continue;
       }
       // A difference: named, the model's reply beside the device's.
       const std::string model_value = values.front() ? *values.front() : std::string("(no such field)");
@@ -603,6 +704,8 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   if (uncertainty > Duration{0})
     for (std::size_t a = 0; a < 3; ++a)
       for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (motion_of(runs.front().bus->controller(0), a) != AxisState::Motion::kIdle) at_limit_agreed_[a] = false;
 
   for (const Frame& dev : device)
     if (const auto moving = shows_moving(dev)) device_seen_moving_ = *moving;
@@ -626,37 +729,15 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // elsewhere within its tolerance, a stop a few milliseconds apart: §3.2).
   if (!finding) {
     Controller& m = model();
-    for (const Frame& dev : device) {
-      if (form_of_reply(dev) != ReplyForm::kAck) continue;
-      const std::vector<Field> fields = value_fields(dev);
-      for (const Field& f : fields) {
-        if (!is_position(f.name)) continue;
-        const auto axis = axis_of(f.name, dev);
-        if (!axis || motion_of(m, *axis) != AxisState::Motion::kIdle) continue;
-        if (device_moving(dev, *axis)) continue;  // not at rest: nothing to take over
-        bool heading = false;
-        const auto dv = position_value(dev, f.name, &heading);
-        if (!dv) continue;
-        // The model's reading of the axis now (§3.2 bytes 14-31).
-        const auto reading = reading_of(m, *axis);
-        if (!reading) continue;
-        const long delta = std::lround(difference(*dv, *reading, heading) * 10);
-        if (device_led_ && !device_led_mode(m.state().mode.mode)) {
-          // Out of a STOW, DEPLOY or search and at rest: the device's position.
-        } else if (device_led_) {
-          continue;
-        } else if (*axis == 0 && half_turn_) {
-          half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
-        } else if (std::abs(difference(*dv, *reading, heading)) > drift_window(*axis == 0 ? profile_.az : *axis == 1 ? profile_.el : profile_.pol, uncertainty)) {
-          continue;
-        }
-        if (delta == 0) continue;
-        AxisState& s = *axis == 0 ? m.mutable_state().az : *axis == 1 ? m.mutable_state().el : m.mutable_state().pol;
-        s.position += delta / 10.0;
-        drifted_[*axis] = true;
-        ++coverage_.resyncs;
+    take_positions(device, [&](std::size_t axis, double distance) {
+      if (device_led_ && !device_led_mode(m.state().mode.mode)) return true;  // out of a STOW, DEPLOY or search, at rest
+      if (device_led_) return false;
+      if (axis == 0 && half_turn_) {
+        half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
+        return true;
       }
-    }
+      return std::abs(distance) <= drift_window(axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol, uncertainty);
+    });
     // Judged again once the model is out of such a mode and at rest, and the
     // device's extended status shows every axis at rest.
     if (device_led_ && !device_led_mode(m.state().mode.mode)) {

@@ -159,6 +159,22 @@ std::optional<Verdict> Session::probe() {
   return model;
 }
 
+std::optional<Verdict> Session::synchronize(std::vector<FuzzFrame>* sent, std::string* taken) {
+  if (!lockstep_) return std::nullopt;
+  for (const std::uint8_t code : {std::uint8_t{0x31}, std::uint8_t{0x40}}) {
+    const FuzzFrame q{encode_frame({FrameKind::kCommand, profile_.address, code, {}}), {},
+                      "synchronize the model (status and extended status, §3.2, §3.17)"};
+    if (sent) sent->push_back(q);
+    const std::vector<Frame> accepted = oracle_.accept(q);
+    const Observation seen = exchange(q, accepted.size(), expected_reply_bytes(accepted));
+    tail_.clear();
+    const std::string t = lockstep_->adopt(q, first_byte_at_ ? *first_byte_at_ : sent_at_, seen.replies);
+    if (taken && !t.empty()) *taken += (taken->empty() ? "" : "; ") + t;
+    if (auto v = oracle_.judge(accepted, seen)) return v;
+  }
+  return std::nullopt;
+}
+
 // The lockstep oracle's kinds: a replay must start with the device as the
 // model starts, from its profile.
 static bool from_the_model(FindingKind kind) {

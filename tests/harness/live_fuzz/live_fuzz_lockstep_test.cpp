@@ -288,7 +288,7 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
   };
   std::size_t arrivals = 0, moved = 0;
   bool arriving = false;
-  double az0 = 0, el0 = 0;
+  double az0 = 0, el0 = 0, pol0 = 0;
   TimePoint start{};
   std::string last;
   for (int i = 0; i < 60000 && arrivals < 4; ++i) {
@@ -298,6 +298,7 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
       start = l->now();
       az0 = l->model().state().az.position;
       el0 = l->model().state().el.position;
+      pol0 = l->model().state().pol.position;
     } else if (f.what == "status after the arrival") {
       ASSERT_TRUE(arriving) << "status after an arrival that did not begin";
       // At rest, or given up after the generator's 30 s.
@@ -305,7 +306,8 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
       arriving = false;
       ++arrivals;
       const ControllerState& s = l->model().state();
-      if (std::abs(s.az.position - az0) > 0.05 || std::abs(s.el.position - el0) > 0.05) ++moved;
+      if (std::abs(s.az.position - az0) > 0.05 || std::abs(s.el.position - el0) > 0.05 || std::abs(s.pol.position - pol0) > 0.05)
+        ++moved;
       EXPECT_GE(s.az.position, p.az.min_deg);
       EXPECT_LE(s.az.position, p.az.max_deg);
     } else if (arriving) {

@@ -140,10 +140,14 @@ class Generator {
   // extended status and, at a limit, a jog further into it (§3.4). nullopt
   // when no model or profile is set.
   std::optional<FuzzFrame> arrival();
+  // The move an arrival sequence starts with (and a motion sequence, half
+  // the time): `limits` says which axes it aims at a limit (+1, -1) or not.
+  std::optional<Bytes> legal_move(std::array<int, 3>* limits);
   // The next write while an arrival sequence waits for the model to rest.
   std::optional<FuzzFrame> while_arriving();
   std::function<ModelView()> model_;
   bool arriving_ = false;
+  bool last_was_arrival_ = false;  // the last motion sequence drawn
   TimePoint arrival_start_{};
   std::optional<TimePoint> at_rest_since_;  // the model's axes all at rest since then
   std::size_t writes_since_poll_ = 0;
@@ -291,6 +295,13 @@ class Lockstep {
                               const std::vector<Frame>& device);
   // Back to the profile's state (after the device was restored, or before a replay).
   void rebuild(TimePoint now);
+  // One write the model executes without judging the replies, then takes
+  // from them what a controller's state may hold that the profile does not
+  // say: the position of each axis at rest (a status block, to its tenths)
+  // and the §3.17 mode bytes (a 40h reply). At the session's start and after
+  // a finding (Session::synchronize). Returns what it took ("" for nothing:
+  // the device was where the model was).
+  std::string adopt(const FuzzFrame& frame, TimePoint sent_at, const std::vector<Frame>& device);
   const LockstepCoverage& coverage() const { return coverage_; }
   // The model (for tests, and for the generator's arrival sequences).
   Controller& model();
@@ -315,6 +326,12 @@ class Lockstep {
   // Where the frames of a write end within it (a reference §1 receiver fed
   // every write): the model executes them one after the other.
   std::vector<std::size_t> frame_cuts(const FuzzFrame& frame);
+  // A §3.16 count field's text as degrees (count_offset and counts_per_degree
+  // of the profile); nullopt when it is no count.
+  std::optional<double> count_degrees(std::string_view raw) const;
+  // The device's reading of each axis both show at rest, where `take(axis,
+  // distance)` agrees: the model's axis moved to it (drifted).
+  void take_positions(const std::vector<Frame>& device, const std::function<bool(std::size_t, double)>& take);
   Profile profile_;
   std::unique_ptr<Receiver> splitter_;
   std::vector<std::size_t> cuts_;  // of the write being judged
@@ -328,6 +345,9 @@ class Lockstep {
   TimePoint last_{};
   std::array<bool, 3> drifted_{};     // az, el, pol resynchronized: hundredths and counts not compared
   std::array<bool, 3> moved_on_line_{};  // moved with a timing uncertainty: likewise
+  // At a limit by the device's own word (it NAKed a jog into it, §3.4):
+  // its limit bits are compared at rest, on a line too.
+  std::array<bool, 3> at_limit_agreed_{};
   TimePoint settle_until_{};             // mode bytes taken from the device until then
   // A STOW, DEPLOY or search in the model or the device: motion and mode
   // bytes are the device's until both are at rest out of it (E-89, E-90).
@@ -416,6 +436,12 @@ class Session {
   // A device type query (§3.1); a finding when it is not answered, or
   // answered differently from the first one (the device reset or changed).
   std::optional<Verdict> probe();
+  // The device's status and extended status (31h, 40h), judged by the
+  // framing oracle, and the lockstep model given its positions and mode
+  // (Lockstep::adopt): a device on a bench is no fresh controller. The writes
+  // are appended to `sent` (a replay needs them), what the model took to
+  // `taken`. A framing finding, or nullopt.
+  std::optional<Verdict> synchronize(std::vector<FuzzFrame>* sent = nullptr, std::string* taken = nullptr);
   // Whether the writes show a finding of `kind` (fresh oracle; the device as it is).
   bool shows(const std::vector<FuzzFrame>& frames, FindingKind kind);
   // Whether the reference receiver would accept no frame of this write (the
