@@ -44,7 +44,7 @@ profile_for() {
     # A site without latitude and longitude: a LOCATE waits for them (E-59).
     locate-without-site-completes) echo dual-port-dvb-fluxgate ;;
     # A pot-sensed azimuth whose 0.0 is not true north (heading 90).
-    locate-ignores-heading|locate-azimuth-counterclockwise|locate-eastern-longitude|az-limit-bits-missing)
+    locate-ignores-heading|locate-azimuth-counterclockwise|locate-eastern-longitude|az-limit-bits-missing|jog-into-limit-acked)
       echo fast-mount-manual-nav ;;
     # An axis alarm to reset (§3.7 'R').
     drive-reset-keeps-alarm) echo az-jammed ;;

@@ -306,12 +306,25 @@ FuzzFrame Generator::make(Mutation m) {
           return info && effects_at(b, 0, *info).moves_antenna;
         });
         if (moves.empty()) return make(Mutation::kBoundary);
-        f = *moves[uniform(0, moves.size() - 1)];
-        const auto legal = uniform(0, 1) == 0 ? legal_move(nullptr) : std::nullopt;
-        if (legal) f = *legal;  // a move that runs a while when stopped
-        else if (uniform(0, 2) == 0) f = boundary(std::move(f));
+        // One kind in four each: a legal move (runs a while when stopped), a
+        // jog, a search (§3.7 'A' 'E' or 'F'), any motion frame at a
+        // boundary or as it is.
+        auto pick_move = [&](auto keep) {
+          std::vector<const Bytes*> some;
+          for (const Bytes* b : moves)
+            if (keep(*b)) some.push_back(b);
+          return some.empty() ? *moves[uniform(0, moves.size() - 1)] : *some[uniform(0, some.size() - 1)];
+        };
+        const auto is_jog = [](const Bytes& b) { return b.size() == 11 && (b[2] == 0x33 || b[2] == 0x47) && b[3] != 'X'; };
+        const std::size_t kind = uniform(0, 3);
+        const auto legal = kind == 0 ? legal_move(nullptr) : std::nullopt;
+        if (legal) f = *legal;
+        else if (kind == 1) f = pick_move(is_jog);
+        else if (kind == 2) f = pick_move([](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == 'A'; });
+        else f = *moves[uniform(0, moves.size() - 1)];
+        if (kind == 3 && uniform(0, 1) == 0) f = boundary(std::move(f));
         else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
-        else if (f.size() == 11 && (f[2] == 0x33 || f[2] == 0x47) && f[3] != 'X') {
+        else if (is_jog(f)) {
           // A jog that lasts (§3.4: 4 digits of milliseconds), and half the
           // time one about another axis after it, which ends the first.
           static constexpr std::string_view kDirections = "EWDUOL";  // two per axis: az, el, pol
