@@ -281,6 +281,8 @@ bool Lockstep::kept_as_before(const FuzzFrame& frame, std::size_t reply, std::st
 }
 
 std::optional<double> Lockstep::count_degrees(std::string_view raw) const {
+  // The field as describe_frame shows it: the digits in double quotes.
+  if (raw.size() >= 2 && raw.front() == '"' && raw.back() == '"') raw = raw.substr(1, raw.size() - 2);
   std::uint32_t count = 0;
   for (const char c : raw) {
     if (c < '0' || c > '9') return std::nullopt;

@@ -354,5 +354,33 @@ TEST(LiveFuzzLockstep, AStopThatFindsTheDeviceMovingEndsItsModeByAStop) {
   }
 }
 
+// §3.16 on a line: a count is a position, judged in the axis's window once
+// the axis has moved (its exact value rests on timing): counts that stay at
+// the power-on position are an effect, a clean device's none.
+TEST(LiveFuzzLockstep, ACountOnALineIsAPositionInItsWindow) {
+  Profile p = profile();
+  p.az_sensor = AzSensor::kPulse;
+  const FuzzFrame move = write(0x32, " 0010000450"), counts = write(0x3F), status = write(0x31);
+  for (const bool stale : {false, true}) {
+    SCOPED_TRACE(stale ? "pulse-count-stale" : "no fault");
+    Lockstep model(p, at_ms(0));
+    Device device(p, stale ? FaultSet{Fault::kPulseCountStale} : FaultSet{});
+    // The device executes 3 ms after the nominal time, within the uncertainty.
+    auto step = [&](const FuzzFrame& f, long ms) {
+      return model.step(f, at_ms(ms), 10ms, device.send(f, at_ms(ms + 3)));
+    };
+    std::optional<Verdict> v = step(move, 100);  // azimuth to 10.0 at 2 deg/s
+    for (long ms = 1000; ms <= 7000 && !v; ms += 1000) v = step(status, ms);
+    if (!v) v = step(counts, 7500);
+    if (stale) {
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->kind, FindingKind::kEffect);
+      EXPECT_EQ(v->field, "azimuth count") << v->message;
+    } else {
+      EXPECT_EQ(v, std::nullopt) << v->message;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sabus::harness::live_fuzz

@@ -436,7 +436,7 @@ class Session {
   // A device type query (§3.1); a finding when it is not answered, or
   // answered differently from the first one (the device reset or changed).
   std::optional<Verdict> probe();
-  // The device's status and extended status (31h, 40h), judged by the
+  // The device's extended status (40h), judged by the
   // framing oracle, and the lockstep model given its positions and mode
   // (Lockstep::adopt): a device on a bench is no fresh controller. The writes
   // are appended to `sent` (a replay needs them), what the model took to
