@@ -6,7 +6,8 @@
 # For each fault (`sabus sim --list-faults`, or the ones named): `sabus sim
 # --pty --fault NAME` with the profile the fault shows on (the table below;
 # rc3000-1.59 otherwise) and `sabus fuzz --port ... --pace 0 --max-time S
-# --allow-motion --allow-destructive`; prints found (the first finding's kind,
+# --allow-motion --allow-destructive --fresh-device` (a sim is a controller
+# just powered on); prints found (the first finding's kind,
 # seconds and writes to it) or missed, and the total. Then a clean run per
 # shipped profile and per random legal profile (sabus vectors sweep's
 # generator, --random N): 0 findings expected.
@@ -72,7 +73,7 @@ session() {
   for _ in $(seq 100); do grep -q READY "$work/sim.out" 2>/dev/null && break; sleep 0.05; done
   local t0; t0=$(date +%s.%N)
   "$sabus" fuzz --port "$link" --pace 0 --max-time "$max_time" --seed "$seed" --max-findings 1 \
-    --allow-motion --allow-destructive --profile "$profile" --findings "$work/findings" >"$out" 2>&1 || true
+    --allow-motion --allow-destructive --fresh-device --profile "$profile" --findings "$work/findings" >"$out" 2>&1 || true
   kill -INT "$sim_pid" 2>/dev/null || true
   wait "$sim_pid" 2>/dev/null || true
   sim_pid=

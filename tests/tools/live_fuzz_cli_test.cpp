@@ -93,7 +93,7 @@ INSTANTIATE_TEST_SUITE_P(Faults, FuzzFindsFault,
                                            Case{"write-nav-keeps-store", 1, "nak-rule", true, "5000"},
                                            // A search stopped while it moved (E-90), its
                                            // reproducer waiting for the search to run.
-                                           Case{"search-stop-exit-no-peak", 1, "value", true}),
+                                           Case{"search-stop-exit-no-peak", 1, "value", true, "40000"}),
                          [](const auto& info) {
                            std::string s = info.param.fault;
                            for (auto& c : s)

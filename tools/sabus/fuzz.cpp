@@ -42,6 +42,7 @@ struct FuzzCliOptions {
   long pace_ms = -1;
   std::string findings = "fuzz-findings";
   bool allow_motion = false, allow_destructive = false;
+  bool fresh_device = false;
 };
 
 // Progress while the fuzzer runs, whatever it is doing (a write, a silence
@@ -112,6 +113,7 @@ std::string command_line(const FuzzCliOptions& o, std::uint64_t seed) {
   if (o.liveness_every != 50) s += " --liveness-every " + std::to_string(o.liveness_every);
   if (o.allow_motion) s += " --allow-motion";
   if (o.allow_destructive) s += " --allow-destructive";
+  if (o.fresh_device) s += " --fresh-device";
   return s;
 }
 
@@ -239,7 +241,7 @@ int run_fuzz(const FuzzCliOptions& o) {
     if (!taken.empty()) progress->line("lockstep: the model takes from the device: " + taken);
   };
   try {
-    synchronize();
+    if (!o.fresh_device) synchronize();
     while (g_stop_signal == 0 && (o.max_frames == 0 || frames < o.max_frames) && (o.max_time <= 0 || elapsed() < o.max_time) &&
            findings.size() < o.max_findings) {
       FuzzFrame f = generator.next();
@@ -306,6 +308,9 @@ Command add_fuzz_command(CLI::App& app) {
       ->check(kPaceRange);
   sub->add_flag("--allow-motion", o->allow_motion, "Also send commands that move the antenna");
   sub->add_flag("--allow-destructive", o->allow_destructive, "Also send commands that change stored data");
+  sub->add_flag("--fresh-device", o->fresh_device,
+                "The device is as its profile powers on (just powered on, or sabus sim): the lockstep model takes "
+                "nothing from it at the start, so a wrong mode it starts in is a finding");
   return {sub, [o] { return run_fuzz(*o); }};
 }
 

@@ -278,14 +278,14 @@ FuzzFrame Generator::make(Mutation m) {
         return out;
       };
       const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 2) == 0);
-      // An arrival and a motion with its stop take turns: an arrival takes
-      // seconds, and a motion sequence waits while one runs.
-      if (!stored && options_.allow_motion && !arriving_ && !last_was_arrival_)
+      // An arrival after every two motions with their stops: an arrival
+      // takes seconds, and a motion sequence waits while one runs.
+      if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= 2)
         if (auto a = arrival()) {
-          last_was_arrival_ = true;
+          motions_since_arrival_ = 0;
           return *a;
         }
-      if (!stored) last_was_arrival_ = false;
+      if (!stored) ++motions_since_arrival_;
       if (stored) {
         // A write (at a boundary half the time), then the read that shows it.
         const ReadBack& rb = kReadBacks[uniform(0, std::size(kReadBacks) - 1)];
@@ -306,8 +306,9 @@ FuzzFrame Generator::make(Mutation m) {
           return info && effects_at(b, 0, *info).moves_antenna;
         });
         if (moves.empty()) return make(Mutation::kBoundary);
-        // One kind in four each: a legal move (runs a while when stopped), a
-        // jog, a search (§3.7 'A' 'E' or 'F'), any motion frame at a
+        // A legal move (runs a while when stopped), a jog, a mode that
+        // moves by itself (a search §3.7 'A' 'E' or 'F', a
+        // STOW 'S', a DEPLOY 'D', a LOCATE §3.18), any motion frame at a
         // boundary or as it is.
         auto pick_move = [&](auto keep) {
           std::vector<const Bytes*> some;
@@ -316,14 +317,20 @@ FuzzFrame Generator::make(Mutation m) {
           return some.empty() ? *moves[uniform(0, moves.size() - 1)] : *some[uniform(0, some.size() - 1)];
         };
         const auto is_jog = [](const Bytes& b) { return b.size() == 11 && (b[2] == 0x33 || b[2] == 0x47) && b[3] != 'X'; };
-        const std::size_t kind = uniform(0, 3);
-        const auto legal = kind == 0 ? legal_move(nullptr) : std::nullopt;
+        // Two in five a mode, one in five each of the others.
+        const std::size_t draw = uniform(0, 4), kind = draw == 4 ? 2 : draw;
+        const std::size_t mode = uniform(0, 3);  // of kind 2: search, STOW, DEPLOY, LOCATE
+        const auto legal = kind == 0 || (kind == 2 && mode == 3) ? legal_move(nullptr, kind == 2 ? 'L' : 0) : std::nullopt;
         if (legal) f = *legal;
         else if (kind == 1) f = pick_move(is_jog);
-        else if (kind == 2) f = pick_move([](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == 'A'; });
+        else if (kind == 2) {
+          const std::uint8_t form = mode == 1 ? 'S' : mode == 2 ? 'D' : 'A';
+          f = pick_move([form](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == form; });
+        }
         else f = *moves[uniform(0, moves.size() - 1)];
         if (kind == 3 && uniform(0, 1) == 0) f = boundary(std::move(f));
         else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
+        else if (f.size() > 5 && f[2] == 0x36 && (f[3] == 'S' || f[3] == 'D')) f = relrc(with_byte(std::move(f), 4, f[3]));  // 'SS', 'DD'
         else if (is_jog(f)) {
           // A jog that lasts (§3.4: 4 digits of milliseconds), and half the
           // time one about another axis after it, which ends the first.
@@ -383,7 +390,7 @@ std::optional<FuzzFrame> Generator::arrival() {
   return FuzzFrame{*move, {}, "sequence: arrival"};
 }
 
-std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out) {
+std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, char only_form) {
   if (!model_ || !options_.profile) return std::nullopt;
   const Profile& p = *options_.profile;
   const ModelView view = model_();
@@ -414,7 +421,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out) {
   if (p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver) forms.push_back('B');
   if (p.hundredths) forms.push_back('C');
   if (p.pol_type != PolType::kCircular) forms.push_back('P');
-  const char form = forms[uniform(0, forms.size() - 1)];
+  const char form = only_form ? only_form : forms[uniform(0, forms.size() - 1)];
   std::map<std::string, std::string> fields;
   std::string_view form_id;
   std::uint8_t code = 0x32;

@@ -192,6 +192,13 @@ bool near_a_limit(const AxisProfile& a, double position, double window) {
          (a.has_stow_limit && std::abs(position - a.stow_deg) <= window);
 }
 
+// A §3.17 mode byte of `m` as describe_frame shows it ("0x21").
+std::string mode_byte(const ModeState& m, std::string_view field) {
+  const std::uint8_t b = field == "current mode" ? m.mode : field == "current state" ? m.state
+                         : field == "last exited mode" ? m.last_mode : m.exit_status;
+  return fmt::format("0x{:02x}", b);
+}
+
 // The §3.17 mode bytes.
 constexpr std::size_t kNoAxis = static_cast<std::size_t>(-1);
 
@@ -259,6 +266,7 @@ void Lockstep::rebuild(TimePoint now) {
   settle_until_ = {};
   half_turn_ = false;
   at_limit_agreed_ = {};
+  settle_mode_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
 
@@ -429,6 +437,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         runs.push_back(run(nudged, at, frame));
       }
   }
+  const ModeState mode_before = model().state().mode;  // before this write ran
   runs.insert(runs.begin(), run(*bus_, at, frame, true));
   last_ = at + spacing_ * static_cast<int>(cuts_.size());
   clock_->set(last_);
@@ -447,8 +456,10 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       const AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
       const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
       if ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
-          std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty))
+          std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty)) {
         settle_until_ = std::max(settle_until_, at + kSettle);
+        settle_mode_ = st.mode;  // the mode while the move still runs
+      }
     }
   }
   bool take_modes = false;  // the device's mode bytes, after such a move
@@ -592,7 +603,9 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, dev).value_or(kNoAxis) : kNoAxis;
       const bool has_axis = axis != kNoAxis;
       if (device_led_ && (has_axis || is_mode_byte(f.name))) {
-        const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name);
+        // After the stop only whether it moves: its limits are where its
+        // own positions put it.
+        const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !f.name.ends_with(" limits");
         if (!(motion_bits && stopped_out)) {
           // How it ends is the device's, but not by what: stopped while it
           // moved, it exits by a stop, not as finished or without a peak.
@@ -608,7 +621,10 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
               finding->field = f.name;
               break;
             }
-          take_modes = take_modes || is_mode_byte(f.name);
+          // Taken over while it runs; once the model has stopped out, not
+          // (a device that goes on would hold the model in the mode): the
+          // device's exit is taken when the episode ends, below.
+          take_modes = take_modes || (is_mode_byte(f.name) && !stopped_out);
           continue;
         }
       }
@@ -644,7 +660,10 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       // move an axis: compared only while the model is exact on that axis
       // (in-process, or on a line before the axis first moved).
       if (has_axis && axis == 0 && half_turn_) continue;
-      if (is_mode_byte(f.name) && inexact && at < settle_until_) {
+      // Within the settle time the device's mode bytes may be those the
+      // model had while the move ran or before this write (it ends a little
+      // later there) or now (earlier): one of these, not any.
+      if (is_mode_byte(f.name) && inexact && at < settle_until_ && (mode_byte(mode_before, f.name) == f.raw || mode_byte(settle_mode_, f.name) == f.raw)) {
         take_modes = true;
         continue;
       }
@@ -656,17 +675,20 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       // Not after a stop out of a STOW, DEPLOY or search: there the motion
       // bits are all that is judged, and the earlier and later runs give the
       // line's timing.
-      if (has_axis && !is_position(f.name) && !is_fine_position(f.name) && inexact && !(device_led_ && stopped_out)) {
+      const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !(device_led_ && stopped_out);
+      if (motion_bits) {
         const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
         const AxisState& ax = (axis == 0 ? nominal_state().az : axis == 1 ? nominal_state().el : nominal_state().pol);
         const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
                                 ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
                                  std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
         const bool limit_bits = f.name.ends_with(" limits");
-        const bool agreed_limit = limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle;
-        if (short_move && !agreed_limit) continue;
+        const bool agreed_limit = limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle &&
+                                  (std::abs(ax.position - ap.min_deg) < 1e-6 || std::abs(ax.position - ap.max_deg) < 1e-6);
+        if (inexact && short_move && !agreed_limit) continue;
         // An axis a hair from a limit or the stow position in the model may
-        // be at it in the device, or the reverse (§3.2 bytes 32-34).
+        // be at it in the device, or the reverse (§3.2 bytes 32-34): judged
+        // only where the device agreed it is at the limit.
         if (limit_bits && !agreed_limit && near_a_limit(ap, ax.position, drift_window(ap, uncertainty))) continue;
       }
       if (has_axis && is_fine_position(f.name) &&
@@ -752,6 +774,11 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       if (model_at_rest && device_at_rest) {
         device_led_ = false;
         stopped_out_ = handed_over_ = moving_when_stopped_ = false;
+        for (const Frame& dev : device)  // how the device says it ended (judged above)
+          if (const auto x = extended_status(dev)) {
+            m.mutable_state().mode = ModeState{x->mode, x->state, x->last_mode, x->exit_status};
+            ++coverage_.resyncs;
+          }
       }
     }
   }

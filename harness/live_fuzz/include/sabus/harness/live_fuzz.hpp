@@ -141,13 +141,14 @@ class Generator {
   // when no model or profile is set.
   std::optional<FuzzFrame> arrival();
   // The move an arrival sequence starts with (and a motion sequence, half
-  // the time): `limits` says which axes it aims at a limit (+1, -1) or not.
-  std::optional<Bytes> legal_move(std::array<int, 3>* limits);
+  // the time): `limits` says which axes it aims at a limit (+1, -1) or not;
+  // `only_form` 'L' for a LOCATE (0: any form the profile has).
+  std::optional<Bytes> legal_move(std::array<int, 3>* limits, char only_form = 0);
   // The next write while an arrival sequence waits for the model to rest.
   std::optional<FuzzFrame> while_arriving();
   std::function<ModelView()> model_;
   bool arriving_ = false;
-  bool last_was_arrival_ = false;  // the last motion sequence drawn
+  std::size_t motions_since_arrival_ = 2;  // motion sequences drawn since the last arrival
   TimePoint arrival_start_{};
   std::optional<TimePoint> at_rest_since_;  // the model's axes all at rest since then
   std::size_t writes_since_poll_ = 0;
@@ -349,6 +350,7 @@ class Lockstep {
   // its limit bits are compared at rest, on a line too.
   std::array<bool, 3> at_limit_agreed_{};
   TimePoint settle_until_{};             // mode bytes taken from the device until then
+  ModeState settle_mode_{};              // the model's while that move still ran
   // A STOW, DEPLOY or search in the model or the device: motion and mode
   // bytes are the device's until both are at rest out of it (E-89, E-90).
   bool device_led_ = false;
