@@ -19,6 +19,22 @@ namespace {
 
 constexpr bool is_start_byte(std::uint8_t b) { return b == STX || b == ACK || b == NAK; }
 
+// The end of the write before and this one, as the line carries them.
+Bytes joined(ByteView before, ByteView chars) {
+  Bytes all(before.begin(), before.end());
+  all.insert(all.end(), chars.begin(), chars.end());
+  return all;
+}
+
+// Where frames start in `all`: a start byte, an address byte (§1: 31h-6Fh)
+// and a command byte after it, as the vector lint reads frames.
+std::vector<std::size_t> frame_starts(ByteView all) {
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i + 2 < all.size(); ++i)
+    if (is_start_byte(all[i] & 0x7F) && is_valid_address(all[i + 1] & 0x7F)) starts.push_back(i);
+  return starts;
+}
+
 // What a command frame can do on a bench (READING-NOTES 26): the form its
 // selector byte chooses when the byte is there, or any form of the command.
 Effects effects_at(ByteView bytes, std::size_t start, const CommandInfo& info) {
@@ -96,10 +112,9 @@ constexpr std::uint8_t kDeletesStore = 0x46;
 // Whether `chars`, after `before`, carries a frame of `command` (a start
 // byte, an address byte and the command, as is_safe_to_send reads frames).
 bool carries_command(ByteView chars, ByteView before, std::uint8_t command) {
-  Bytes all(before.begin(), before.end());
-  all.insert(all.end(), chars.begin(), chars.end());
-  for (std::size_t i = 0; i + 2 < all.size(); ++i)
-    if (is_start_byte(all[i] & 0x7F) && is_valid_address(all[i + 1] & 0x7F) && (all[i + 2] & 0x7F) == command) return true;
+  const Bytes all = joined(before, chars);
+  for (const std::size_t i : frame_starts(all))
+    if ((all[i + 2] & 0x7F) == command) return true;
   return false;
 }
 
@@ -126,12 +141,8 @@ const AxisState& axis_state(const Controller& c, std::size_t a) {
 }  // namespace
 
 bool is_safe_to_send(ByteView chars, bool allow_motion, bool allow_destructive, ByteView before, std::string* why) {
-  Bytes all(before.begin(), before.end());
-  all.insert(all.end(), chars.begin(), chars.end());
-  // A start byte, an address byte (§1: 31h-6Fh), a command byte: a frame as
-  // the vector lint reads one.
-  for (std::size_t i = 0; i + 2 < all.size(); ++i) {
-    if (!is_start_byte(all[i] & 0x7F) || !is_valid_address(all[i + 1] & 0x7F)) continue;
+  const Bytes all = joined(before, chars);
+  for (const std::size_t i : frame_starts(all)) {
     const CommandInfo* info = find_command(all[i + 2] & 0x7F);
     if (!info) continue;
     const Effects e = effects_at(all, i, *info);

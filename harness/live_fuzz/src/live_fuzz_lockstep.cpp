@@ -169,20 +169,26 @@ bool device_led_mode(std::uint8_t mode) {
   return name == "STOW_MODE" || name == "DEPLOY_MODE" || name == "SPIRAL_REMOTE_MODE";
 }
 
-// The mode a reply shows the device in (§3.17 byte 45), if it is a 40h reply.
-std::optional<std::uint8_t> device_mode(const Frame& reply) {
-  const auto decoded = decode_reply(reply);
-  if (!decoded) return std::nullopt;
-  if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) return x->mode;
-  return std::nullopt;
-}
-
 // A 40h reply's fields, if it is one.
 std::optional<ExtendedStatusReply> extended_status(const Frame& reply) {
   const auto decoded = decode_reply(reply);
   if (!decoded) return std::nullopt;
   if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) return *x;
   return std::nullopt;
+}
+
+// The mode a reply shows the device in (§3.17 byte 45), if it is a 40h reply.
+std::optional<std::uint8_t> device_mode(const Frame& reply) {
+  if (const auto x = extended_status(reply)) return x->mode;
+  return std::nullopt;
+}
+
+// The §3.17 mode bytes of a 40h reply, as the model keeps them.
+ModeState mode_state(const ExtendedStatusReply& x) { return ModeState{x.mode, x.state, x.last_mode, x.exit_status}; }
+
+// Whether `position` is at a limit of the axis (a move or jog there ends on it).
+bool at_a_limit(const AxisProfile& a, double position) {
+  return std::abs(position - a.min_deg) < 1e-6 || std::abs(position - a.max_deg) < 1e-6;
 }
 
 // Whether `position` lies within `window` of a limit or the stow position
@@ -399,7 +405,7 @@ std::string Lockstep::adopt(const FuzzFrame& frame, TimePoint sent_at, const std
   });
   for (const Frame& dev : device)
     if (const auto x = extended_status(dev)) {
-      const ModeState mode{x->mode, x->state, x->last_mode, x->exit_status};
+      const ModeState mode = mode_state(*x);
       if (mode == model().state().mode) continue;
       note(fmt::format("mode {} (state 0x{:02x}, last exited {}, exit 0x{:02x})", meanings::mode_name(x->mode), x->state,
                        meanings::mode_name(x->last_mode), x->exit_status));
@@ -567,7 +573,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         for (std::size_t a = 0; a < 3; ++a) {
           const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
           const double pos = (a == 0 ? c.state().az : a == 1 ? c.state().el : c.state().pol).position;
-          if (motion_of(c, a) == AxisState::Motion::kIdle && (std::abs(pos - ap.max_deg) < 1e-6 || std::abs(pos - ap.min_deg) < 1e-6))
+          if (motion_of(c, a) == AxisState::Motion::kIdle && at_a_limit(ap, pos))
             at_limit_agreed_[a] = true;
         }
       }
@@ -683,8 +689,8 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
                                 ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
                                  std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
         const bool limit_bits = f.name.ends_with(" limits");
-        const bool agreed_limit = limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle &&
-                                  (std::abs(ax.position - ap.min_deg) < 1e-6 || std::abs(ax.position - ap.max_deg) < 1e-6);
+        const bool agreed_limit =
+            limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle && at_a_limit(ap, ax.position);
         if (inexact && short_move && !agreed_limit) continue;
         // An axis a hair from a limit or the stow position in the model may
         // be at it in the device, or the reverse (§3.2 bytes 32-34): judged
@@ -742,11 +748,10 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   runs.clear();
   if (take_modes && !finding)
     for (const Frame& dev : device)
-      if (const auto decoded = decode_reply(dev))
-        if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) {
-          model().mutable_state().mode = ModeState{x->mode, x->state, x->last_mode, x->exit_status};
-          ++coverage_.resyncs;
-        }
+      if (const auto x = extended_status(dev)) {
+        model().mutable_state().mode = mode_state(*x);
+        ++coverage_.resyncs;
+      }
 
   // Staying in step: an axis at rest in the model whose reading the device
   // gives within the drift window takes the device's reading (a move arriving
@@ -776,7 +781,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         stopped_out_ = handed_over_ = moving_when_stopped_ = false;
         for (const Frame& dev : device)  // how the device says it ended (judged above)
           if (const auto x = extended_status(dev)) {
-            m.mutable_state().mode = ModeState{x->mode, x->state, x->last_mode, x->exit_status};
+            m.mutable_state().mode = mode_state(*x);
             ++coverage_.resyncs;
           }
       }
