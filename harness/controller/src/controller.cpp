@@ -213,6 +213,7 @@ void Controller::enter_mode(enums::Mode mode, std::string_view state, std::strin
         exits ? enum_value(exits, locate_changed.empty() ? normal_exit_name(*exits) : std::string_view(locate_changed))
               : enums::kFirstValue;
     state_.mode.mode = mode.value;
+    chain_pending_ = false;
     if (mode != enums::Mode("TRACK_MODE")) state_.track.active = false;
   }
   set_state(state);
@@ -395,25 +396,42 @@ void Controller::step_ramped(AxisId a, TimePoint from, TimePoint to) {
   if (s.motion != Motion::kJog && k.v != 0) s.direction = sign_of(k.v);
 }
 
-void Controller::advance(TimePoint to) {
+void Controller::advance(TimePoint to, bool at_tick) {
   const bool was_moving = moving();
   for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) step_axis(a, last_update_, to);
   last_update_ = to;
-  if (was_moving && !moving()) on_motion_done();
+  if (moving() || !(was_moving || chain_pending_)) return;
+  if (!at_tick) {
+    chain_pending_ = true;
+    return;
+  }
+  chain_pending_ = false;
+  on_motion_done();
 }
+
+bool Controller::chains_movements() const { return in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE"); }
 
 void Controller::update() {
   const TimePoint now = clock_.now();
-  // A search or a DEPLOY chains movements: time is cut in ticks, so that
-  // each begins about when the one before ended.
-  while ((in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE")) && last_update_ < now)
-    advance(std::min(now, last_update_ + std::chrono::duration_cast<Duration>(kSearchTick)));
+  // A search or a DEPLOY chains movements on ticks fixed to its start: each
+  // begins at the first tick after the one before ended.
+  const auto tick = std::chrono::duration_cast<Duration>(kSearchTick);
+  while (chains_movements() && last_update_ < now) {
+    const TimePoint next = tick_origin_ + ((last_update_ - tick_origin_) / tick + 1) * tick;
+    if (next > now) {
+      advance(now, false);
+      return;
+    }
+    advance(next);
+  }
   if (now > last_update_) advance(now);
 }
 
 // ---- §3.7 'A': the spiral search, 'D': the deploy (ERRATA E-90) --------------
 
 void Controller::start_search(char pattern) {
+  tick_origin_ = last_update_;
+  chain_pending_ = false;
   search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0,
                    clock_.now() + std::chrono::duration_cast<Duration>(kSearchTime), false};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
@@ -460,6 +478,8 @@ void Controller::next_search_leg() {
 }
 
 void Controller::start_deploy() {
+  tick_origin_ = last_update_;
+  chain_pending_ = false;
   enter_mode("DEPLOY_MODE", "DEPLOY_MOVING_ELEVATION");
   start_move(AxisId::kEl, profile_.el.deploy_deg.value_or(profile_.el.initial_deg), false);
   if (!moving()) on_motion_done();

@@ -134,8 +134,12 @@ class Controller {
   void step_axis(AxisId a, TimePoint from, TimePoint to);
   void step_ramped(AxisId a, TimePoint from, TimePoint to);
   void on_motion_done();
-  // Motion from the last update to `to`, and what ends with it.
-  void advance(TimePoint to);
+  // Motion from the last update to `to`, and what ends with it. A mode that
+  // chains movements (search, DEPLOY) chains only at its ticks (`at_tick`):
+  // a movement that ends between two waits for the next, so the chain does
+  // not depend on how often the clock is read.
+  void advance(TimePoint to, bool at_tick = true);
+  bool chains_movements() const;
   // §3.7 'A' (ERRATA E-90): a square spiral about the current position, leg
   // by leg; when its time is over, back to where it began.
   void start_search(char pattern);
@@ -162,6 +166,10 @@ class Controller {
   FaultSet faults_;
   ControllerState state_;
   TimePoint last_update_;
+  // The tick grid of a mode that chains movements: its start, and whether a
+  // movement ended since the last tick (the next leg begins at the next one).
+  TimePoint tick_origin_{};
+  bool chain_pending_ = false;
   // §3.7 'A' (ERRATA E-90): the spiral search in progress.
   struct Search {
     char pattern = 'E';        // 'E' expanding, 'F' flat
