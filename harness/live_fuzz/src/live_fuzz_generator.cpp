@@ -86,6 +86,24 @@ struct Stop {
 };
 constexpr Stop kStops[] = {{0x33, "XS0000"}, {0x36, "KA"}, {0x48, "A"}};
 
+// What a motion sequence runs before its stop (Generator::motions_stopped_'s
+// rows): a legal move, a jog, a search, a STOW, a DEPLOY, a LOCATE, any
+// motion frame.
+enum class MotionKind : std::size_t { kLegalMove, kJog, kSearch, kStow, kDeploy, kLocate, kAnyMotion };
+constexpr std::string_view kMotionKindNames[] = {"legal move", "jog", "search", "STOW", "DEPLOY", "LOCATE", "any motion frame"};
+constexpr std::string_view kStopNames[] = {"33h X", "36h K A", "48h A"};
+// What an arrival aims at (Generator::arrival's goals, in order).
+constexpr std::string_view kArrivalGoalNames[] = {"azimuth limit", "elevation limit", "polarization limit",
+                                                  "negative target", "2C hundredths", "LOCATE", "any target"};
+
+// A table of scores read as one row after the other.
+template <typename Row, std::size_t N>
+std::vector<double> joined_scores(const std::array<Row, N>& rows) {
+  std::vector<double> out;
+  for (const Row& r : rows) out.insert(out.end(), r.begin(), r.end());
+  return out;
+}
+
 // Slot indexes and counts at the edges of the lists (§3.6 1-50, §3.10 1-20,
 // §3.12 1-10, §3.20 1-20) and of a field's width.
 constexpr std::string_view kIndexes[] = {"00", "01", "02", "09", "10", "11", "19", "20", "21",
@@ -183,6 +201,19 @@ std::vector<Bytes> base_frames(const GeneratorOptions& o) {
 
 Generator::Generator(GeneratorOptions options, std::uint64_t seed)
     : options_(options), bases_(base_frames(options)), rng_(seed) {}
+
+template <typename Scores, typename Available>
+std::size_t Generator::least_covered(const Scores& scores, Available available) {
+  std::vector<std::size_t> open;
+  for (std::size_t k = 0; k < std::size(scores); ++k)
+    if (available(k)) open.push_back(k);
+  if (open.empty()) return 0;
+  if (std::uniform_int_distribution<int>(0, 3)(rng_) > 0) {
+    const auto low = scores[*std::min_element(open.begin(), open.end(), [&](std::size_t a, std::size_t b) { return scores[a] < scores[b]; })];
+    std::erase_if(open, [&](std::size_t k) { return scores[k] != low; });
+  }
+  return open[std::uniform_int_distribution<std::size_t>(0, open.size() - 1)(rng_)];
+}
 
 Bytes Generator::pick_base() { return bases_[std::uniform_int_distribution<std::size_t>(0, bases_.size() - 1)(rng_)]; }
 
@@ -318,9 +349,9 @@ FuzzFrame Generator::make(Mutation m) {
         });
         if (moves.empty()) return make(Mutation::kBoundary);
         // A legal move (runs a while when stopped), a jog, a mode that
-        // moves by itself (a search §3.7 'A' 'E' or 'F', a
-        // STOW 'S', a DEPLOY 'D', a LOCATE §3.18), any motion frame at a
-        // boundary or as it is.
+        // moves by itself (a search §3.7 'A' 'E' or 'F', a STOW 'S', a
+        // DEPLOY 'D', a LOCATE §3.18), any motion frame at a boundary or as
+        // it is; stopped by one of kStops: the pair least covered so far.
         auto pick_move = [&](auto keep) {
           std::vector<const Bytes*> some;
           for (const Bytes* b : moves)
@@ -328,18 +359,21 @@ FuzzFrame Generator::make(Mutation m) {
           return some.empty() ? *moves[uniform(0, moves.size() - 1)] : *some[uniform(0, some.size() - 1)];
         };
         const auto is_jog = [](const Bytes& b) { return b.size() == 11 && (b[2] == 0x33 || b[2] == 0x47) && b[3] != 'X'; };
-        // Two in five a mode, one in five each of the others.
-        const std::size_t draw = uniform(0, 4), kind = draw == 4 ? 2 : draw;
-        const std::size_t mode = uniform(0, 3);  // of kind 2: search, STOW, DEPLOY, LOCATE
-        const auto legal = kind == 0 || (kind == 2 && mode == 3) ? legal_move(nullptr, kind == 2 ? 'L' : 0) : std::nullopt;
+        static_assert(std::size(kStops) == kStopKinds && std::size(kStopNames) == kStopKinds &&
+                      std::size(kMotionKindNames) == kMotionKinds && std::size(kArrivalGoalNames) == kArrivalGoals);
+        const std::size_t pair = least_covered(joined_scores(motions_stopped_), [](std::size_t) { return true; });
+        const auto kind = static_cast<MotionKind>(pair / kStopKinds);
+        stop_pending_ = {pair / kStopKinds, pair % kStopKinds};
+        const auto legal = kind == MotionKind::kLegalMove ? legal_move(nullptr, {})
+                           : kind == MotionKind::kLocate  ? legal_move(nullptr, {.form = 'L'})
+                                                          : std::nullopt;
+        const char mode_form = kind == MotionKind::kStow ? 'S' : kind == MotionKind::kDeploy ? 'D' : 'A';
         if (legal) f = *legal;
-        else if (kind == 1) f = pick_move(is_jog);
-        else if (kind == 2) {
-          const std::uint8_t form = mode == 1 ? 'S' : mode == 2 ? 'D' : 'A';
-          f = pick_move([form](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == form; });
-        }
+        else if (kind == MotionKind::kJog) f = pick_move(is_jog);
+        else if (kind == MotionKind::kSearch || kind == MotionKind::kStow || kind == MotionKind::kDeploy)
+          f = pick_move([mode_form](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == mode_form; });
         else f = *moves[uniform(0, moves.size() - 1)];
-        if (kind == 3 && uniform(0, 1) == 0) f = boundary(std::move(f));
+        if (kind == MotionKind::kAnyMotion && uniform(0, 1) == 0) f = boundary(std::move(f));
         else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
         else if (f.size() > 5 && f[2] == 0x36 && (f[3] == 'S' || f[3] == 'D')) f = relrc(with_byte(std::move(f), 4, f[3]));  // 'SS', 'DD'
         else if (is_jog(f)) {
@@ -359,11 +393,12 @@ FuzzFrame Generator::make(Mutation m) {
         // stopped (a STOW, DEPLOY or search is judged by how it stops).
         for (std::size_t k = uniform(1, 2), first = 1; k > 0; --k, first = 0)
           queued_.push_back({frame(0x31, ""), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 1500) : 0)});
-        const Stop& stop = kStops[uniform(0, std::size(kStops) - 1)];
+        const Stop& stop = kStops[stop_pending_->second];
         queued_.push_back({frame(stop.code, stop.data), {}, "stop"});
         queued_.push_back({frame(0x31, ""), {}, "status after the stop"});
         queued_.push_back({frame(0x40, ""), {}, "extended status after the stop"});
-        out.what = "sequence: motion";
+        out.what = "sequence: motion (" + std::string(kMotionKindNames[stop_pending_->first]) + ", stopped by " +
+                   std::string(kStopNames[stop_pending_->second]) + ")";
       } else {
         return make(Mutation::kBoundary);
       }
@@ -377,8 +412,27 @@ FuzzFrame Generator::make(Mutation m) {
 }
 
 std::optional<FuzzFrame> Generator::arrival() {
+  if (!model_ || !options_.profile) return std::nullopt;
+  // Aimed at: each limit, negative targets in the counts' form (§3.3 2B
+  // below the offset) or else 2A's, 2C's hundredths, a LOCATE, anything.
+  const Profile& p = *options_.profile;
+  const bool counts = p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver;
+  struct Goal {
+    Aim aim;
+    bool available;
+  };
+  const std::array<Goal, kArrivalGoals> goals = {{{{'A', 0, false}, true},
+                                                  {{'A', 1, false}, true},
+                                                  {{'P', 2, false}, p.pol_type != PolType::kCircular},
+                                                  {{counts ? 'B' : 'A', -1, true}, true},
+                                                  {{'C', -1, true}, p.hundredths},
+                                                  {{'L', -1, false}, true},
+                                                  {{}, true}}};
+  const std::size_t goal = least_covered(arrivals_aimed_, [&](std::size_t k) { return goals[k].available; });
+  ++arrivals_aimed_[goal];
+  const Aim aim = goals[goal].aim;
   std::array<int, 3> limits{};
-  const auto move = legal_move(&limits);
+  const auto move = legal_move(&limits, aim);
   if (!move) return std::nullopt;
   arriving_ = true;
   arrival_start_ = model_().now;
@@ -392,16 +446,17 @@ std::optional<FuzzFrame> Generator::arrival() {
   };
   after_arrival_ = {{frame(0x31, ""), {}, "status after the arrival"}, {frame(0x40, ""), {}, "extended status after the arrival"}};
   static constexpr std::string_view kIntoLimit[3][2] = {{"ES0500", "WS0500"}, {"DS0500", "US0500"}, {"OS0500", "LS0500"}};
+  // The aimed limit always; another one the move ends at half the time.
   for (std::size_t a = 0; a < 3; ++a)
-    if (limits[a] != 0 && uniform(0, 1) == 0) {
+    if (limits[a] != 0 && (static_cast<int>(a) == aim.limit_axis || (aim.limit_axis < 0 && uniform(0, 1) == 0))) {
       after_arrival_.push_back({frame(0x33, kIntoLimit[a][limits[a] > 0 ? 1 : 0]), {}, "jog into the limit"});
       after_arrival_.push_back({frame(0x31, ""), {}, "status after the jog"});
       break;
     }
-  return FuzzFrame{*move, {}, "sequence: arrival"};
+  return FuzzFrame{*move, {}, "sequence: arrival (" + std::string(kArrivalGoalNames[goal]) + ")"};
 }
 
-std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, char only_form) {
+std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim aim) {
   if (!model_ || !options_.profile) return std::nullopt;
   const Profile& p = *options_.profile;
   const ModelView view = model_();
@@ -415,7 +470,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, char 
     const AxisProfile& ap = a == 0 ? p.az : a == 1 ? p.el : p.pol;
     const double from = axis_state(m, a).position, reach = ap.fast_dps * kReachSeconds;
     const double lo = std::max(ap.min_deg, from - reach), hi = std::min(ap.max_deg, from + reach);
-    const std::size_t r = uniform(0, 3);
+    const std::size_t r = static_cast<int>(a) == aim.limit_axis ? 0 : aim.negative ? 1 : uniform(0, 3);
     if (r == 0) {  // the nearer limit, or a step toward it where it is far
       const int toward = ap.max_deg - from <= from - ap.min_deg ? +1 : -1;
       const double edge = toward > 0 ? ap.max_deg : ap.min_deg;
@@ -432,7 +487,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, char 
   if (p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver) forms.push_back('B');
   if (p.hundredths) forms.push_back('C');
   if (p.pol_type != PolType::kCircular) forms.push_back('P');
-  const char form = only_form ? only_form : forms[uniform(0, forms.size() - 1)];
+  const char form = aim.form ? aim.form : forms[uniform(0, forms.size() - 1)];
   std::map<std::string, std::string> fields;
   std::string_view form_id;
   std::uint8_t code = 0x32;
@@ -615,8 +670,15 @@ FuzzFrame Generator::next() {
     if (!queued_.empty()) {
       FuzzFrame q = std::move(queued_.front());
       queued_.pop_front();
-      if (safe(q)) return q;
-      continue;
+      if (!safe(q)) continue;
+      if (q.what == "stop" && stop_pending_) {
+        bool moving = !model_;
+        for (std::size_t a = 0; a < 3 && !moving; ++a)
+          moving = axis_state(*model_().controller, a).motion != AxisState::Motion::kIdle;
+        motions_stopped_[stop_pending_->first][stop_pending_->second] += moving ? 1.0 : 1.0 / 3;
+        stop_pending_.reset();
+      }
+      return q;
     }
     if (auto w = while_arriving()) {
       if (safe(*w)) return *w;

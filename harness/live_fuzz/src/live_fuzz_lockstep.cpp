@@ -16,6 +16,11 @@
 #include "sabus/protocol/messages.hpp"
 
 namespace sabus::harness::live_fuzz {
+
+struct ReplyField {
+  std::string name, raw;
+};
+
 namespace {
 
 struct ReplySink : ReceiverSink {
@@ -88,9 +93,7 @@ double difference(double a, double b, bool heading) {
   return d;
 }
 
-struct Field {
-  std::string name, raw;
-};
+using Field = ReplyField;
 
 // The value fields of a reply (framing fields and "no data" left out), as
 // describe_frame reads them.
@@ -224,6 +227,16 @@ std::optional<double> reading_of(const Controller& c, std::size_t axis) {
   return *t / 10.0;
 }
 
+// §3.17 bytes 49-50 (ERRATA E-86, E-87): whether a reading of `tenths_deg`
+// extended by its hundredths `digit` lies within `window` of `target`: the
+// digit extends the magnitude (tenths truncated toward zero; a reading of
+// 0.0 either way) or is added to it (tenths rounded down).
+bool hundredths_within(double tenths_deg, std::uint32_t digit, double target, double window) {
+  const double d = digit / 100.0;
+  if (std::abs(tenths_deg + d - target) <= window + 1e-9) return true;    // added (or a positive magnitude extended)
+  return tenths_deg <= 0 && std::abs(tenths_deg - d - target) <= window + 1e-9;  // a negative magnitude extended
+}
+
 }  // namespace
 
 std::size_t comparable_reply_fields() {
@@ -242,6 +255,10 @@ constexpr double kNudgesDeg[] = {0.03, -0.03, 0.08, -0.08};
 // How long the mode bytes are taken from the device after a move that ends
 // within the drift window on a line (Lockstep::step).
 constexpr Duration kSettle = std::chrono::seconds(2);
+
+// What a run whose reply has another form than the device's (or is
+// missing) counts as, against runs that differ only in fields.
+constexpr std::size_t kOtherReplyForm = 1000;
 
 // How long after one frame of a write the model executes the next on a line.
 constexpr Duration kBetweenFrames = std::chrono::milliseconds(1);
@@ -272,6 +289,7 @@ void Lockstep::rebuild(TimePoint now) {
   settle_until_ = {};
   half_turn_ = false;
   at_limit_agreed_ = {};
+  moving_to_ = arrived_at_ = {};
   settle_mode_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
@@ -415,12 +433,107 @@ std::string Lockstep::adopt(const FuzzFrame& frame, TimePoint sent_at, const std
   return taken;
 }
 
+// What one write's judgement carries from rule to rule.
+struct Lockstep::Judging {
+  const FuzzFrame& frame;
+  TimePoint at;
+  Duration uncertainty;
+  ModeState mode_before;   // the model's before this write ran
+  bool inexact = false;    // on a line, or an axis taken over from the device
+  bool stopped_out = false;
+  std::vector<Run>& runs;  // the nominal run first
+  const std::vector<Frame>& device;
+  bool take_modes = false;  // the device's mode bytes, after such a move
+  std::optional<Verdict> finding;
+  // §3.4: the limit (a position) of each axis the device refused a jog into,
+  // as the run that agrees with it did.
+  std::array<std::optional<double>, 3> limit_refused{};
+  void report(FindingKind kind, std::string message) {
+    if (!finding) finding = Verdict{kind, std::move(message)};
+  }
+};
+
+// One ACK of the device and the runs that ACK it too, field by field.
+struct Lockstep::AckJudging {
+  const Frame& dev;
+  std::size_t index;                // of the reply in the write's replies
+  const CommandInfo& info;
+  std::vector<Run*> same;           // the runs whose reply has the device's form
+  std::vector<Field> dev_fields;
+  std::vector<std::vector<Field>> model_fields;  // per run of `same`
+  // Whether the device's position on each axis is one a model gives exactly.
+  std::array<bool, 3> position_exact{true, true, true};
+  const ControllerState& nominal() const { return same.front()->bus->controller(0).state(); }
+};
+
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                       const std::vector<Frame>& device) {
   const TimePoint at = std::max(sent_at, last_);
   cuts_ = frame_cuts(frame);
   // In-process the device executes a whole write at one instant, as the model.
   spacing_ = uncertainty > Duration{0} ? kBetweenFrames : Duration{0};
+  const ModeState mode_before = model().state().mode;
+  std::vector<Run> runs = runs_of(frame, at, uncertainty);
+  last_ = at + spacing_ * static_cast<int>(cuts_.size());
+  clock_->set(last_);
+
+  // The model only roughly where the device is: on a line (timing), or an
+  // axis taken over from the device's readings (to their tenths).
+  Judging j{frame, at, uncertainty, mode_before, uncertainty > Duration{0} || drifted_[0] || drifted_[1] || drifted_[2],
+            false, runs, device, false, std::nullopt, {}};
+  const Controller& nominal = runs.front().bus->controller(0);
+  note_settling(nominal, j);
+  j.stopped_out = follow_device_led(nominal, device);
+
+  // Answers vs silence: the framing oracle judges these first against the
+  // reference receiver; here only what the model adds (a command it leaves
+  // unanswered, none today).
+  if (std::none_of(runs.begin(), runs.end(), [&](const Run& r) { return r.replies.size() == device.size(); })) {
+    const Run& m = runs.front();
+    if (device.size() > m.replies.size())
+      j.report(FindingKind::kReplyToIgnored, std::to_string(device.size()) + " replies where the model gives " +
+                                                 std::to_string(m.replies.size()) + "; the first: " + summary(device.front()));
+    else
+      j.report(FindingKind::kNoReply, "the model answers " + summary(m.replies[device.size()]) + "; the device is silent");
+  }
+  for (std::size_t i = 0; i < device.size() && !j.finding; ++i)
+    if (!judge_reply(j, i)) break;
+
+  if (uncertainty > Duration{0})
+    for (std::size_t a = 0; a < 3; ++a)
+      for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
+  for (const Frame& dev : device)
+    if (const auto moving = shows_moving(dev)) device_seen_moving_ = *moving;
+
+  // Keep the run the device agreed with most (the nominal one on a tie).
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < runs.size(); ++k)
+    if (runs[k].differences < runs[best].differences) best = k;
+  if (runs[best].copy) bus_ = std::move(runs[best].copy);
+  runs.clear();
+  for (std::size_t a = 0; a < 3; ++a) {
+    AxisState& ax = a == 0 ? model().mutable_state().az : a == 1 ? model().mutable_state().el : model().mutable_state().pol;
+    if (ax.motion != AxisState::Motion::kIdle) {
+      at_limit_agreed_[a] = false;
+    } else if (j.limit_refused[a] && std::abs(ax.position - *j.limit_refused[a]) <= drift_window(axis_profile(a), uncertainty)) {
+      // The device has said where the axis is: at that limit. The model's
+      // axis (a nudged run's, or taken to a tenth) stands exactly there.
+      ax.position = *j.limit_refused[a];
+      at_limit_agreed_[a] = true;
+    }
+  }
+  note_arrivals();
+  if (j.take_modes && !j.finding)
+    for (const Frame& dev : device)
+      if (const auto x = extended_status(dev)) {
+        model().mutable_state().mode = mode_state(*x);
+        ++coverage_.resyncs;
+      }
+  if (!j.finding) keep_in_step(device, uncertainty);
+  return std::move(j.finding);
+}
+
+std::vector<Lockstep::Run> Lockstep::runs_of(const FuzzFrame& frame, TimePoint at, Duration uncertainty) {
   // The later and the earlier model first (copies of the model as it is),
   // then the model itself at the nominal time: a controller only moves
   // forward in time (Controller::update).
@@ -431,62 +544,58 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     // An axis that has moved on a line stands where the device's stand
     // only to within what its readings resolve: a move to where the model
     // already is may move the device's a hair, either way (§3.2 shows
-    // tenths). The model is also run with those axes a little to each side.
+    // tenths). The model is also run with those axes a little to each side;
+    // not one the device has said is at a limit (§3.4).
     if (moved_on_line_[0] || moved_on_line_[1] || moved_on_line_[2])
       for (const double nudge : kNudgesDeg) {
         Bus nudged(*bus_);
         ControllerState& st = nudged.controller(0).mutable_state();
         for (std::size_t a = 0; a < 3; ++a) {
           AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
-          if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle) ax.position += nudge;
+          if (moved_on_line_[a] && !at_limit_agreed_[a] && ax.motion == AxisState::Motion::kIdle) ax.position += nudge;
         }
         runs.push_back(run(nudged, at, frame));
       }
   }
-  const ModeState mode_before = model().state().mode;  // before this write ran
   runs.insert(runs.begin(), run(*bus_, at, frame, true));
-  last_ = at + spacing_ * static_cast<int>(cuts_.size());
-  clock_->set(last_);
+  return runs;
+}
 
-  // The model only roughly where the device is: on a line (timing), or an
-  // axis taken over from the device's readings (to their tenths).
-  // A move that ends within the drift window then: where the device's axis
-  // stands a hair from the model's, that move can end at once in one and
-  // take a few milliseconds in the other, and the mode it ran in (§3.17)
-  // end otherwise (finished, or stopped by the next command). For a while
-  // after one the mode bytes are taken from the device, not judged.
-  const bool inexact = uncertainty > Duration{0} || drifted_[0] || drifted_[1] || drifted_[2];
-  if (inexact) {
-    const ControllerState& st = runs.front().bus->controller(0).state();
+void Lockstep::note_settling(const Controller& nominal, const Judging& j) {
+  // A move that ends within the drift window, the model inexact: where the
+  // device's axis stands a hair from the model's, that move can end at once
+  // in one and take a few milliseconds in the other, and the mode it ran in
+  // (§3.17) end otherwise (finished, or stopped by the next command). For a
+  // while after one the mode bytes are taken from the device, not judged.
+  const ControllerState& st = nominal.state();
+  if (j.inexact)
     for (std::size_t a = 0; a < 3; ++a) {
       const AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
-      const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
       if ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
-          std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty)) {
-        settle_until_ = std::max(settle_until_, at + kSettle);
+          std::abs(ax.aim - ax.position) <= drift_window(axis_profile(a), j.uncertainty)) {
+        settle_until_ = std::max(settle_until_, j.at + kSettle);
         settle_mode_ = st.mode;  // the mode while the move still runs
       }
     }
-  }
-  bool take_modes = false;  // the device's mode bytes, after such a move
   // An azimuth target at the half turn (+-180 deg, as a LOCATE due south of
   // its site computes it): +180 and -180 are one bearing, and which one a
   // controller computes (and so which way it turns) is decided by less than
   // its readings show (§3.18 gives no rule). On a line the azimuth is not
   // compared while such a move runs, and the model takes the device's
   // azimuth once both are at rest.
-  if (uncertainty > Duration{0}) {
-    const AxisState& az = runs.front().bus->controller(0).state().az;
-    if ((az.motion == AxisState::Motion::kAutoMove || az.motion == AxisState::Motion::kRemoteAutoMove) &&
-        std::abs(std::abs(az.target) - 180.0) <= drift_window(profile_.az, uncertainty))
-      half_turn_ = true;
-  }
+  if (j.uncertainty > Duration{0} &&
+      (st.az.motion == AxisState::Motion::kAutoMove || st.az.motion == AxisState::Motion::kRemoteAutoMove) &&
+      std::abs(std::abs(st.az.target) - 180.0) <= drift_window(profile_.az, j.uncertainty))
+    half_turn_ = true;
+}
 
+bool Lockstep::follow_device_led(const Controller& nominal, const std::vector<Frame>& device) {
   // While the model or the device runs a STOW, a DEPLOY or a search, the
   // positions, motion bits and mode bytes are the device's: not compared,
   // and taken over once both are at rest out of it (E-89, E-90). A stop
   // still has to stop: after it the model is at rest and compares again.
-  if (device_led_mode(runs.front().bus->controller(0).state().mode.mode)) device_led_ = true;
+  const ModeState& ms = nominal.state().mode;
+  if (device_led_mode(ms.mode)) device_led_ = true;
   for (const Frame& dev : device)
     if (const auto mode = device_mode(dev); mode && device_led_mode(*mode)) device_led_ = true;
   // Where such a mode leaves the axes the model knows only to the tenths the
@@ -500,8 +609,6 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // both are at rest.
   bool stopped_out = false;
   if (device_led_) {
-    const Controller& nominal = runs.front().bus->controller(0);
-    const ModeState& ms = nominal.state().mode;
     bool at_rest = true, driving = false;
     for (std::size_t a = 0; a < 3; ++a) {
       const AxisState::Motion m = motion_of(nominal, a);
@@ -512,282 +619,295 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     stopped_out = !handed_over_ && at_rest && !device_led_mode(ms.mode) && device_led_mode(ms.last_mode) &&
                   is_stop_exit(ms.last_mode, ms.exit_status);
   }
-  model_was_led_ = device_led_mode(runs.front().bus->controller(0).state().mode.mode);
+  model_was_led_ = device_led_mode(ms.mode);
   // The write that stopped it: whether the device's last status before it
   // showed the device moving (then its exit must be a stop's too).
   if (stopped_out && !stopped_out_) moving_when_stopped_ = device_seen_moving_;
   stopped_out_ = stopped_out;
+  return stopped_out;
+}
 
-  std::optional<Verdict> finding;
-  auto report = [&](FindingKind kind, std::string message) {
-    if (!finding) finding = Verdict{kind, std::move(message)};
-  };
-
-  // Answers vs silence: the framing oracle judges these first against the
-  // reference receiver; here only what the model adds (a command it leaves
-  // unanswered, none today).
-  const bool counts_match =
-      std::any_of(runs.begin(), runs.end(), [&](const Run& r) { return r.replies.size() == device.size(); });
-  if (!counts_match) {
-    const Run& m = runs.front();
-    if (device.size() > m.replies.size())
-      report(FindingKind::kReplyToIgnored, std::to_string(device.size()) + " replies where the model gives " +
-                                               std::to_string(m.replies.size()) + "; the first: " + summary(device.front()));
-    else
-      report(FindingKind::kNoReply, "the model answers " + summary(m.replies[device.size()]) + "; the device is silent");
-  }
-
-  for (std::size_t i = 0; i < device.size() && !finding; ++i) {
-    const Frame& dev = device[i];
-    std::vector<Run*> with(0);
-    for (Run& r : runs)
-      if (i < r.replies.size()) with.push_back(&r);
-    if (with.empty()) break;
-    const Run& nominal = *with.front();
-    const ReplyForm dev_form = form_of_reply(dev);
-    std::vector<Run*> same;
-    for (Run* r : with)
-      if (form_of_reply(r->replies[i]) == dev_form) same.push_back(r);
-    if (same.empty()) {
-      const Frame& m = nominal.replies[i];
-      const auto& rule = nominal.rules[i];
-      std::string model = form_of_reply(m) == ReplyForm::kNak
-                              ? "the model NAKs by rule " + (rule ? *rule : std::string("?")) +
-                                    (rule ? " (§" + std::string(paragraph(*find_nak_rule(*rule))) + ": " +
-                                                std::string(description(*find_nak_rule(*rule))) + ")"
-                                          : std::string())
-                              : "the model answers " + summary(m) + " [" + fields_text(value_fields(m)) + "]";
-      const std::string dev_text = dev_form == ReplyForm::kNak ? "device NAKed" : dev_form == ReplyForm::kOffline ? "device answered offline" : "device ACKed";
-      report(dev_form == ReplyForm::kOffline || form_of_reply(m) == ReplyForm::kOffline ? FindingKind::kValue
+bool Lockstep::judge_reply(Judging& j, std::size_t i) {
+  const Frame& dev = j.device[i];
+  std::vector<Run*> with;
+  for (Run& r : j.runs)
+    if (i < r.replies.size()) with.push_back(&r);
+  if (with.empty()) return false;
+  const Run& nominal = *with.front();
+  const ReplyForm dev_form = form_of_reply(dev);
+  std::vector<Run*> same;
+  for (Run* r : with)
+    if (form_of_reply(r->replies[i]) == dev_form) same.push_back(r);
+  // A run that answers otherwise (or not at all) agrees less than any that
+  // answers alike, whatever their fields.
+  for (Run& r : j.runs)
+    if (std::find(same.begin(), same.end(), &r) == same.end()) r.differences += kOtherReplyForm;
+  if (same.empty()) {
+    const Frame& m = nominal.replies[i];
+    const auto& rule = nominal.rules[i];
+    std::string model = form_of_reply(m) == ReplyForm::kNak
+                            ? "the model NAKs by rule " + (rule ? *rule : std::string("?")) +
+                                  (rule ? " (§" + std::string(paragraph(*find_nak_rule(*rule))) + ": " +
+                                              std::string(description(*find_nak_rule(*rule))) + ")"
+                                        : std::string())
+                            : "the model answers " + summary(m) + " [" + fields_text(value_fields(m)) + "]";
+    const std::string dev_text = dev_form == ReplyForm::kNak       ? "device NAKed"
+                                 : dev_form == ReplyForm::kOffline ? "device answered offline"
+                                                                   : "device ACKed";
+    j.report(dev_form == ReplyForm::kOffline || form_of_reply(m) == ReplyForm::kOffline ? FindingKind::kValue
                                                                                          : FindingKind::kNakRule,
              dev_text + " (" + summary(dev) + "); " + model);
-      break;
+    return false;
+  }
+  if (dev_form == ReplyForm::kNak) {
+    const auto& rule = same.front()->rules[i];
+    if (rule) coverage_.rules_fired.insert(*rule);
+    // §3.4: the device refused a jog into a limit, as the model did: it
+    // has the axis at that limit too, so its limit bits must say so.
+    if (rule && *rule == name(NakRule::kJogIntoLimit)) {
+      const ControllerState& s = same.front()->bus->controller(0).state();
+      for (std::size_t a = 0; a < 3; ++a) {
+        const AxisState& ax = a == 0 ? s.az : a == 1 ? s.el : s.pol;
+        const AxisProfile& ap = axis_profile(a);
+        if (ax.motion != AxisState::Motion::kIdle) continue;
+        if (ax.position <= ap.min_deg + 1e-6) j.limit_refused[a] = ap.min_deg;
+        if (ax.position >= ap.max_deg - 1e-6) j.limit_refused[a] = ap.max_deg;
+      }
     }
-    if (dev_form == ReplyForm::kNak) {
-      const auto& rule = same.front()->rules[i];
-      if (rule) coverage_.rules_fired.insert(*rule);
-      // §3.4: the device refused a jog into a limit, as the model did: it
-      // has the axis at that limit too, so its limit bits must say so.
-      if (rule && *rule == name(NakRule::kJogIntoLimit)) {
-        const Controller& c = same.front()->bus->controller(0);
-        for (std::size_t a = 0; a < 3; ++a) {
-          const AxisProfile& ap = a == 0 ? profile_.az : a == 1 ? profile_.el : profile_.pol;
-          const double pos = (a == 0 ? c.state().az : a == 1 ? c.state().el : c.state().pol).position;
-          if (motion_of(c, a) == AxisState::Motion::kIdle && at_a_limit(ap, pos))
-            at_limit_agreed_[a] = true;
-        }
-      }
-      continue;
-    }
-    if (dev_form == ReplyForm::kOffline) continue;
-    // Both ACK: field by field.
-    const CommandInfo* info = find_command(dev.command);
-    if (!info) continue;
-    const std::vector<Field> dev_fields = value_fields(dev);
-    const Bus& nominal_bus = *same.front()->bus;
-    auto nominal_state = [&]() -> const ControllerState& { return const_cast<Bus&>(nominal_bus).controller(0).state(); };
-    std::vector<std::vector<Field>> model_fields;
-    for (Run* r : same) model_fields.push_back(value_fields(r->replies[i]));
-    std::map<std::string, std::size_t> occurrences;
-    // Whether the device's position on each axis is one a model gives exactly.
-    std::array<bool, 3> position_exact{true, true, true};
-    for (const Field& f : dev_fields) {
-      const ReplyFieldClass* cls = field_class(info->reply, f.name);
-      const std::size_t occurrence = occurrences[f.name]++;
-      if (!cls || cls->cls == FieldClass::kDevice) continue;  // the spec leaves it to the device
-      coverage_.fields_compared.insert(field_key(dev.command, f.name));
-      std::vector<const std::string*> values;
-      for (std::size_t k = 0; k < same.size(); ++k) {
-        const std::string* v = find_field(model_fields[k], f.name, occurrence);
-        values.push_back(v);
-        if (v && *v != f.raw) ++same[k]->differences;
-      }
-      const bool equal_any = std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; });
-      if (equal_any) continue;
-      // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
-      // reports an optional's value as maybe unset through this loop).
-      const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, dev).value_or(kNoAxis) : kNoAxis;
-      const bool has_axis = axis != kNoAxis;
-      if (device_led_ && (has_axis || is_mode_byte(f.name))) {
-        // After the stop only whether it moves: its limits are where its
-        // own positions put it.
-        const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !f.name.ends_with(" limits");
-        if (!(motion_bits && stopped_out)) {
-          // How it ends is the device's, but not by what: stopped while it
-          // moved, it exits by a stop, not as finished or without a peak.
-          if (f.name == "exit status" && stopped_out && moving_when_stopped_)
-            if (const auto x = extended_status(dev);
-                x && x->last_mode == nominal_state().mode.last_mode && !is_stop_exit(x->last_mode, x->exit_status)) {
-              report(FindingKind::kValue,
-                     "field 'exit status' (§3.17, state: how the last mode ended) is " + f.raw + " (" +
-                         meanings::exit_name(x->last_mode, x->exit_status) + ") after a stop that found the device moving in " +
-                         std::string(meanings::mode_name(x->last_mode)) +
-                         "; a stop ends it with a STOP_KEY, MOVE_STOPPED or MODE_CHANGED entry (§3.7, ERRATA E-90). Device: " +
-                         summary(dev) + " [" + fields_text(dev_fields) + "]; model: [" + fields_text(model_fields.front()) + "]");
-              finding->field = f.name;
-              break;
-            }
-          // Taken over while it runs; once the model has stopped out, not
-          // (a device that goes on would hold the model in the mode): the
-          // device's exit is taken when the episode ends, below.
-          take_modes = take_modes || (is_mode_byte(f.name) && !stopped_out);
-          continue;
-        }
-      }
-      bool moving = false;
-      if (has_axis)
-        for (Run* r : same) moving |= motion_of(r->bus->controller(0), axis) != AxisState::Motion::kIdle;
-      if (has_axis && is_position(f.name)) {
-        // A window from the motion model: every run's reading, widened by the
-        // drift the exchange's timing and the arrival tolerance allow.
-        bool heading = false;
-        const auto dv = position_value(dev, f.name, &heading);
-        const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
-        const double w = drift_window(ap, uncertainty);
-        bool inside = false;
-        if (dv) {
-          const auto nv = position_value(same.front()->replies[i], f.name);
-          if (nv) {
-            double lo = 0, hi = 0;
-            for (Run* r : same)
-              if (auto v = position_value(r->replies[i], f.name)) {
-                const double d = difference(*v, *nv, heading);
-                lo = std::min(lo, d);
-                hi = std::max(hi, d);
-              }
-            const double d = difference(*dv, *nv, heading);
-            inside = d >= lo - w - 1e-9 && d <= hi + w + 1e-9;
-          }
-        }
-        position_exact[axis] = false;
-        if (inside) continue;
-      }
-      // Hundredths and counts resolve what a few milliseconds of timing
-      // move an axis: compared only while the model is exact on that axis
-      // (in-process, or on a line before the axis first moved).
-      if (has_axis && axis == 0 && half_turn_) continue;
-      // Within the settle time the device's mode bytes may be those the
-      // model had while the move ran or before this write (it ends a little
-      // later there) or now (earlier): one of these, not any.
-      if (is_mode_byte(f.name) && inexact && at < settle_until_ && (mode_byte(mode_before, f.name) == f.raw || mode_byte(settle_mode_, f.name) == f.raw)) {
-        take_modes = true;
-        continue;
-      }
-      // Inexact, an axis whose readings agree may stand a little apart in
-      // the model and the device (the display resolves 0.1 deg): a move that
-      // ends within the drift window can start, end or turn differently in
-      // each. Its status and limit bits are then not compared; a device that
-      // goes on moving shows in its positions, beyond the window (§3.2).
-      // Not after a stop out of a STOW, DEPLOY or search: there the motion
-      // bits are all that is judged, and the earlier and later runs give the
-      // line's timing.
-      const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !(device_led_ && stopped_out);
-      if (motion_bits) {
-        const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
-        const AxisState& ax = (axis == 0 ? nominal_state().az : axis == 1 ? nominal_state().el : nominal_state().pol);
-        const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
-                                ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
-                                 std::abs(ax.aim - ax.position) <= drift_window(ap, uncertainty));
-        const bool limit_bits = f.name.ends_with(" limits");
-        const bool agreed_limit =
-            limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle && at_a_limit(ap, ax.position);
-        if (inexact && short_move && !agreed_limit) continue;
-        // An axis a hair from a limit or the stow position in the model may
-        // be at it in the device, or the reverse (§3.2 bytes 32-34): judged
-        // only where the device agreed it is at the limit.
-        if (limit_bits && !agreed_limit && near_a_limit(ap, ax.position, drift_window(ap, uncertainty))) continue;
-      }
-      if (has_axis && is_fine_position(f.name) &&
-          (moving || drifted_[axis] || moved_on_line_[axis] || !position_exact[axis])) {
-        // Inexact: a count is still a position (§3.16: count_offset + deg x
-        // counts_per_degree), judged in the axis's window as its reading is
-        // (one count more); a hundredths digit is not.
-        const bool count = f.name.ends_with(" count");
-        const auto dc = count ? count_degrees(f.raw) : std::nullopt;
-        if (!dc) continue;
-        const AxisProfile& ap = axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
-        const double w = drift_window(ap, uncertainty) + 1.0 / profile_.counts_per_degree;
-        bool inside = false;
-        for (const std::string* v : values)
-          if (const auto mc = v ? count_degrees(*v) : std::nullopt) inside = inside || std::abs(*dc - *mc) <= w + 1e-9;
-        if (inside) continue;
-      }
-      // A difference: named, the model's reply beside the device's.
-      const std::string model_value = values.front() ? *values.front() : std::string("(no such field)");
-      // An effect: the device did not follow what a command did: a motion
-      // field (a stop that does not stop, a move that ends elsewhere), or a
-      // field the session's commands changed in the model (a controller fresh
-      // from the profile reads otherwise) that the device still reads as that
-      // fresh controller does (a write not read back, a mode not entered).
-      // A value: any other difference (a wrong count, name, code or sign).
-      const bool effect = cls->cls == FieldClass::kMotion || kept_as_before(frame, i, f.name, occurrence, model_value, f.raw);
-      report(effect ? FindingKind::kEffect : FindingKind::kValue,
-             "field '" + f.name + "' (§" + std::string(cls->paragraph) + ", " + std::string(to_string(cls->cls)) + ": " +
-                 std::string(cls->rests_on) + ") is " + f.raw + "; the model expects " + model_value +
-                 (moving ? " (the axis moving: outside the motion window)" : "") + ". Device: " + summary(dev) + " [" +
-                 fields_text(dev_fields) + "]; model: [" + fields_text(model_fields.front()) + "]");
-      finding->field = f.name;
-      break;
+    return true;
+  }
+  if (dev_form == ReplyForm::kOffline) return true;
+  // Both ACK: field by field.
+  const CommandInfo* info = find_command(dev.command);
+  if (!info) return true;
+  AckJudging r{dev, i, *info, std::move(same), value_fields(dev), {}};
+  for (Run* run : r.same) r.model_fields.push_back(value_fields(run->replies[i]));
+  std::map<std::string, std::size_t> occurrences;
+  for (const Field& f : r.dev_fields)
+    if (!judge_field(j, r, f, occurrences[f.name]++)) return false;
+  return true;
+}
+
+bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_t occurrence) {
+  const ReplyFieldClass* cls = field_class(r.info.reply, f.name);
+  if (!cls || cls->cls == FieldClass::kDevice) return true;  // the spec leaves it to the device
+  coverage_.fields_compared.insert(field_key(r.dev.command, f.name));
+  std::vector<const std::string*> values;
+  for (std::size_t k = 0; k < r.same.size(); ++k) {
+    const std::string* v = find_field(r.model_fields[k], f.name, occurrence);
+    values.push_back(v);
+    if (v && *v != f.raw) ++r.same[k]->differences;
+  }
+  auto report = [&](FindingKind kind, std::string message) {
+    j.report(kind, std::move(message));
+    j.finding->field = f.name;
+    return false;
+  };
+  if (const auto judged = judge_arrival_hundredths(r, f)) {
+    if (judged->empty()) return true;
+    return report(FindingKind::kEffect, *judged);
+  }
+  if (std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; })) return true;
+  // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
+  // reports an optional's value as maybe unset through this loop).
+  const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
+  const bool has_axis = axis != kNoAxis;
+  if (device_led_ && (has_axis || is_mode_byte(f.name))) {
+    // After the stop only whether it moves: its limits are where its own
+    // positions put it.
+    const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !f.name.ends_with(" limits");
+    if (!(motion_bits && j.stopped_out)) {
+      if (const auto wrong_exit = judge_stop_exit(j, r, f)) return report(FindingKind::kValue, *wrong_exit);
+      // Taken over while it runs; once the model has stopped out, not (a
+      // device that goes on would hold the model in the mode): the device's
+      // exit is taken when the episode ends (keep_in_step).
+      j.take_modes = j.take_modes || (is_mode_byte(f.name) && !j.stopped_out);
+      return true;
     }
   }
+  bool moving = false;
+  if (has_axis)
+    for (Run* run : r.same) moving |= motion_of(run->bus->controller(0), axis) != AxisState::Motion::kIdle;
+  if (has_axis && is_position(f.name)) {
+    r.position_exact[axis] = false;
+    if (position_in_window(j, r, f, axis)) return true;
+  }
+  if (has_axis && axis == 0 && half_turn_) return true;
+  // Within the settle time the device's mode bytes may be those the model
+  // had while the move ran or before this write (it ends a little later
+  // there) or now (earlier): one of these, not any.
+  if (is_mode_byte(f.name) && j.inexact && j.at < settle_until_ &&
+      (mode_byte(j.mode_before, f.name) == f.raw || mode_byte(settle_mode_, f.name) == f.raw)) {
+    j.take_modes = true;
+    return true;
+  }
+  if (has_axis && !is_position(f.name) && !is_fine_position(f.name) && !(device_led_ && j.stopped_out) &&
+      motion_bits_unjudged(j, r, f, axis))
+    return true;
+  // Hundredths and counts resolve what a few milliseconds of timing move an
+  // axis: compared only while the model is exact on that axis (in-process,
+  // or on a line before the axis first moved). Inexact, a count is still a
+  // position (§3.16: count_offset + deg x counts_per_degree), judged in the
+  // axis's window as its reading is (one count more); a hundredths digit is
+  // not (but after an arrival: judge_arrival_hundredths).
+  if (has_axis && is_fine_position(f.name) &&
+      (moving || drifted_[axis] || moved_on_line_[axis] || !r.position_exact[axis])) {
+    const auto dc = f.name.ends_with(" count") ? count_degrees(f.raw) : std::nullopt;
+    if (!dc) return true;
+    const double w = drift_window(axis_profile(axis), j.uncertainty) + 1.0 / profile_.counts_per_degree;
+    for (const std::string* v : values)
+      if (const auto mc = v ? count_degrees(*v) : std::nullopt; mc && std::abs(*dc - *mc) <= w + 1e-9) return true;
+  }
+  // A difference: named, the model's reply beside the device's.
+  const std::string model_value = values.front() ? *values.front() : std::string("(no such field)");
+  // An effect: the device did not follow what a command did: a motion field
+  // (a stop that does not stop, a move that ends elsewhere), or a field the
+  // session's commands changed in the model (a controller fresh from the
+  // profile reads otherwise) that the device still reads as that fresh
+  // controller does (a write not read back, a mode not entered). A value:
+  // any other difference (a wrong count, name, code or sign).
+  const bool effect = cls->cls == FieldClass::kMotion || kept_as_before(j.frame, r.index, f.name, occurrence, model_value, f.raw);
+  return report(effect ? FindingKind::kEffect : FindingKind::kValue,
+                "field '" + f.name + "' (§" + std::string(cls->paragraph) + ", " + std::string(to_string(cls->cls)) + ": " +
+                    std::string(cls->rests_on) + ") is " + f.raw + "; the model expects " + model_value +
+                    (moving ? " (the axis moving: outside the motion window)" : "") + ". Device: " + summary(r.dev) +
+                    " [" + fields_text(r.dev_fields) + "]; model: [" + fields_text(r.model_fields.front()) + "]");
+}
 
-  if (uncertainty > Duration{0})
-    for (std::size_t a = 0; a < 3; ++a)
-      for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
-  for (std::size_t a = 0; a < 3; ++a)
-    if (motion_of(runs.front().bus->controller(0), a) != AxisState::Motion::kIdle) at_limit_agreed_[a] = false;
+std::optional<std::string> Lockstep::judge_arrival_hundredths(const AckJudging& r, const Field& f) const {
+  // A hundredths digit on a line, after an auto move that arrived: the
+  // reading it extends lies within the target's arrival window (E-86:
+  // tolerance_deg less the display's 0.1, plus 0.01), the device at rest
+  // too; judged before the runs' digits, whose tenths may differ from the
+  // device's (a fluxgate heading is not judged here).
+  const auto a = axis_of(f.name, r.dev);
+  if (!a || !f.name.ends_with(" hundredths") || !(drifted_[*a] || moved_on_line_[*a])) return std::nullopt;
+  const auto x = extended_status(r.dev);
+  bool heading = false;
+  const auto tenths = position_value(r.dev, *a == 0 ? "azimuth" : "elevation", &heading);
+  if (!x || !tenths || heading || !profile_.hundredths || device_led_ || !arrived_at_[*a] ||
+      (*a == 0 ? r.nominal().az : r.nominal().el).motion != AxisState::Motion::kIdle || device_moving(r.dev, *a))
+    return std::nullopt;
+  const double target = *arrived_at_[*a];
+  const double window = std::max(0.0, axis_profile(*a).tolerance_deg - 0.1) + 0.01;
+  if (hundredths_within(*tenths, *a == 0 ? x->az_hundredths : x->el_hundredths, target, window)) return std::string();
+  return fmt::format("field '{}' (§3.17 bytes 49-50, motion: the hundredths of the position) is {}: after an auto "
+                     "move arrived at {:.2f} the reading {:.1f} extended by it lies outside the arrival window "
+                     "{:.2f}-{:.2f} (ERRATA E-86, E-87). Device: {} [{}]; model: [{}]",
+                     f.name, f.raw, target, *tenths, target - window, target + window, summary(r.dev),
+                     fields_text(r.dev_fields), fields_text(r.model_fields.front()));
+}
 
+std::optional<std::string> Lockstep::judge_stop_exit(const Judging& j, const AckJudging& r, const Field& f) const {
+  // How a STOW, DEPLOY or search ends is the device's, but not by what:
+  // stopped while it moved, it exits by a stop, not as finished or without
+  // a peak (E-90).
+  if (f.name != "exit status" || !j.stopped_out || !moving_when_stopped_) return std::nullopt;
+  const auto x = extended_status(r.dev);
+  if (!x || x->last_mode != r.nominal().mode.last_mode || is_stop_exit(x->last_mode, x->exit_status)) return std::nullopt;
+  return "field 'exit status' (§3.17, state: how the last mode ended) is " + f.raw + " (" +
+         meanings::exit_name(x->last_mode, x->exit_status) + ") after a stop that found the device moving in " +
+         std::string(meanings::mode_name(x->last_mode)) +
+         "; a stop ends it with a STOP_KEY, MOVE_STOPPED or MODE_CHANGED entry (§3.7, ERRATA E-90). Device: " +
+         summary(r.dev) + " [" + fields_text(r.dev_fields) + "]; model: [" + fields_text(r.model_fields.front()) + "]";
+}
+
+bool Lockstep::position_in_window(const Judging& j, const AckJudging& r, const Field& f, std::size_t axis) const {
+  // A window from the motion model: every run's reading, widened by the
+  // drift the exchange's timing and the arrival tolerance allow.
+  bool heading = false;
+  const auto dv = position_value(r.dev, f.name, &heading);
+  const auto nv = position_value(r.same.front()->replies[r.index], f.name);
+  if (!dv || !nv) return false;
+  double lo = 0, hi = 0;
+  for (const Run* run : r.same)
+    if (auto v = position_value(run->replies[r.index], f.name)) {
+      const double d = difference(*v, *nv, heading);
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  const double w = drift_window(axis_profile(axis), j.uncertainty);
+  const double d = difference(*dv, *nv, heading);
+  return d >= lo - w - 1e-9 && d <= hi + w + 1e-9;
+}
+
+bool Lockstep::motion_bits_unjudged(const Judging& j, const AckJudging& r, const Field& f, std::size_t axis) const {
+  // Inexact, an axis whose readings agree may stand a little apart in the
+  // model and the device (the display resolves 0.1 deg): a move that ends
+  // within the drift window can start, end or turn differently in each. Its
+  // status and limit bits are then not compared; a device that goes on
+  // moving shows in its positions, beyond the window (§3.2). Not after a
+  // stop out of a STOW, DEPLOY or search: there the motion bits are all that
+  // is judged, and the earlier and later runs give the line's timing.
+  const AxisProfile& ap = axis_profile(axis);
+  const AxisState& ax = axis == 0 ? r.nominal().az : axis == 1 ? r.nominal().el : r.nominal().pol;
+  const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
+                          ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
+                           std::abs(ax.aim - ax.position) <= drift_window(ap, j.uncertainty));
+  const bool limit_bits = f.name.ends_with(" limits");
+  const bool agreed_limit = limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle && at_a_limit(ap, ax.position);
+  if (j.inexact && short_move && !agreed_limit) return true;
+  // An axis a hair from a limit or the stow position in the model may be at
+  // it in the device, or the reverse (§3.2 bytes 32-34): judged only where
+  // the device agreed it is at the limit.
+  return limit_bits && !agreed_limit && near_a_limit(ap, ax.position, drift_window(ap, j.uncertainty));
+}
+
+void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertainty) {
+  // An axis at rest in the model whose reading the device gives within the
+  // drift window takes the device's reading (a move arriving elsewhere
+  // within its tolerance, a stop a few milliseconds apart: §3.2).
+  Controller& m = model();
+  take_positions(device, [&](std::size_t axis, double distance) {
+    if (device_led_ && !device_led_mode(m.state().mode.mode)) return true;  // out of a STOW, DEPLOY or search, at rest
+    if (device_led_) return false;
+    if (axis == 0 && half_turn_) {
+      half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
+      return true;
+    }
+    return std::abs(distance) <= drift_window(axis_profile(axis), uncertainty);
+  });
+  // Judged again once the model is out of such a mode and at rest, and the
+  // device's extended status shows every axis at rest.
+  if (!device_led_ || device_led_mode(m.state().mode.mode)) return;
+  bool model_at_rest = true, device_at_rest = false;
+  for (std::size_t a = 0; a < 3; ++a) model_at_rest = model_at_rest && motion_of(m, a) == AxisState::Motion::kIdle;
+  // A 40h reply: its positions taken above and its mode bytes with them.
   for (const Frame& dev : device)
-    if (const auto moving = shows_moving(dev)) device_seen_moving_ = *moving;
+    device_at_rest = device_at_rest || (device_mode(dev).has_value() && !device_moving(dev, 0) && !device_moving(dev, 1) &&
+                                        !device_moving(dev, 2));
+  if (!model_at_rest || !device_at_rest) return;
+  device_led_ = false;
+  stopped_out_ = handed_over_ = moving_when_stopped_ = false;
+  for (const Frame& dev : device)  // how the device says it ended (judged above)
+    if (const auto x = extended_status(dev)) {
+      m.mutable_state().mode = mode_state(*x);
+      ++coverage_.resyncs;
+    }
+}
 
-  // Keep the run the device agreed with most (the nominal one on a tie).
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < runs.size(); ++k)
-    if (runs[k].differences < runs[best].differences) best = k;
-  if (runs[best].copy) bus_ = std::move(runs[best].copy);
-  runs.clear();
-  if (take_modes && !finding)
-    for (const Frame& dev : device)
-      if (const auto x = extended_status(dev)) {
-        model().mutable_state().mode = mode_state(*x);
-        ++coverage_.resyncs;
-      }
+const AxisProfile& Lockstep::axis_profile(std::size_t axis) const {
+  return axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
+}
 
-  // Staying in step: an axis at rest in the model whose reading the device
-  // gives within the drift window takes the device's reading (a move arriving
-  // elsewhere within its tolerance, a stop a few milliseconds apart: §3.2).
-  if (!finding) {
-    Controller& m = model();
-    take_positions(device, [&](std::size_t axis, double distance) {
-      if (device_led_ && !device_led_mode(m.state().mode.mode)) return true;  // out of a STOW, DEPLOY or search, at rest
-      if (device_led_) return false;
-      if (axis == 0 && half_turn_) {
-        half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
-        return true;
-      }
-      return std::abs(distance) <= drift_window(axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol, uncertainty);
-    });
-    // Judged again once the model is out of such a mode and at rest, and the
-    // device's extended status shows every axis at rest.
-    if (device_led_ && !device_led_mode(m.state().mode.mode)) {
-      bool model_at_rest = true, device_at_rest = false;
-      for (std::size_t a = 0; a < 3; ++a) model_at_rest = model_at_rest && motion_of(m, a) == AxisState::Motion::kIdle;
-      // A 40h reply: its positions taken above and its mode bytes with them.
-      for (const Frame& dev : device)
-        device_at_rest = device_at_rest || (device_mode(dev).has_value() && !device_moving(dev, 0) &&
-                                            !device_moving(dev, 1) && !device_moving(dev, 2));
-      if (model_at_rest && device_at_rest) {
-        device_led_ = false;
-        stopped_out_ = handed_over_ = moving_when_stopped_ = false;
-        for (const Frame& dev : device)  // how the device says it ended (judged above)
-          if (const auto x = extended_status(dev)) {
-            m.mutable_state().mode = mode_state(*x);
-            ++coverage_.resyncs;
-          }
-      }
+// Before the device's positions are taken over (they move the model's a
+// tenth): an axis idle exactly at the aim of the §3.3 auto move it ran has
+// arrived at that move's target. Not a LOCATE's: its target is the
+// controller's own computation (§3.18), which the model reads one way.
+void Lockstep::note_arrivals() {
+  const ControllerState& s = model().state();
+  for (std::size_t a = 0; a < 3; ++a) {
+    const AxisState& ax = a == 0 ? s.az : a == 1 ? s.el : s.pol;
+    if (ax.motion == AxisState::Motion::kRemoteAutoMove) {
+      moving_to_[a] = ax.target;
+      arrived_at_[a].reset();
+    } else if (ax.motion == AxisState::Motion::kIdle) {
+      if (moving_to_[a] && std::abs(ax.position - ax.aim) < 1e-6) arrived_at_[a] = moving_to_[a];
+      moving_to_[a].reset();
+    } else {
+      moving_to_[a] = arrived_at_[a] = std::nullopt;
     }
   }
-  return finding;
 }
 
 }  // namespace sabus::harness::live_fuzz

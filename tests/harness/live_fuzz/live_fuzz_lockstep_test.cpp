@@ -2,12 +2,16 @@
 // against a reference controller kept in step with the device. The "device"
 // here is the in-process reference controller on its own clock, with a fault
 // or its replies edited, or run a little later than the model.
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/transports.hpp"
+#include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/structured.hpp"
 
 namespace sabus::harness::live_fuzz {
 namespace {
@@ -293,7 +297,7 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
   std::string last;
   for (int i = 0; i < 60000 && arrivals < 4; ++i) {
     FuzzFrame f = generator.next();
-    if (f.what == "sequence: arrival") {
+    if (f.what.starts_with("sequence: arrival")) {
       arriving = true;
       start = l->now();
       az0 = l->model().state().az.position;
@@ -313,7 +317,9 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
     } else if (arriving) {
       EXPECT_TRUE(is_safe_to_send(f.chars, false, false)) << "a write that can move while arriving: " << f.what;
     }
-    if (last == "status after the arrival") EXPECT_EQ(f.what, "extended status after the arrival");
+    if (last == "status after the arrival") {
+      EXPECT_EQ(f.what, "extended status after the arrival");
+    }
     last = f.what;
     for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
       const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
@@ -324,6 +330,114 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
   }
   EXPECT_EQ(arrivals, 4u);
   EXPECT_GE(moved, 2u);
+}
+
+// On a line the hundredths digit is judged once an auto move has arrived:
+// the reading it extends lies within the target's arrival window
+// (tolerance_deg less the display's 0.1, plus 0.01: ERRATA E-86).
+TEST(LiveFuzzLockstep, OnALineTheHundredthsOfAnArrivalLieInItsWindow) {
+  Profile p = profile();
+  p.hundredths = true;
+  p.el.tolerance_deg = 0.1;
+  const auto request = build_request(*find_command(0x32), "2C", {{"axis", "E"}, {"target", "12.37"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), extended = write(0x40);
+  const Duration line = 50ms;
+  struct Case {
+    const char* name;
+    FaultSet faults;
+    const char* digit;  // the device's el hundredths edited to this; null: as it is
+    bool finding;
+  };
+  for (const Case& c : {Case{"clean", {}, nullptr, false}, Case{"hundredths-always-zero", FaultSet{Fault::kHundredthsAlwaysZero}, nullptr, true},
+                        Case{"stopped 0.01 past", {}, "8", false}, Case{"stopped 0.02 past", {}, "9", true}}) {
+    SCOPED_TRACE(c.name);
+    Lockstep model(p, at_ms(0));
+    Device device(p, c.faults);
+    ASSERT_EQ(model.step(move, at_ms(100), line, device.send(move, at_ms(100))), std::nullopt);
+    // From the power-on 45 deg: arrived within a minute.
+    ASSERT_EQ(model.step(status, at_ms(60000), line, device.send(status, at_ms(60000))), std::nullopt);
+    std::vector<Frame> reply = device.send(extended, at_ms(60100));
+    ASSERT_EQ(reply.size(), 1u);
+    if (c.digit) reply[0] = with_field(reply[0], "el hundredths", c.digit);
+    const auto v = model.step(extended, at_ms(60100), line, reply);
+    ASSERT_EQ(v.has_value(), c.finding) << (v ? v->message : "no finding");
+    if (v) {
+      EXPECT_EQ(v->kind, FindingKind::kEffect);
+      EXPECT_EQ(v->field, "el hundredths");
+      EXPECT_NE(v->message.find("arrived at 12.37"), std::string::npos) << v->message;
+    }
+  }
+}
+
+// §3.4 on a line: a device that refuses a jog into a limit, as the model
+// does, has said its axis is at that limit: its limit bits must show it,
+// though the model's runs nudged a hair to each side would not (kNudgesDeg).
+TEST(LiveFuzzLockstep, OnALineAJogRefusedAtALimitHasTheLimitBitsJudged) {
+  Profile p = profile();
+  p.az.min_deg = -20;
+  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "-20.0"}, {"elevation", "45.0"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), into = write(0x33, "ES0500");
+  const Duration line = 50ms;
+  for (const bool faulty : {false, true}) {
+    SCOPED_TRACE(faulty ? "az-limit-bits-missing" : "clean");
+    Lockstep model(p, at_ms(0));
+    Device device(p, faulty ? FaultSet{Fault::kAzLimitBitsMissing} : FaultSet{});
+    auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), line, device.send(f, at_ms(ms))); };
+    ASSERT_EQ(step(move, 100), std::nullopt);
+    ASSERT_EQ(step(status, 60000), std::nullopt);  // arrived: limit bits a hair from the limit not judged yet
+    ASSERT_EQ(step(into, 60100), std::nullopt);    // NAKed by both (JogIntoLimit)
+    EXPECT_EQ(model.coverage().rules_fired.count("JogIntoLimit"), 1u);
+    const auto v = step(status, 60200);
+    ASSERT_EQ(v.has_value(), faulty) << (v ? v->message : "no finding");
+    if (v) {
+      EXPECT_EQ(v->kind, FindingKind::kEffect);
+      EXPECT_EQ(v->field, "az limits");
+    }
+  }
+}
+
+// Motion sequences go to the (motion, stop) pair and arrivals to the aim
+// least covered so far: in the first three rounds every pair and every aim
+// the profile allows has been drawn, and the reference device agrees.
+TEST(LiveFuzzLockstep, MotionsAndArrivalsGoToWhatIsLeastCovered) {
+  const Profile p = profile();
+  auto device = make_in_process_transport({p});
+  SessionOptions o;
+  o.allow_motion = true;
+  Session session(*device, p, o);
+  GeneratorOptions go{p.address, true, false, true, {}, {}, &p};
+  Generator generator(go, 11);
+  const Lockstep* l = session.lockstep();
+  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  std::map<std::string, int> motions, arrivals;
+  std::size_t motion_count = 0, arrival_count = 0;
+  for (int i = 0; i < 200000 && (motion_count < 3 * 21 || arrival_count < 3 * 7); ++i) {
+    FuzzFrame f = generator.next();
+    if (f.what.starts_with("sequence: motion (")) ++motions[f.what], ++motion_count;
+    if (f.what.starts_with("sequence: arrival (")) ++arrivals[f.what], ++arrival_count;
+    for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+      const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
+      f.chars.insert(f.chars.end(), poll.begin(), poll.end());
+    }
+    const auto v = session.step(f);
+    ASSERT_FALSE(v) << "write " << i << " (" << f.what << "): " << v->message;
+  }
+  ASSERT_GE(motion_count, 3u * 21);
+  for (const char* kind : {"legal move", "jog", "search", "STOW", "DEPLOY", "LOCATE", "any motion frame"})
+    for (const char* stop : {"33h X", "36h K A", "48h A"})
+      EXPECT_GE(motions[std::string("sequence: motion (") + kind + ", stopped by " + stop + ")"], 1) << kind << ", " << stop;
+  // 2C needs the hundredths (§3.3), a polarization limit a rotating feed.
+  const std::map<std::string, bool> aims = {{"azimuth limit", true},        {"elevation limit", true},
+                                            {"polarization limit", p.pol_type != PolType::kCircular},
+                                            {"negative target", true},      {"2C hundredths", p.hundredths},
+                                            {"LOCATE", true},               {"any target", true}};
+  for (const auto& [aim, available] : aims) {
+    const int drawn = arrivals[std::string("sequence: arrival (") + aim + ")"];
+    if (available) EXPECT_GE(drawn, 2) << aim;
+    else EXPECT_EQ(drawn, 0) << aim;
+  }
 }
 
 // §3.7 'D' stopped (ERRATA E-90): how a DEPLOY ends is the device's, but a

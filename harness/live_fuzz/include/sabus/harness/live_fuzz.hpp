@@ -27,6 +27,7 @@
 #include <set>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sabus/harness/controller.hpp"
@@ -140,10 +141,30 @@ class Generator {
   // extended status and, at a limit, a jog further into it (§3.4). nullopt
   // when no model or profile is set.
   std::optional<FuzzFrame> arrival();
-  // The move an arrival sequence starts with (and a motion sequence, half
-  // the time): `limits` says which axes it aims at a limit (+1, -1) or not;
-  // `only_form` 'L' for a LOCATE (0: any form the profile has).
-  std::optional<Bytes> legal_move(std::array<int, 3>* limits, char only_form = 0);
+  // What a legal move aims at: a form ('L' a LOCATE; 0 any the profile
+  // has), an axis sent to a limit, negative targets; otherwise drawn.
+  struct Aim {
+    char form = 0;
+    int limit_axis = -1;
+    bool negative = false;
+  };
+  // The move an arrival sequence starts with (and a motion sequence's
+  // legal move or LOCATE): `limits` says which axes it aims at a limit
+  // (+1, -1) or not.
+  std::optional<Bytes> legal_move(std::array<int, 3>* limits, Aim aim);
+  // What each arrival aimed at and each motion sequence ran and stopped
+  // with, so far: the next one goes to the least covered, as boundary
+  // values go to the rules not yet fired. A motion counts in full where the
+  // model was moving when its stop went out, a third otherwise (a STOW at
+  // the stow position stops nothing).
+  static constexpr std::size_t kArrivalGoals = 7, kMotionKinds = 7, kStopKinds = 3;
+  std::array<unsigned, kArrivalGoals> arrivals_aimed_{};
+  std::array<std::array<double, kStopKinds>, kMotionKinds> motions_stopped_{};
+  std::optional<std::pair<std::size_t, std::size_t>> stop_pending_;  // the motion and stop of the queued stop
+  // The least covered of `scores`' entries `available` allows (three times
+  // in four; any available one otherwise), ties drawn at random.
+  template <typename Scores, typename Available>
+  std::size_t least_covered(const Scores& scores, Available available);
   // The next write while an arrival sequence waits for the model to rest.
   std::optional<FuzzFrame> while_arriving();
   std::function<ModelView()> model_;
@@ -284,6 +305,8 @@ std::size_t comparable_reply_fields();
 // is also run `uncertainty` earlier and later (copies of the bus), and a
 // device reply is accepted when it is one the model gives somewhere in that
 // span; the copy that matched is kept, so the model stays in step.
+struct ReplyField;  // a reply field's name and text, as describe_frame shows it
+
 class Lockstep {
  public:
   Lockstep(const Profile& profile, TimePoint start);
@@ -330,6 +353,31 @@ class Lockstep {
   // A §3.16 count field's text as degrees (count_offset and counts_per_degree
   // of the profile); nullopt when it is no count.
   std::optional<double> count_degrees(std::string_view raw) const;
+  // One write's judgement, rule by rule (step).
+  struct Judging;
+  struct AckJudging;
+  // The model's runs of a write: the nominal one on the model itself, and on
+  // a line copies run earlier, later and with axes nudged (kNudgesDeg).
+  std::vector<Run> runs_of(const FuzzFrame& frame, TimePoint at, Duration uncertainty);
+  // A move ending within the drift window (the mode bytes settle), an
+  // azimuth move to the half turn.
+  void note_settling(const Controller& nominal, const Judging& j);
+  // A STOW, DEPLOY or search in the model or the device (E-89, E-90):
+  // whether the model has stopped out of one.
+  bool follow_device_led(const Controller& nominal, const std::vector<Frame>& device);
+  // The i-th reply, and an ACK's fields: false once judging stops (a finding).
+  bool judge_reply(Judging& j, std::size_t i);
+  bool judge_field(Judging& j, AckJudging& r, const ReplyField& f, std::size_t occurrence);
+  // nullopt: the rule does not apply; "": it holds; otherwise the finding.
+  std::optional<std::string> judge_arrival_hundredths(const AckJudging& r, const ReplyField& f) const;
+  std::optional<std::string> judge_stop_exit(const Judging& j, const AckJudging& r, const ReplyField& f) const;
+  bool position_in_window(const Judging& j, const AckJudging& r, const ReplyField& f, std::size_t axis) const;
+  // Motion or limit bits the timing of a line leaves open.
+  bool motion_bits_unjudged(const Judging& j, const AckJudging& r, const ReplyField& f, std::size_t axis) const;
+  // After a write without finding: positions and mode bytes taken from the
+  // device where the spec allows it to differ.
+  void keep_in_step(const std::vector<Frame>& device, Duration uncertainty);
+  const AxisProfile& axis_profile(std::size_t axis) const;
   // The device's reading of each axis both show at rest, where `take(axis,
   // distance)` agrees: the model's axis moved to it (drifted).
   void take_positions(const std::vector<Frame>& device, const std::function<bool(std::size_t, double)>& take);
@@ -349,6 +397,11 @@ class Lockstep {
   // At a limit by the device's own word (it NAKed a jog into it, §3.4):
   // its limit bits are compared at rest, on a line too.
   std::array<bool, 3> at_limit_agreed_{};
+  // A §3.3 auto move's target while the model's axis runs it, and once it
+  // has arrived there and rests: its hundredths are then judged on a line
+  // too (ERRATA E-86: within the arrival window of the target).
+  std::array<std::optional<double>, 3> moving_to_{}, arrived_at_{};
+  void note_arrivals();
   TimePoint settle_until_{};             // mode bytes taken from the device until then
   ModeState settle_mode_{};              // the model's while that move still ran
   // A STOW, DEPLOY or search in the model or the device: motion and mode
