@@ -428,7 +428,15 @@ std::optional<FuzzFrame> Generator::arrival() {
                                                   {{'C', -1, true}, p.hundredths},
                                                   {{'L', -1, false}, true},
                                                   {{}, true}}};
-  const std::size_t goal = least_covered(arrivals_aimed_, [&](std::size_t k) { return goals[k].available; });
+  // While no site is known, a LOCATE waits for one (E-59): a state only
+  // this part of a session shows (a navigation write may give a site
+  // later), so the first arrival goes there.
+  constexpr std::size_t kLocateGoal = 5;
+  const bool no_site =
+      !look::site_of(model_().controller->state().navigation, p.az_sensor, p.fluxgate_heading).site.has_value();
+  const std::size_t goal = no_site && arrivals_aimed_[kLocateGoal] == 0
+                               ? kLocateGoal
+                               : least_covered(arrivals_aimed_, [&](std::size_t k) { return goals[k].available; });
   ++arrivals_aimed_[goal];
   const Aim aim = goals[goal].aim;
   std::array<int, 3> limits{};
@@ -444,6 +452,8 @@ std::optional<FuzzFrame> Generator::arrival() {
   auto frame = [&](std::uint8_t c, std::string_view data) {
     return encode_frame({FrameKind::kCommand, options_.address, c, Bytes(data.begin(), data.end())});
   };
+  // The mode the move entered (§3.17), before a write of the wait changes it.
+  queued_.push_back({frame(0x40, ""), {}, "extended status as the move begins"});
   after_arrival_ = {{frame(0x31, ""), {}, "status after the arrival"}, {frame(0x40, ""), {}, "extended status after the arrival"}};
   static constexpr std::string_view kIntoLimit[3][2] = {{"ES0500", "WS0500"}, {"DS0500", "US0500"}, {"OS0500", "LS0500"}};
   // The aimed limit always; another one the move ends at half the time.

@@ -120,11 +120,24 @@ bool is_position_field(std::string_view field) {
          field == "azimuth count" || field == "elevation count" || field == "az hundredths" || field == "el hundredths";
 }
 
+// The last of `steps` that fit in one vector's step list (kMaxSteps,
+// vector_loader.hpp; a write that waited takes a wait_ms step too).
+std::vector<FuzzFrame> last_that_fit(std::vector<FuzzFrame> steps) {
+  std::size_t used = 0, first = steps.size();
+  while (first > 0 && used + (steps[first - 1].pause.count() > 0 ? 2 : 1) <= kMaxSteps)
+    used += steps[--first].pause.count() > 0 ? 2 : 1;
+  steps.erase(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(first));
+  return steps;
+}
+
 }  // namespace
 
 std::string finding_vector_yaml(const Finding& finding, const Profile& profile, const FindingContext& context) {
   const std::vector<FuzzFrame>& writes = finding.reproducer.empty() ? finding.history : finding.reproducer;
-  const std::vector<FuzzFrame> steps = one_reply_each(writes, profile);
+  // Not reproduced: the writes just before the finding, as many as a vector
+  // holds (its state before them is the device's, not restored).
+  std::vector<FuzzFrame> steps = one_reply_each(writes, profile);
+  if (!finding.reproduced) steps = last_that_fit(std::move(steps));
   const std::vector<Expectation> expect = reference_expectations(steps, profile);
   // The step whose reply shows a value or effect finding: the last ACK that
   // has the field.
@@ -149,8 +162,8 @@ std::string finding_vector_yaml(const Finding& finding, const Profile& profile, 
   y << YAML::Comment(printable_text(
       "A finding of sabus fuzz (" + kind + "), seed " + std::to_string(context.seed) + ":\n" + "  " + context.command_line +
       "\n" + finding.message + "\n" +
-      (finding.reproduced ? "Minimized by delta debugging from " : "NOT reproduced on replay; the last ") +
-      std::to_string(finding.history.size()) + " writes" + (finding.reproduced ? "" : " are kept") +
+      (finding.reproduced ? "Minimized by delta debugging from " + std::to_string(finding.history.size()) + " writes"
+                          : "NOT reproduced on replay; the last " + std::to_string(steps.size()) + " writes are kept") +
       ". Schema: vectors/README.md."));
   y << YAML::BeginMap;
   y << YAML::Key << "paragraph" << YAML::Value << "framing";

@@ -378,6 +378,25 @@ TEST(LiveFuzzWriter, EveryFindingKindIsALintCleanVectorWhateverItsTextSays) {
   }
 }
 
+// A finding not reproduced keeps the writes before it, as many as a vector
+// holds (kMaxSteps steps, a wait counting as one): the file still loads.
+TEST(LiveFuzzWriter, AFindingNotReproducedKeepsTheLastWritesAVectorHolds) {
+  std::vector<FuzzFrame> history;
+  for (int i = 0; i < 512; ++i) {
+    history.push_back({hex("02 32 31 03 02"), {}, "status poll " + std::to_string(i)});
+    if (i % 10 == 0) history.back().pause = std::chrono::milliseconds(5);
+  }
+  const Finding f{FindingKind::kEffect, "m", history, {}, false, "azimuth"};
+  const std::string yaml = finding_vector_yaml(f, profile(), {1, "sabus fuzz --sim", 1});
+  expect_a_clean_vector_file(yaml, profile());
+  const YAML::Node steps = YAML::Load(yaml)["vectors"][0]["steps"];
+  EXPECT_EQ(steps.size(), kMaxSteps) << yaml;
+  // The last writes of the history, and no earlier one.
+  EXPECT_NE(yaml.find("# status poll 511\n"), std::string::npos) << yaml;
+  EXPECT_EQ(yaml.find("# status poll 400\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("the last "), std::string::npos) << yaml;
+}
+
 TEST(LiveFuzzWriter, AFindingOnAControllerWithRemoteControlDisabledExpectsTheOfflineReply) {
   Profile off = profile();
   off.remote_enabled = false;
