@@ -117,7 +117,8 @@ constexpr std::string_view kNumbers[] = {"0",     "-0",     "0.0",   "-0.1",   "
 // model stands than its axis covers in this long at fast speed (a limit a
 // little farther), waits for
 // the model to be at rest this long, and gives up after this long.
-constexpr double kReachSeconds = 6.0;
+constexpr double kReachSeconds = 4.0;
+constexpr std::size_t kMotionsPerArrival = 3;
 constexpr double kLimitReachSeconds = 15.0;  // a limit: this far
 constexpr Duration kRestFor = std::chrono::milliseconds(500);
 constexpr Duration kArrivalLimit = std::chrono::seconds(30);
@@ -222,7 +223,6 @@ std::uint8_t Generator::pick(std::initializer_list<std::uint8_t> bytes) {
 }
 
 FuzzFrame Generator::make(Mutation m) {
-  auto uniform = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_); };
   FuzzFrame out;
   out.what = std::string(to_string(m));
   Bytes f = pick_base();
@@ -309,106 +309,118 @@ FuzzFrame Generator::make(Mutation m) {
     case Mutation::kBoundary:
       f = boundary(pick_boundary_base());
       break;
-    case Mutation::kSequence: {
-      auto frame = [&](std::uint8_t code, std::string_view data) {
-        return encode_frame({FrameKind::kCommand, options_.address, code, Bytes(data.begin(), data.end())});
-      };
-      auto with_code = [&](auto keep) {
-        std::vector<const Bytes*> out;
-        for (const Bytes& b : bases_)
-          if (keep(b)) out.push_back(&b);
-        return out;
-      };
-      const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 2) == 0);
-      // An arrival after every two motions with their stops: an arrival
-      // takes seconds, and a motion sequence waits while one runs.
-      if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= 2)
-        if (auto a = arrival()) {
-          motions_since_arrival_ = 0;
-          return *a;
-        }
-      if (!stored) ++motions_since_arrival_;
-      if (stored) {
-        // A write (at a boundary half the time), then the read that shows it.
-        const ReadBack& rb = kReadBacks[uniform(0, std::size(kReadBacks) - 1)];
-        const auto writes = with_code([&](const Bytes& b) { return b[2] == rb.write; });
-        if (writes.empty()) return make(Mutation::kBoundary);
-        f = *writes[uniform(0, writes.size() - 1)];
-        if (uniform(0, 1)) f = boundary(std::move(f));
-        const std::string index = rb.index && f.size() > 5 ? std::string(f.begin() + 3, f.begin() + 5)
-                                  : rb.read == 0x35 ? std::string(kIndexes[uniform(1, 3)])
-                                                    : std::string();
-        queued_.push_back({frame(rb.read, index), {}, "read back"});
-        out.what = "sequence: stored write";
-      } else if (options_.allow_motion) {
-        // A motion, a status or two while it runs, a stop of one kind, and
-        // what the controller says after it.
-        const auto moves = with_code([&](const Bytes& b) {
-          const CommandInfo* info = find_command(b[2]);
-          return info && effects_at(b, 0, *info).moves_antenna;
-        });
-        if (moves.empty()) return make(Mutation::kBoundary);
-        // A legal move (runs a while when stopped), a jog, a mode that
-        // moves by itself (a search §3.7 'A' 'E' or 'F', a STOW 'S', a
-        // DEPLOY 'D', a LOCATE §3.18), any motion frame at a boundary or as
-        // it is; stopped by one of kStops: the pair least covered so far.
-        auto pick_move = [&](auto keep) {
-          std::vector<const Bytes*> some;
-          for (const Bytes* b : moves)
-            if (keep(*b)) some.push_back(b);
-          return some.empty() ? *moves[uniform(0, moves.size() - 1)] : *some[uniform(0, some.size() - 1)];
-        };
-        const auto is_jog = [](const Bytes& b) { return b.size() == 11 && (b[2] == 0x33 || b[2] == 0x47) && b[3] != 'X'; };
-        static_assert(std::size(kStops) == kStopKinds && std::size(kStopNames) == kStopKinds &&
-                      std::size(kMotionKindNames) == kMotionKinds && std::size(kArrivalGoalNames) == kArrivalGoals);
-        const std::size_t pair = least_covered(joined_scores(motions_stopped_), [](std::size_t) { return true; });
-        const auto kind = static_cast<MotionKind>(pair / kStopKinds);
-        stop_pending_ = {pair / kStopKinds, pair % kStopKinds};
-        const auto legal = kind == MotionKind::kLegalMove ? legal_move(nullptr, {})
-                           : kind == MotionKind::kLocate  ? legal_move(nullptr, {.form = 'L'})
-                                                          : std::nullopt;
-        const char mode_form = kind == MotionKind::kStow ? 'S' : kind == MotionKind::kDeploy ? 'D' : 'A';
-        if (legal) f = *legal;
-        else if (kind == MotionKind::kJog) f = pick_move(is_jog);
-        else if (kind == MotionKind::kSearch || kind == MotionKind::kStow || kind == MotionKind::kDeploy)
-          f = pick_move([mode_form](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == mode_form; });
-        else f = *moves[uniform(0, moves.size() - 1)];
-        if (kind == MotionKind::kAnyMotion && uniform(0, 1) == 0) f = boundary(std::move(f));
-        else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
-        else if (f.size() > 5 && f[2] == 0x36 && (f[3] == 'S' || f[3] == 'D')) f = relrc(with_byte(std::move(f), 4, f[3]));  // 'SS', 'DD'
-        else if (is_jog(f)) {
-          // A jog that lasts (§3.4: 4 digits of milliseconds), and half the
-          // time one about another axis after it, which ends the first.
-          static constexpr std::string_view kDirections = "EWDUOL";  // two per axis: az, el, pol
-          f = relrc(with_digits(std::move(f), 5, uniform(1000, 4000)));
-          const std::size_t axis = kDirections.find(static_cast<char>(f[3])) / 2;
-          if (axis < 3 && uniform(0, 1) == 0) {
-            const std::size_t other = (axis + uniform(1, 2)) % 3;
-            Bytes g = relrc(with_byte(f, 3, static_cast<std::uint8_t>(kDirections[other * 2 + uniform(0, 1)])));
-            queued_.push_back({frame(0x31, ""), {}, "status while jogging", std::chrono::milliseconds(uniform(100, 500))});
-            queued_.push_back({std::move(g), {}, "jog about another axis"});
-          }
-        }
-        // The first poll after a while: the motion has begun when it is
-        // stopped (a STOW, DEPLOY or search is judged by how it stops).
-        for (std::size_t k = uniform(1, 2), first = 1; k > 0; --k, first = 0)
-          queued_.push_back({frame(0x31, ""), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 1500) : 0)});
-        const Stop& stop = kStops[stop_pending_->second];
-        queued_.push_back({frame(stop.code, stop.data), {}, "stop"});
-        queued_.push_back({frame(0x31, ""), {}, "status after the stop"});
-        queued_.push_back({frame(0x40, ""), {}, "extended status after the stop"});
-        out.what = "sequence: motion (" + std::string(kMotionKindNames[stop_pending_->first]) + ", stopped by " +
-                   std::string(kStopNames[stop_pending_->second]) + ")";
-      } else {
-        return make(Mutation::kBoundary);
-      }
-      break;
-    }
+    case Mutation::kSequence: return sequence();
     case Mutation::kCount: break;
   }
   if (!(mod == Modifiers{})) f = apply_modifiers(std::move(f), mod);
   out.chars = std::move(f);
   return out;
+}
+
+FuzzFrame Generator::sequence() {
+  const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 2) == 0);
+  // An arrival after every three motions with their stops: an arrival
+  // takes seconds, and a motion sequence waits while one runs.
+  if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= kMotionsPerArrival)
+    if (auto a = arrival()) {
+      motions_since_arrival_ = 0;
+      return *a;
+    }
+  if (stored) return stored_sequence();
+  ++motions_since_arrival_;
+  if (options_.allow_motion) return motion_sequence();
+  return make(Mutation::kBoundary);
+}
+
+FuzzFrame Generator::stored_sequence() {
+  // A write (at a boundary half the time), then the read that shows it.
+  const ReadBack& rb = kReadBacks[uniform(0, std::size(kReadBacks) - 1)];
+  const auto writes = bases_where([&](const Bytes& b) { return b[2] == rb.write; });
+  if (writes.empty()) return make(Mutation::kBoundary);
+  Bytes f = *writes[uniform(0, writes.size() - 1)];
+  if (uniform(0, 1)) f = boundary(std::move(f));
+  const std::string index = rb.index && f.size() > 5 ? std::string(f.begin() + 3, f.begin() + 5)
+                            : rb.read == 0x35 ? std::string(kIndexes[uniform(1, 3)])
+                                              : std::string();
+  queued_.push_back({command(rb.read, index), {}, "read back"});
+  return {std::move(f), {}, "sequence: stored write"};
+}
+
+FuzzFrame Generator::motion_sequence() {
+  // A motion, a status or two while it runs, a stop of one kind, and
+  // what the controller says after it.
+  const auto moves = bases_where([&](const Bytes& b) {
+    const CommandInfo* info = find_command(b[2]);
+    return info && effects_at(b, 0, *info).moves_antenna;
+  });
+  if (moves.empty()) return make(Mutation::kBoundary);
+  // A legal move (runs a while when stopped), a jog, a mode that
+  // moves by itself (a search §3.7 'A' 'E' or 'F', a STOW 'S', a
+  // DEPLOY 'D', a LOCATE §3.18), any motion frame at a boundary or as
+  // it is; stopped by one of kStops: the pair least covered so far.
+  auto pick_move = [&](auto keep) {
+    std::vector<const Bytes*> some;
+    for (const Bytes* b : moves)
+      if (keep(*b)) some.push_back(b);
+    return some.empty() ? *moves[uniform(0, moves.size() - 1)] : *some[uniform(0, some.size() - 1)];
+  };
+  const auto is_jog = [](const Bytes& b) { return b.size() == 11 && (b[2] == 0x33 || b[2] == 0x47) && b[3] != 'X'; };
+  static_assert(std::size(kStops) == kStopKinds && std::size(kStopNames) == kStopKinds &&
+                std::size(kMotionKindNames) == kMotionKinds && std::size(kArrivalGoalNames) == kArrivalGoals);
+  const std::size_t pair = least_covered(joined_scores(motions_stopped_), [](std::size_t) { return true; });
+  const auto kind = static_cast<MotionKind>(pair / kStopKinds);
+  stop_pending_ = {pair / kStopKinds, pair % kStopKinds};
+  const auto legal = kind == MotionKind::kLegalMove ? legal_move(nullptr, {.auto_move_only = true})
+                     : kind == MotionKind::kLocate  ? legal_move(nullptr, {.form = 'L'})
+                                                    : std::nullopt;
+  const char mode_form = kind == MotionKind::kStow ? 'S' : kind == MotionKind::kDeploy ? 'D' : 'A';
+  Bytes f;
+  if (legal) f = *legal;
+  else if (kind == MotionKind::kJog) f = pick_move(is_jog);
+  else if (kind == MotionKind::kSearch || kind == MotionKind::kStow || kind == MotionKind::kDeploy)
+    f = pick_move([mode_form](const Bytes& b) { return b.size() > 5 && b[2] == 0x36 && b[3] == mode_form; });
+  else f = *moves[uniform(0, moves.size() - 1)];
+  if (kind == MotionKind::kAnyMotion && uniform(0, 1) == 0) f = boundary(std::move(f));
+  else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
+  else if (f.size() > 5 && f[2] == 0x36 && (f[3] == 'S' || f[3] == 'D')) f = relrc(with_byte(std::move(f), 4, f[3]));  // 'SS', 'DD'
+  else if (is_jog(f)) {
+    // A jog that lasts (§3.4: 4 digits of milliseconds), and half the
+    // time one about another axis after it, which ends the first.
+    static constexpr std::string_view kDirections = "EWDUOL";  // two per axis: az, el, pol
+    f = relrc(with_digits(std::move(f), 5, uniform(1000, 4000)));
+    const std::size_t axis = kDirections.find(static_cast<char>(f[3])) / 2;
+    if (axis < 3 && uniform(0, 1) == 0) {
+      const std::size_t other = (axis + uniform(1, 2)) % 3;
+      Bytes g = relrc(with_byte(f, 3, static_cast<std::uint8_t>(kDirections[other * 2 + uniform(0, 1)])));
+      queued_.push_back({command(0x31), {}, "status while jogging", std::chrono::milliseconds(uniform(100, 500))});
+      queued_.push_back({std::move(g), {}, "jog about another axis"});
+    }
+  }
+  // The first poll after a while: the motion has begun when it is
+  // stopped (a STOW, DEPLOY or search is judged by how it stops).
+  for (std::size_t k = uniform(1, 2), first = 1; k > 0; --k, first = 0)
+    queued_.push_back({command(0x31), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 1500) : 0)});
+  const Stop& stop = kStops[stop_pending_->second];
+  queued_.push_back({command(stop.code, stop.data), {}, "stop"});
+  queued_.push_back({command(0x31), {}, "status after the stop"});
+  queued_.push_back({command(0x40), {}, "extended status after the stop"});
+  return {std::move(f), {}, "sequence: motion (" + std::string(kMotionKindNames[stop_pending_->first]) + ", stopped by " +
+             std::string(kStopNames[stop_pending_->second]) + ")"};
+}
+
+std::vector<const Bytes*> Generator::bases_where(const std::function<bool(const Bytes&)>& keep) const {
+  std::vector<const Bytes*> out;
+  for (const Bytes& b : bases_)
+    if (keep(b)) out.push_back(&b);
+  return out;
+}
+
+Bytes Generator::command(std::uint8_t code, std::string_view data) const {
+  return encode_frame({FrameKind::kCommand, options_.address, code, Bytes(data.begin(), data.end())});
+}
+
+std::size_t Generator::uniform(std::size_t lo, std::size_t hi) {
+  return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_);
 }
 
 std::optional<FuzzFrame> Generator::arrival() {
@@ -424,7 +436,7 @@ std::optional<FuzzFrame> Generator::arrival() {
   const std::array<Goal, kArrivalGoals> goals = {{{{'A', 0, false}, true},
                                                   {{'A', 1, false}, true},
                                                   {{'P', 2, false}, p.pol_type != PolType::kCircular},
-                                                  {{counts ? 'B' : 'A', -1, true}, true},
+                                                  {{counts ? 'B' : 'A', -1, true}, p.az.min_deg < 0 || p.el.min_deg < 0},
                                                   {{'C', -1, true}, p.hundredths},
                                                   {{'L', -1, false}, true},
                                                   {{}, true}}};
@@ -437,30 +449,29 @@ std::optional<FuzzFrame> Generator::arrival() {
   const std::size_t goal = no_site && arrivals_aimed_[kLocateGoal] == 0
                                ? kLocateGoal
                                : least_covered(arrivals_aimed_, [&](std::size_t k) { return goals[k].available; });
-  ++arrivals_aimed_[goal];
   const Aim aim = goals[goal].aim;
   std::array<int, 3> limits{};
+  aim_met_ = true;
   const auto move = legal_move(&limits, aim);
   if (!move) return std::nullopt;
+  // A limit too far or no negative position within reach this time: a step
+  // toward it, and the aim counts a quarter.
+  arrivals_aimed_[goal] += aim_met_ ? 1.0 : 0.25;
   arriving_ = true;
   arrival_start_ = model_().now;
   at_rest_since_.reset();
   writes_since_poll_ = 0;
-  auto uniform = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_); };
   // Once at rest: what the controller says, then a jog further into a
   // limit the move ended at (§3.4: NAKed while the limit is asserted).
-  auto frame = [&](std::uint8_t c, std::string_view data) {
-    return encode_frame({FrameKind::kCommand, options_.address, c, Bytes(data.begin(), data.end())});
-  };
   // The mode the move entered (§3.17), before a write of the wait changes it.
-  queued_.push_back({frame(0x40, ""), {}, "extended status as the move begins"});
-  after_arrival_ = {{frame(0x31, ""), {}, "status after the arrival"}, {frame(0x40, ""), {}, "extended status after the arrival"}};
+  queued_.push_back({command(0x40), {}, "extended status as the move begins"});
+  after_arrival_ = {{command(0x31), {}, "status after the arrival"}, {command(0x40), {}, "extended status after the arrival"}};
   static constexpr std::string_view kIntoLimit[3][2] = {{"ES0500", "WS0500"}, {"DS0500", "US0500"}, {"OS0500", "LS0500"}};
   // The aimed limit always; another one the move ends at half the time.
   for (std::size_t a = 0; a < 3; ++a)
     if (limits[a] != 0 && (static_cast<int>(a) == aim.limit_axis || (aim.limit_axis < 0 && uniform(0, 1) == 0))) {
-      after_arrival_.push_back({frame(0x33, kIntoLimit[a][limits[a] > 0 ? 1 : 0]), {}, "jog into the limit"});
-      after_arrival_.push_back({frame(0x31, ""), {}, "status after the jog"});
+      after_arrival_.push_back({command(0x33, kIntoLimit[a][limits[a] > 0 ? 1 : 0]), {}, "jog into the limit"});
+      after_arrival_.push_back({command(0x31), {}, "status after the jog"});
       break;
     }
   return FuzzFrame{*move, {}, "sequence: arrival (" + std::string(kArrivalGoalNames[goal]) + ")"};
@@ -471,7 +482,6 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
   const Profile& p = *options_.profile;
   const ModelView view = model_();
   const Controller& m = *view.controller;
-  auto uniform = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_); };
   auto real = [&](double lo, double hi) { return lo >= hi ? lo : std::uniform_real_distribution<double>(lo, hi)(rng_); };
   // Within reach of where the model stands; a limit one time in four, a
   // negative position one time in four where the reach has one (§3.3's
@@ -485,7 +495,12 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
       const int toward = ap.max_deg - from <= from - ap.min_deg ? +1 : -1;
       const double edge = toward > 0 ? ap.max_deg : ap.min_deg;
       if (std::abs(edge - from) <= ap.fast_dps * kLimitReachSeconds) return {edge, toward};
+      if (static_cast<int>(a) == aim.limit_axis) aim_met_ = false;
       return {std::round((from + toward * reach) / step) * step, 0};
+    }
+    if (r == 1 && lo >= -step && ap.min_deg < -step && aim.negative) {  // a step toward the negatives
+      aim_met_ = false;
+      return {std::round(std::max(ap.min_deg, from - reach) / step) * step, 0};
     }
     const double t = r == 1 && lo < -step ? real(lo, std::min(hi, -step)) : real(lo, hi);
     return {std::clamp(std::round(t / step) * step, ap.min_deg, ap.max_deg), 0};
@@ -497,6 +512,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
   if (p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver) forms.push_back('B');
   if (p.hundredths) forms.push_back('C');
   if (p.pol_type != PolType::kCircular) forms.push_back('P');
+  if (aim.auto_move_only) forms.erase(forms.begin() + 1);  // not 'L'
   const char form = aim.form ? aim.form : forms[uniform(0, forms.size() - 1)];
   std::map<std::string, std::string> fields;
   std::string_view form_id;
@@ -578,7 +594,7 @@ std::optional<FuzzFrame> Generator::while_arriving() {
   }
   if (++writes_since_poll_ >= kPollEvery) {
     writes_since_poll_ = 0;
-    return FuzzFrame{encode_frame({FrameKind::kCommand, options_.address, 0x31, {}}), {}, "status while arriving"};
+    return FuzzFrame{command(0x31), {}, "status while arriving"};
   }
   // Anything that cannot move the antenna (nor start another sequence).
   for (;;) {
@@ -605,7 +621,6 @@ Bytes Generator::pick_boundary_base() {
 }
 
 Bytes Generator::boundary(Bytes f) {
-  auto uniform = [&](std::size_t lo, std::size_t hi) { return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_); };
   std::vector<FieldDescription> data;
   for (FieldDescription& fd : describe_frame(f).fields)
     if (fd.kind != fields::Kind::kHeader && fd.kind != fields::Kind::kUndescribed && fd.first >= 3 && fd.last + 2 < f.size())

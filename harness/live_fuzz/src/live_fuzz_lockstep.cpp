@@ -712,7 +712,7 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
   // reports an optional's value as maybe unset through this loop).
   const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
   const bool has_axis = axis != kNoAxis;
-  if (device_led_ && (has_axis || is_mode_byte(f.name))) {
+  if (device_led_ && (has_axis || is_mode_byte(f.name)) && !held_by_a_command(r, f)) {
     // After the stop only whether it moves: its limits are where its own
     // positions put it.
     const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !f.name.ends_with(" limits");
@@ -796,6 +796,20 @@ std::optional<std::string> Lockstep::judge_arrival_hundredths(const AckJudging& 
                      "{:.2f}-{:.2f} (ERRATA E-86, E-87). Device: {} [{}]; model: [{}]",
                      f.name, f.raw, target, *tenths, target - window, target + window, summary(r.dev),
                      fields_text(r.dev_fields), fields_text(r.model_fields.front()));
+}
+
+bool Lockstep::held_by_a_command(const AckJudging& r, const ReplyField& f) const {
+  // Within a STOW, DEPLOY or search episode the mode bytes are the device's,
+  // but not a mode a command has entered and holds at rest (a LOCATE waiting
+  // for its site, E-59; a remote move's mode): with the model's axes and the
+  // device's at rest, the current mode and state are that command's. MANUAL
+  // is not: a mode the device ran to its end leaves it there as a stop does.
+  if (f.name != "current mode" && f.name != "current state") return false;
+  const ControllerState& s = r.nominal();
+  if (device_led_mode(s.mode.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
+  for (std::size_t a = 0; a < 3; ++a)
+    if ((a == 0 ? s.az : a == 1 ? s.el : s.pol).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
+  return true;
 }
 
 std::optional<std::string> Lockstep::judge_stop_exit(const Judging& j, const AckJudging& r, const Field& f) const {

@@ -398,6 +398,32 @@ TEST(LiveFuzzLockstep, OnALineAJogRefusedAtALimitHasTheLimitBitsJudged) {
   }
 }
 
+// Within a STOW episode the mode bytes are the device's, but not the mode a
+// later command entered and holds at rest: a LOCATE without a site waits for
+// one (E-59), and a device that says it completed is a finding.
+TEST(LiveFuzzLockstep, AModeACommandHoldsAtRestIsJudgedInsideAStowEpisode) {
+  const Profile p = profile();
+  const auto request = build_request(*find_command(0x41), "data",
+                                     {{"sat name", "FUZZ LOC"}, {"longitude", "10.0"}, {"inclination", "0"}, {"band", "1"},
+                                      {"pol offset", "0.0"}, {"receive polarization", "N"}, {"position update", "A"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame stow = write(0x36, "SS"), locate{encode_request(request.value(), '2'), {}, "test"}, extended = write(0x40);
+  for (const bool faulty : {false, true}) {
+    SCOPED_TRACE(faulty ? "locate-without-site-completes" : "clean");
+    Lockstep model(p, at_ms(0));
+    Device device(p, faulty ? FaultSet{Fault::kLocateWithoutSiteCompletes} : FaultSet{});
+    auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), 20ms, device.send(f, at_ms(ms))); };
+    ASSERT_EQ(step(stow, 100), std::nullopt);
+    ASSERT_EQ(step(extended, 600), std::nullopt);  // STOW moving: the device's
+    ASSERT_EQ(step(locate, 1000), std::nullopt);
+    const auto v = step(extended, 120000);
+    ASSERT_EQ(v.has_value(), faulty) << (v ? v->message : "no finding");
+    if (v) {
+      EXPECT_EQ(v->field, "current mode") << v->message;
+    }
+  }
+}
+
 // Motion sequences go to the (motion, stop) pair and arrivals to the aim
 // least covered so far: in the first three rounds every pair and every aim
 // the profile allows has been drawn, and the reference device agrees.

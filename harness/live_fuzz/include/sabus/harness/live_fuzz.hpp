@@ -27,6 +27,7 @@
 #include <set>
 #include <array>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -141,12 +142,23 @@ class Generator {
   // extended status and, at a limit, a jog further into it (§3.4). nullopt
   // when no model or profile is set.
   std::optional<FuzzFrame> arrival();
+  // A sequence (Mutation::kSequence): an arrival, a stored write and the
+  // read that shows it, or a motion, its stop and the status after it.
+  FuzzFrame sequence();
+  FuzzFrame stored_sequence();
+  FuzzFrame motion_sequence();
+  std::vector<const Bytes*> bases_where(const std::function<bool(const Bytes&)>& keep) const;
+  Bytes command(std::uint8_t code, std::string_view data = {}) const;  // a well-formed command frame to the device
+  std::size_t uniform(std::size_t lo, std::size_t hi);                 // drawn from rng_
   // What a legal move aims at: a form ('L' a LOCATE; 0 any the profile
-  // has), an axis sent to a limit, negative targets; otherwise drawn.
+  // has), an axis sent to a limit, negative targets; otherwise drawn. Where
+  // the limit or the negatives are out of reach, a step toward them
+  // (aim_met_ false).
   struct Aim {
     char form = 0;
     int limit_axis = -1;
     bool negative = false;
+    bool auto_move_only = false;  // a 32h form, no LOCATE
   };
   // The move an arrival sequence starts with (and a motion sequence's
   // legal move or LOCATE): `limits` says which axes it aims at a limit
@@ -158,7 +170,8 @@ class Generator {
   // model was moving when its stop went out, a third otherwise (a STOW at
   // the stow position stops nothing).
   static constexpr std::size_t kArrivalGoals = 7, kMotionKinds = 7, kStopKinds = 3;
-  std::array<unsigned, kArrivalGoals> arrivals_aimed_{};
+  std::array<double, kArrivalGoals> arrivals_aimed_{};
+  bool aim_met_ = true;  // the last legal_move reached what its Aim asked
   std::array<std::array<double, kStopKinds>, kMotionKinds> motions_stopped_{};
   std::optional<std::pair<std::size_t, std::size_t>> stop_pending_;  // the motion and stop of the queued stop
   // The least covered of `scores`' entries `available` allows (three times
@@ -169,7 +182,7 @@ class Generator {
   std::optional<FuzzFrame> while_arriving();
   std::function<ModelView()> model_;
   bool arriving_ = false;
-  std::size_t motions_since_arrival_ = 2;  // motion sequences drawn since the last arrival
+  std::size_t motions_since_arrival_ = SIZE_MAX;  // motion sequences since the last arrival (none yet: one first)
   TimePoint arrival_start_{};
   std::optional<TimePoint> at_rest_since_;  // the model's axes all at rest since then
   std::size_t writes_since_poll_ = 0;
@@ -370,6 +383,7 @@ class Lockstep {
   bool judge_field(Judging& j, AckJudging& r, const ReplyField& f, std::size_t occurrence);
   // nullopt: the rule does not apply; "": it holds; otherwise the finding.
   std::optional<std::string> judge_arrival_hundredths(const AckJudging& r, const ReplyField& f) const;
+  bool held_by_a_command(const AckJudging& r, const ReplyField& f) const;
   std::optional<std::string> judge_stop_exit(const Judging& j, const AckJudging& r, const ReplyField& f) const;
   bool position_in_window(const Judging& j, const AckJudging& r, const ReplyField& f, std::size_t axis) const;
   // Motion or limit bits the timing of a line leaves open.
