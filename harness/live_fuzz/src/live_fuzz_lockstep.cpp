@@ -133,15 +133,20 @@ AxisState::Motion motion_of(const Controller& c, std::size_t axis) {
   return (axis == 0 ? s.az : axis == 1 ? s.el : s.pol).motion;
 }
 
+// The status block of a 31h or 40h reply (§3.2, §3.17), if it is one.
+std::optional<StatusBlock> status_block(const Frame& reply) {
+  const auto decoded = decode_reply(reply);
+  if (!decoded) return std::nullopt;
+  if (const auto* s = std::get_if<StatusReply>(&decoded.value())) return s->status;
+  if (const auto* s = std::get_if<ExtendedStatusReply>(&decoded.value())) return s->status;
+  return std::nullopt;
+}
+
 // Whether a status reply shows the axis moving (§3.2 bytes 36-38: jog
 // pending, movement or auto move in progress); a reply without the byte:
 // as if it does (no resync from it).
 bool device_moving(const Frame& reply, std::size_t axis) {
-  const auto decoded = decode_reply(reply);
-  if (!decoded) return true;
-  const StatusBlock* status = nullptr;
-  if (const auto* s = std::get_if<StatusReply>(&decoded.value())) status = &s->status;
-  if (const auto* s = std::get_if<ExtendedStatusReply>(&decoded.value())) status = &s->status;
+  const auto status = status_block(reply);
   if (!status) return true;
   const std::uint8_t code = (axis == 0 ? status->az_status : axis == 1 ? status->el_status : status->pol_status) & 0x0F;
   return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
@@ -445,8 +450,9 @@ struct Lockstep::Judging {
   const std::vector<Frame>& device;
   bool take_modes = false;  // the device's mode bytes, after such a move
   std::optional<Verdict> finding;
-  // §3.4: the limit (a position) of each axis the device refused a jog into,
-  // as the run that agrees with it did.
+  // The limit (a position) of each axis the device said it is at: it refused
+  // a jog into it as the run that agrees with it did (§3.4), or its status
+  // asserts it (§3.2 bytes 32-34).
   std::array<std::optional<double>, 3> limit_refused{};
   void report(FindingKind kind, std::string message) {
     if (!finding) finding = Verdict{kind, std::move(message)};
@@ -511,6 +517,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     if (runs[k].differences < runs[best].differences) best = k;
   if (runs[best].copy) bus_ = std::move(runs[best].copy);
   runs.clear();
+  note_limits_shown(j, device);
   for (std::size_t a = 0; a < 3; ++a) {
     AxisState& ax = a == 0 ? model().mutable_state().az : a == 1 ? model().mutable_state().el : model().mutable_state().pol;
     if (ax.motion != AxisState::Motion::kIdle) {
@@ -796,6 +803,21 @@ std::optional<std::string> Lockstep::judge_arrival_hundredths(const AckJudging& 
                      "{:.2f}-{:.2f} (ERRATA E-86, E-87). Device: {} [{}]; model: [{}]",
                      f.name, f.raw, target, *tenths, target - window, target + window, summary(r.dev),
                      fields_text(r.dev_fields), fields_text(r.model_fields.front()));
+}
+
+void Lockstep::note_limits_shown(Judging& j, const std::vector<Frame>& device) const {
+  // §3.2 bytes 32-34: a device at rest whose status asserts a limit of an
+  // axis says the axis is at that limit (a jog into it is then NAKed, §3.4),
+  // as a refused jog does. Not within a STOW, DEPLOY or search episode,
+  // whose positions are the device's.
+  if (device_led_) return;
+  for (const Frame& dev : device)
+    if (const auto st = status_block(dev); st && form_of_reply(dev) == ReplyForm::kAck)
+      for (std::size_t a = 0; a < 3; ++a) {
+        const std::uint8_t bits = a == 0 ? st->az_limits : a == 1 ? st->el_limits : st->pol_limits;
+        if (device_moving(dev, a) || (bits & 0x06) == 0 || (bits & 0x06) == 0x06) continue;
+        j.limit_refused[a] = (bits & 0x04) ? axis_profile(a).max_deg : axis_profile(a).min_deg;
+      }
 }
 
 bool Lockstep::held_by_a_command(const AckJudging& r, const ReplyField& f) const {

@@ -398,6 +398,31 @@ TEST(LiveFuzzLockstep, OnALineAJogRefusedAtALimitHasTheLimitBitsJudged) {
   }
 }
 
+// §3.2 bytes 32-34 on a line: a device at rest whose status asserts a limit
+// has said its axis is there, and a jog further into it must be NAKed
+// (§3.4), though a model nudged a hair off the limit would take it.
+TEST(LiveFuzzLockstep, OnALineALimitTheStatusAssertsRefusesAJogIntoIt) {
+  Profile p = profile();
+  p.az.min_deg = -20;
+  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "-20.0"}, {"elevation", "45.0"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), into = write(0x33, "ES0500");
+  for (const bool faulty : {false, true}) {
+    SCOPED_TRACE(faulty ? "jog-into-limit-acked" : "clean");
+    Lockstep model(p, at_ms(0));
+    Device device(p, faulty ? FaultSet{Fault::kJogIntoLimitAcked} : FaultSet{});
+    auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), 50ms, device.send(f, at_ms(ms))); };
+    ASSERT_EQ(step(move, 100), std::nullopt);
+    ASSERT_EQ(step(status, 60000), std::nullopt);  // at rest, the limit asserted
+    const auto v = step(into, 60100);
+    ASSERT_EQ(v.has_value(), faulty) << (v ? v->message : "no finding");
+    if (v) {
+      EXPECT_EQ(v->kind, FindingKind::kNakRule);
+      EXPECT_NE(v->message.find("JogIntoLimit"), std::string::npos) << v->message;
+    }
+  }
+}
+
 // Within a STOW episode the mode bytes are the device's, but not the mode a
 // later command entered and holds at rest: a LOCATE without a site waits for
 // one (E-59), and a device that says it completed is a finding.

@@ -384,6 +384,7 @@ class Lockstep {
   // nullopt: the rule does not apply; "": it holds; otherwise the finding.
   std::optional<std::string> judge_arrival_hundredths(const AckJudging& r, const ReplyField& f) const;
   bool held_by_a_command(const AckJudging& r, const ReplyField& f) const;
+  void note_limits_shown(Judging& j, const std::vector<Frame>& device) const;
   std::optional<std::string> judge_stop_exit(const Judging& j, const AckJudging& r, const ReplyField& f) const;
   bool position_in_window(const Judging& j, const AckJudging& r, const ReplyField& f, std::size_t axis) const;
   // Motion or limit bits the timing of a line leaves open.
