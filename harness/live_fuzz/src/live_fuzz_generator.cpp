@@ -94,7 +94,7 @@ constexpr std::string_view kMotionKindNames[] = {"legal move", "jog", "search", 
 constexpr std::string_view kStopNames[] = {"33h X", "36h K A", "48h A"};
 // What an arrival aims at (Generator::arrival's goals, in order).
 constexpr std::string_view kArrivalGoalNames[] = {"azimuth limit", "elevation limit", "polarization limit",
-                                                  "negative target", "2C hundredths", "LOCATE", "any target"};
+                                                  "negative target", "2C hundredths", "LOCATE"};
 
 // A table of scores read as one row after the other.
 template <typename Row, std::size_t N>
@@ -119,6 +119,8 @@ constexpr std::string_view kNumbers[] = {"0",     "-0",     "0.0",   "-0.1",   "
 // the model to be at rest this long, and gives up after this long.
 constexpr double kReachSeconds = 4.0;
 constexpr std::size_t kMotionsPerArrival = 3;
+// How long after a motion's stop its last status is asked.
+constexpr std::chrono::milliseconds kStopSettles{400};
 constexpr double kLimitReachSeconds = 15.0;  // a limit: this far
 constexpr Duration kRestFor = std::chrono::milliseconds(500);
 constexpr Duration kArrivalLimit = std::chrono::seconds(30);
@@ -318,7 +320,8 @@ FuzzFrame Generator::make(Mutation m) {
 }
 
 FuzzFrame Generator::sequence() {
-  const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 2) == 0);
+  // Half stored writes: they take no time, a motion or an arrival seconds.
+  const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 1) == 0);
   // An arrival after every three motions with their stops: an arrival
   // takes seconds, and a motion sequence waits while one runs.
   if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= kMotionsPerArrival)
@@ -384,12 +387,12 @@ FuzzFrame Generator::motion_sequence() {
   else if (f.size() > 5 && f[2] == 0x36 && f[3] == 'A') f = relrc(with_byte(std::move(f), 4, pick({'E', 'F'})));  // §3.7 a search
   else if (f.size() > 5 && f[2] == 0x36 && (f[3] == 'S' || f[3] == 'D')) f = relrc(with_byte(std::move(f), 4, f[3]));  // 'SS', 'DD'
   else if (is_jog(f)) {
-    // A jog that lasts (§3.4: 4 digits of milliseconds), and half the
-    // time one about another axis after it, which ends the first.
+    // A jog that lasts (§3.4: 4 digits of milliseconds), and three times in
+    // four one about another axis after it, which ends the first.
     static constexpr std::string_view kDirections = "EWDUOL";  // two per axis: az, el, pol
     f = relrc(with_digits(std::move(f), 5, uniform(1000, 4000)));
     const std::size_t axis = kDirections.find(static_cast<char>(f[3])) / 2;
-    if (axis < 3 && uniform(0, 1) == 0) {
+    if (axis < 3 && uniform(0, 3) > 0) {
       const std::size_t other = (axis + uniform(1, 2)) % 3;
       Bytes g = relrc(with_byte(f, 3, static_cast<std::uint8_t>(kDirections[other * 2 + uniform(0, 1)])));
       queued_.push_back({command(0x31), {}, "status while jogging", std::chrono::milliseconds(uniform(100, 500))});
@@ -404,6 +407,10 @@ FuzzFrame Generator::motion_sequence() {
   queued_.push_back({command(stop.code, stop.data), {}, "stop"});
   queued_.push_back({command(0x31), {}, "status after the stop"});
   queued_.push_back({command(0x40), {}, "extended status after the stop"});
+  // A device that goes on after a stop shows it in its positions once they
+  // are beyond the timing's window (a status right after the stop may still
+  // see a legal device ramping down): a status a while later.
+  queued_.push_back({command(0x31), {}, "status once the stop has settled", kStopSettles});
   return {std::move(f), {}, "sequence: motion (" + std::string(kMotionKindNames[stop_pending_->first]) + ", stopped by " +
              std::string(kStopNames[stop_pending_->second]) + ")"};
 }
@@ -438,8 +445,7 @@ std::optional<FuzzFrame> Generator::arrival() {
                                                   {{'P', 2, false}, p.pol_type != PolType::kCircular},
                                                   {{counts ? 'B' : 'A', -1, true}, p.az.min_deg < 0 || p.el.min_deg < 0},
                                                   {{'C', -1, true}, p.hundredths},
-                                                  {{'L', -1, false}, true},
-                                                  {{}, true}}};
+                                                  {{'L', -1, false}, true}}};
   // While no site is known, a LOCATE waits for one (E-59): a state only
   // this part of a session shows (a navigation write may give a site
   // later), so the first arrival goes there.

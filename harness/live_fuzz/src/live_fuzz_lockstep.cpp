@@ -294,6 +294,7 @@ void Lockstep::rebuild(TimePoint now) {
   settle_until_ = {};
   half_turn_ = false;
   at_limit_agreed_ = {};
+  uncertainty_since_rest_ = Duration{0};
   moving_to_ = arrived_at_ = {};
   settle_mode_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
@@ -474,6 +475,7 @@ struct Lockstep::AckJudging {
 
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                       const std::vector<Frame>& device) {
+  if (uncertainty > Duration{0}) uncertainty = uncertainty_since_rest_ = std::max(uncertainty_since_rest_, uncertainty);
   const TimePoint at = std::max(sent_at, last_);
   cuts_ = frame_cuts(frame);
   // In-process the device executes a whole write at one instant, as the model.
@@ -537,6 +539,13 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
         ++coverage_.resyncs;
       }
   if (!j.finding) keep_in_step(device, uncertainty);
+  // Both at rest (the device's status says so): the positions are in step
+  // again, and earlier timing no longer matters.
+  bool model_at_rest = true, device_at_rest = false;
+  for (std::size_t a = 0; a < 3; ++a) model_at_rest = model_at_rest && motion_of(model(), a) == AxisState::Motion::kIdle;
+  for (const Frame& dev : device)
+    device_at_rest = device_at_rest || (status_block(dev) && !device_moving(dev, 0) && !device_moving(dev, 1) && !device_moving(dev, 2));
+  if (model_at_rest && device_at_rest) uncertainty_since_rest_ = Duration{0};
   return std::move(j.finding);
 }
 

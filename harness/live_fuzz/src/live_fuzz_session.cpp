@@ -34,7 +34,7 @@ Session::Session(Transport& transport, const Profile& profile, SessionOptions op
 
 Duration Session::timing_uncertainty() const {
   if (transport_.in_process()) return Duration{0};
-  return latency_max_ + std::chrono::milliseconds(5);
+  return latency_ + std::chrono::milliseconds(5);
 }
 
 std::optional<Verdict> Session::lockstep_step(const FuzzFrame& frame, const Observation& seen) {
@@ -101,7 +101,7 @@ Observation Session::exchange(const FuzzFrame& frame, std::size_t expected_repli
   rx.finish(sink);
   // The device executed the write between sent_at_ and its first reply byte
   // (measured, not the request's wire time at the baud rate: a pty has none).
-  if (first_byte_at_) latency_max_ = std::max(latency_max_, std::chrono::duration_cast<Duration>(*first_byte_at_ - sent_at_));
+  latency_ = first_byte_at_ ? std::chrono::duration_cast<Duration>(*first_byte_at_ - sent_at_) : Duration{0};
   seen.replies = std::move(sink.frames);
   seen.garbage = std::move(sink.garbage);
   for (const Frame& f : seen.replies) {

@@ -169,7 +169,7 @@ class Generator {
   // values go to the rules not yet fired. A motion counts in full where the
   // model was moving when its stop went out, a third otherwise (a STOW at
   // the stow position stops nothing).
-  static constexpr std::size_t kArrivalGoals = 7, kMotionKinds = 7, kStopKinds = 3;
+  static constexpr std::size_t kArrivalGoals = 6, kMotionKinds = 7, kStopKinds = 3;
   std::array<double, kArrivalGoals> arrivals_aimed_{};
   bool aim_met_ = true;  // the last legal_move reached what its Aim asked
   std::array<std::array<double, kStopKinds>, kMotionKinds> motions_stopped_{};
@@ -412,6 +412,10 @@ class Lockstep {
   // At a limit by the device's own word (it NAKed a jog into it, §3.4):
   // its limit bits are compared at rest, on a line too.
   std::array<bool, 3> at_limit_agreed_{};
+  // The widest timing uncertainty of the writes since the model and the
+  // device were last both at rest: a motion's position carries the error of
+  // the write that started it as well as the one that reads it.
+  Duration uncertainty_since_rest_{0};
   // A §3.3 auto move's target while the model's axis runs it, and once it
   // has arrived there and rests: its hundredths are then judged on a line
   // too (ERRATA E-86: within the arrival window of the target).
@@ -522,8 +526,9 @@ class Session {
   Transport& transport() { return transport_; }
   // The lockstep oracle, or nullptr when SessionOptions::lockstep is off.
   const Lockstep* lockstep() const { return lockstep_ ? &*lockstep_ : nullptr; }
-  // How far the device's time of execution can be from the time a write was
-  // sent: 0 in-process, else the longest reply latency seen and 5 ms.
+  // How far the device's time of execution of the last write can be from
+  // the time the model takes: 0 in-process, else that write's reply
+  // latency and 5 ms (the lockstep oracle adds up those of a motion).
   Duration timing_uncertainty() const;
 
  private:
@@ -537,7 +542,7 @@ class Session {
   std::optional<Lockstep> lockstep_;
   TimePoint sent_at_{};
   std::optional<TimePoint> first_byte_at_;  // of the last exchange's replies
-  Duration latency_max_{0};
+  Duration latency_{0};  // of the last exchange: sent to its first reply byte
   Counts counts_;
   TimePoint last_write_{};
   std::optional<Frame> first_device_type_;
