@@ -122,7 +122,7 @@ constexpr std::size_t kMotionsPerArrival = 3;
 // How long after a motion's stop its last status is asked.
 constexpr std::chrono::milliseconds kStopSettles{400};
 constexpr double kLimitReachSeconds = 15.0;  // a limit: this far
-constexpr Duration kRestFor = std::chrono::milliseconds(500);
+constexpr Duration kRestFor = std::chrono::milliseconds(300);
 constexpr Duration kArrivalLimit = std::chrono::seconds(30);
 // §3.23 NOTE: a navigation write deletes the STORE list, which the reads
 // and counts of §3.6 need entries in: for this long from the session's start
@@ -402,7 +402,7 @@ FuzzFrame Generator::motion_sequence() {
   // The first poll after a while: the motion has begun when it is
   // stopped (a STOW, DEPLOY or search is judged by how it stops).
   for (std::size_t k = uniform(1, 2), first = 1; k > 0; --k, first = 0)
-    queued_.push_back({command(0x31), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 1500) : 0)});
+    queued_.push_back({command(0x31), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 800) : 0)});
   const Stop& stop = kStops[stop_pending_->second];
   queued_.push_back({command(stop.code, stop.data), {}, "stop"});
   queued_.push_back({command(0x31), {}, "status after the stop"});
@@ -433,7 +433,8 @@ std::size_t Generator::uniform(std::size_t lo, std::size_t hi) {
 std::optional<FuzzFrame> Generator::arrival() {
   if (!model_ || !options_.profile) return std::nullopt;
   // Aimed at: each limit, negative targets in the counts' form (§3.3 2B
-  // below the offset) or else 2A's, 2C's hundredths, a LOCATE, anything.
+  // below the offset) or else 2A's, 2C's hundredths, a LOCATE
+  // (kArrivalGoalNames).
   const Profile& p = *options_.profile;
   const bool counts = p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver;
   struct Goal {
@@ -450,6 +451,7 @@ std::optional<FuzzFrame> Generator::arrival() {
   // this part of a session shows (a navigation write may give a site
   // later), so the first arrival goes there.
   constexpr std::size_t kLocateGoal = 5;
+  static_assert(kArrivalGoalNames[kLocateGoal] == "LOCATE");
   const bool no_site =
       !look::site_of(model_().controller->state().navigation, p.az_sensor, p.fluxgate_heading).site.has_value();
   const std::size_t goal = no_site && arrivals_aimed_[kLocateGoal] == 0
@@ -462,7 +464,9 @@ std::optional<FuzzFrame> Generator::arrival() {
   if (!move) return std::nullopt;
   // A limit too far or no negative position within reach this time: a step
   // toward it, and the aim counts a quarter.
-  arrivals_aimed_[goal] += aim_met_ ? 1.0 : 0.25;
+  // A LOCATE counts half: its geometry (site, heading, hemispheres, range,
+  // E-59 to E-82) has the most rules of any aim, so it comes twice as often.
+  arrivals_aimed_[goal] += (aim_met_ ? 1.0 : 0.25) * (goal == kLocateGoal ? 0.5 : 1.0);
   arriving_ = true;
   arrival_start_ = model_().now;
   at_rest_since_.reset();
@@ -518,7 +522,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
   if (p.az_sensor == AzSensor::kPulse || p.az_sensor == AzSensor::kResolver) forms.push_back('B');
   if (p.hundredths) forms.push_back('C');
   if (p.pol_type != PolType::kCircular) forms.push_back('P');
-  if (aim.auto_move_only) forms.erase(forms.begin() + 1);  // not 'L'
+  if (aim.auto_move_only) std::erase(forms, 'L');
   const char form = aim.form ? aim.form : forms[uniform(0, forms.size() - 1)];
   std::map<std::string, std::string> fields;
   std::string_view form_id;

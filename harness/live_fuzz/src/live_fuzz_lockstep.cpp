@@ -801,8 +801,11 @@ std::optional<std::string> Lockstep::judge_arrival_hundredths(const AckJudging& 
   const auto x = extended_status(r.dev);
   bool heading = false;
   const auto tenths = position_value(r.dev, *a == 0 ? "azimuth" : "elevation", &heading);
+  // The axis still where it arrived (not moved since by a motion between
+  // two writes, nor taken a tenth from the device's reading).
+  const AxisState& ax = *a == 0 ? r.nominal().az : r.nominal().el;
   if (!x || !tenths || heading || !profile_.hundredths || device_led_ || !arrived_at_[*a] ||
-      (*a == 0 ? r.nominal().az : r.nominal().el).motion != AxisState::Motion::kIdle || device_moving(r.dev, *a))
+      ax.motion != AxisState::Motion::kIdle || std::abs(ax.position - arrived_position_[*a]) > 1e-6 || device_moving(r.dev, *a))
     return std::nullopt;
   const double target = *arrived_at_[*a];
   const double window = std::max(0.0, axis_profile(*a).tolerance_deg - 0.1) + 0.01;
@@ -886,16 +889,26 @@ bool Lockstep::motion_bits_unjudged(const Judging& j, const AckJudging& r, const
   // is judged, and the earlier and later runs give the line's timing.
   const AxisProfile& ap = axis_profile(axis);
   const AxisState& ax = axis == 0 ? r.nominal().az : axis == 1 ? r.nominal().el : r.nominal().pol;
+  // A motion that reaches a limit (or the stow position) in its direction
+  // within the window ends there as an auto move at its aim does: a jog
+  // into a limit a few milliseconds earlier in the device.
+  const double window = drift_window(ap, j.uncertainty);
+  const double to_limit = ax.direction > 0   ? ap.max_deg - ax.position
+                          : ax.direction < 0 ? ax.position - ap.min_deg
+                                             : window + 1;
+  const bool to_stow = ap.has_stow_limit && ax.direction != 0 && (ap.stow_deg - ax.position) * ax.direction >= 0 &&
+                       std::abs(ap.stow_deg - ax.position) <= window;
   const bool short_move = ax.motion == AxisState::Motion::kIdle || ax.motion == AxisState::Motion::kStopping ||
                           ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
-                           std::abs(ax.aim - ax.position) <= drift_window(ap, j.uncertainty));
+                           std::abs(ax.aim - ax.position) <= window) ||
+                          to_limit <= window || to_stow;
   const bool limit_bits = f.name.ends_with(" limits");
   const bool agreed_limit = limit_bits && at_limit_agreed_[axis] && ax.motion == AxisState::Motion::kIdle && at_a_limit(ap, ax.position);
   if (j.inexact && short_move && !agreed_limit) return true;
   // An axis a hair from a limit or the stow position in the model may be at
   // it in the device, or the reverse (§3.2 bytes 32-34): judged only where
   // the device agreed it is at the limit.
-  return limit_bits && !agreed_limit && near_a_limit(ap, ax.position, drift_window(ap, j.uncertainty));
+  return limit_bits && !agreed_limit && near_a_limit(ap, ax.position, window);
 }
 
 void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertainty) {
@@ -947,7 +960,12 @@ void Lockstep::note_arrivals() {
       moving_to_[a] = ax.target;
       arrived_at_[a].reset();
     } else if (ax.motion == AxisState::Motion::kIdle) {
-      if (moving_to_[a] && std::abs(ax.position - ax.aim) < 1e-6) arrived_at_[a] = moving_to_[a];
+      // The move's target now: a later move within the deadband of where the
+      // axis stood ended at once (ControllerState's aim) and set its own.
+      if (moving_to_[a] && std::abs(ax.position - ax.aim) < 1e-6) {
+        arrived_at_[a] = ax.target;
+        arrived_position_[a] = ax.position;
+      }
       moving_to_[a].reset();
     } else {
       moving_to_[a] = arrived_at_[a] = std::nullopt;

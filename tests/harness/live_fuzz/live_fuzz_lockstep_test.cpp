@@ -423,6 +423,31 @@ TEST(LiveFuzzLockstep, OnALineALimitTheStatusAssertsRefusesAJogIntoIt) {
   }
 }
 
+// On a line a jog that reaches a limit within the timing's window may have
+// ended there in the device while the model still moves: its motion bits
+// are not judged then (a clean device executed it a few milliseconds
+// earlier), and its positions still are.
+TEST(LiveFuzzLockstep, OnALineAJogEndingAtALimitWithinTheWindowIsNoFinding) {
+  Profile p = profile();
+  p.el.min_deg = 0;
+  p.el.fast_dps = 6;
+  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "0.0"}, {"elevation", "0.3"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), down = write(0x33, "DF2000");
+  Lockstep model(p, at_ms(0));
+  Device device(p);
+  ASSERT_EQ(model.step(move, at_ms(100), 20ms, device.send(move, at_ms(100))), std::nullopt);
+  ASSERT_EQ(model.step(status, at_ms(20000), 20ms, device.send(status, at_ms(20000))), std::nullopt);
+  // The device jogs 20 ms before the model's time for it (1 ms either
+  // side): at 0.0 and at rest 53 ms later, when every run of the model
+  // (nudged 0.08 deg down too) still moves, the nominal one 0.1 deg short
+  // of the limit (inside the window).
+  ASSERT_EQ(model.step(down, at_ms(20100), 1ms, device.send(down, at_ms(20080))), std::nullopt);
+  const auto v = model.step(status, at_ms(20133), 1ms, device.send(status, at_ms(20133)));
+  EXPECT_EQ(v, std::nullopt) << v->message;
+  EXPECT_NE(model.model().state().el.motion, AxisState::Motion::kIdle);
+}
+
 // Within a STOW episode the mode bytes are the device's, but not the mode a
 // later command entered and holds at rest: a LOCATE without a site waits for
 // one (E-59), and a device that says it completed is a finding.

@@ -420,6 +420,7 @@ class Lockstep {
   // has arrived there and rests: its hundredths are then judged on a line
   // too (ERRATA E-86: within the arrival window of the target).
   std::array<std::optional<double>, 3> moving_to_{}, arrived_at_{};
+  std::array<double, 3> arrived_position_{};  // the model's position then: judged only while it stands there
   void note_arrivals();
   TimePoint settle_until_{};             // mode bytes taken from the device until then
   ModeState settle_mode_{};              // the model's while that move still ran
