@@ -272,19 +272,43 @@ TEST(LiveFuzzLockstep, RandomLegalProfilesGiveNoFinding) {
   }
 }
 
+// A session over the in-process reference controller, motion allowed, and
+// a generator that follows its lockstep model, as sabus fuzz --sim sets
+// them up.
+struct ModelledSession {
+  ModelledSession(const Profile& profile, std::uint64_t seed)
+      : p(profile), device(make_in_process_transport({p})), session(*device, p, motion_allowed()),
+        generator(GeneratorOptions{p.address, true, false, true, {}, {}, &p}, seed), l(session.lockstep()) {
+    generator.set_model([this] { return Generator::ModelView{&l->model(), l->now()}; });
+  }
+  static SessionOptions motion_allowed() {
+    SessionOptions o;
+    o.allow_motion = true;
+    return o;
+  }
+  // As sabus fuzz does: a write the device must ignore is followed by a
+  // status poll.
+  std::optional<Verdict> step(FuzzFrame f) {
+    for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+      const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
+      f.chars.insert(f.chars.end(), poll.begin(), poll.end());
+    }
+    return session.step(f);
+  }
+  Profile p;
+  std::unique_ptr<InProcessTransport> device;
+  Session session;
+  Generator generator;
+  const Lockstep* l;
+};
+
 // An arrival sequence (Generator::arrival): a move, then writes that cannot
 // move anything while the model moves, then, once it rests, status and
 // extended status; the reference device agrees all along.
 TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
-  const Profile p = profile();
-  auto device = make_in_process_transport({p});
-  SessionOptions o;
-  o.allow_motion = true;
-  Session session(*device, p, o);
-  GeneratorOptions go{p.address, true, false, true, {}, {}, &p};
-  Generator generator(go, 3);
-  const Lockstep* l = session.lockstep();
-  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  ModelledSession m(profile(), 3);
+  const Profile& p = m.p;
+  const Lockstep* l = m.l;
   auto at_rest = [&] {
     const ControllerState& s = l->model().state();
     return s.az.motion == AxisState::Motion::kIdle && s.el.motion == AxisState::Motion::kIdle &&
@@ -296,7 +320,7 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
   TimePoint start{};
   std::string last;
   for (int i = 0; i < 60000 && arrivals < 4; ++i) {
-    FuzzFrame f = generator.next();
+    FuzzFrame f = m.generator.next();
     if (f.what.starts_with("sequence: arrival")) {
       arriving = true;
       start = l->now();
@@ -321,11 +345,7 @@ TEST(LiveFuzzLockstep, AnArrivalWaitsForTheModelToRestThenAsksWhereItIs) {
       EXPECT_EQ(f.what, "extended status after the arrival");
     }
     last = f.what;
-    for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
-      const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
-      f.chars.insert(f.chars.end(), poll.begin(), poll.end());
-    }
-    const auto v = session.step(f);
+    const auto v = m.step(f);
     ASSERT_FALSE(v) << "write " << i << " (" << f.what << "): " << v->message;
   }
   EXPECT_EQ(arrivals, 4u);
@@ -478,26 +498,15 @@ TEST(LiveFuzzLockstep, AModeACommandHoldsAtRestIsJudgedInsideAStowEpisode) {
 // least covered so far: in the first three rounds every pair and every aim
 // the profile allows has been drawn, and the reference device agrees.
 TEST(LiveFuzzLockstep, MotionsAndArrivalsGoToWhatIsLeastCovered) {
-  const Profile p = profile();
-  auto device = make_in_process_transport({p});
-  SessionOptions o;
-  o.allow_motion = true;
-  Session session(*device, p, o);
-  GeneratorOptions go{p.address, true, false, true, {}, {}, &p};
-  Generator generator(go, 11);
-  const Lockstep* l = session.lockstep();
-  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  ModelledSession m(profile(), 11);
+  const Profile& p = m.p;
   std::map<std::string, int> motions, arrivals;
   std::size_t motion_count = 0, arrival_count = 0;
   for (int i = 0; i < 200000 && (motion_count < 3 * 21 || arrival_count < 3 * 6); ++i) {
-    FuzzFrame f = generator.next();
+    FuzzFrame f = m.generator.next();
     if (f.what.starts_with("sequence: motion (")) ++motions[f.what], ++motion_count;
     if (f.what.starts_with("sequence: arrival (")) ++arrivals[f.what], ++arrival_count;
-    for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
-      const Bytes poll = encode_frame({FrameKind::kCommand, p.address, 0x31, {}});
-      f.chars.insert(f.chars.end(), poll.begin(), poll.end());
-    }
-    const auto v = session.step(f);
+    const auto v = m.step(f);
     ASSERT_FALSE(v) << "write " << i << " (" << f.what << "): " << v->message;
   }
   ASSERT_GE(motion_count, 3u * 21);
