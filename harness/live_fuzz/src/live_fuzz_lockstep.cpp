@@ -889,6 +889,10 @@ bool Lockstep::motion_bits_unjudged(const Judging& j, const AckJudging& r, const
   // is judged, and the earlier and later runs give the line's timing.
   const AxisProfile& ap = axis_profile(axis);
   const AxisState& ax = axis == 0 ? r.nominal().az : axis == 1 ? r.nominal().el : r.nominal().pol;
+  // The model's state is the one after the whole write: of a reply before
+  // the last of a burst it says nothing (a later frame of the burst may have
+  // started, ended or turned the motion), so those bits are left on a line.
+  if (j.inexact && r.index + 1 < r.same.front()->replies.size()) return true;
   // A motion that reaches a limit (or the stow position) in its direction
   // within the window ends there as an auto move at its aim does: a jog
   // into a limit a few milliseconds earlier in the device.
