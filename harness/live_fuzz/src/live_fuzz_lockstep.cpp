@@ -519,6 +519,11 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     if (runs[k].differences < runs[best].differences) best = k;
   if (runs[best].copy) bus_ = std::move(runs[best].copy);
   runs.clear();
+  // The device's word on a limit holds for the status that follows it: a
+  // status block compared its limit bits, and what stands after it is its
+  // own word again (note_limits_shown).
+  for (const Frame& dev : device)
+    if (status_block(dev) && form_of_reply(dev) == ReplyForm::kAck) at_limit_agreed_ = {};
   note_limits_shown(j, device);
   for (std::size_t a = 0; a < 3; ++a) {
     AxisState& ax = a == 0 ? model().mutable_state().az : a == 1 ? model().mutable_state().el : model().mutable_state().pol;
@@ -678,9 +683,11 @@ bool Lockstep::judge_reply(Judging& j, std::size_t i) {
   if (dev_form == ReplyForm::kNak) {
     const auto& rule = same.front()->rules[i];
     if (rule) coverage_.rules_fired.insert(*rule);
-    // §3.4: the device refused a jog into a limit, as the model did: it
-    // has the axis at that limit too, so its limit bits must say so.
-    if (rule && *rule == name(NakRule::kJogIntoLimit)) {
+    // §3.4: the device refused a jog into a limit, as the model did, where a
+    // run with the axis a hair off the limit takes it: only the limit
+    // explains the NAK (a frame every run NAKs may be refused for another
+    // reason too), so the device has the axis at that limit.
+    if (rule && *rule == name(NakRule::kJogIntoLimit) && same.size() < with.size()) {
       const ControllerState& s = same.front()->bus->controller(0).state();
       for (std::size_t a = 0; a < 3; ++a) {
         const AxisState& ax = a == 0 ? s.az : a == 1 ? s.el : s.pol;
