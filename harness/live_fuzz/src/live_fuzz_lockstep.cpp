@@ -155,11 +155,15 @@ bool device_moving(const Frame& reply, std::size_t axis) {
 // Whether a reply's status block shows any axis moving; nullopt for a reply
 // without one.
 std::optional<bool> shows_moving(const Frame& reply) {
-  const auto decoded = decode_reply(reply);
-  if (!decoded) return std::nullopt;
-  if (!std::holds_alternative<StatusReply>(decoded.value()) && !std::holds_alternative<ExtendedStatusReply>(decoded.value()))
-    return std::nullopt;
+  if (!status_block(reply)) return std::nullopt;
   return device_moving(reply, 0) || device_moving(reply, 1) || device_moving(reply, 2);
+}
+
+// Whether every axis of the controller is at rest.
+bool all_at_rest(const Controller& c) {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (motion_of(c, a) != AxisState::Motion::kIdle) return false;
+  return true;
 }
 
 // An exit status by which a stop ends a mode (§3.17 exit lists): the
@@ -546,11 +550,9 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   if (!j.finding) keep_in_step(device, uncertainty);
   // Both at rest (the device's status says so): the positions are in step
   // again, and earlier timing no longer matters.
-  bool model_at_rest = true, device_at_rest = false;
-  for (std::size_t a = 0; a < 3; ++a) model_at_rest = model_at_rest && motion_of(model(), a) == AxisState::Motion::kIdle;
-  for (const Frame& dev : device)
-    device_at_rest = device_at_rest || (status_block(dev) && !device_moving(dev, 0) && !device_moving(dev, 1) && !device_moving(dev, 2));
-  if (model_at_rest && device_at_rest) uncertainty_since_rest_ = Duration{0};
+  const bool device_at_rest =
+      std::any_of(device.begin(), device.end(), [](const Frame& dev) { return shows_moving(dev) == false; });
+  if (all_at_rest(model()) && device_at_rest) uncertainty_since_rest_ = Duration{0};
   return std::move(j.finding);
 }
 
@@ -942,13 +944,11 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   // Judged again once the model is out of such a mode and at rest, and the
   // device's extended status shows every axis at rest.
   if (!device_led_ || device_led_mode(m.state().mode.mode)) return;
-  bool model_at_rest = true, device_at_rest = false;
-  for (std::size_t a = 0; a < 3; ++a) model_at_rest = model_at_rest && motion_of(m, a) == AxisState::Motion::kIdle;
   // A 40h reply: its positions taken above and its mode bytes with them.
-  for (const Frame& dev : device)
-    device_at_rest = device_at_rest || (device_mode(dev).has_value() && !device_moving(dev, 0) && !device_moving(dev, 1) &&
-                                        !device_moving(dev, 2));
-  if (!model_at_rest || !device_at_rest) return;
+  const bool device_at_rest = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
+    return device_mode(dev).has_value() && shows_moving(dev) == false;
+  });
+  if (!all_at_rest(m) || !device_at_rest) return;
   device_led_ = false;
   stopped_out_ = handed_over_ = moving_when_stopped_ = false;
   for (const Frame& dev : device)  // how the device says it ended (judged above)
