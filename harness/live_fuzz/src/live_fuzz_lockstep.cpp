@@ -128,9 +128,15 @@ std::string field_key(std::uint8_t command, std::string_view field) {
   return describe_byte(command).substr(0, 4) + " " + std::string(field);
 }
 
+// The state of an axis (0 azimuth, 1 elevation, 2 polarization).
+template <typename State>
+auto& axis_state(State& s, std::size_t axis) {
+  return axis == 0 ? s.az : axis == 1 ? s.el : s.pol;
+}
+
 AxisState::Motion motion_of(const Controller& c, std::size_t axis) {
   const ControllerState& s = c.state();
-  return (axis == 0 ? s.az : axis == 1 ? s.el : s.pol).motion;
+  return axis_state(s, axis).motion;
 }
 
 // The status block of a 31h or 40h reply (§3.2, §3.17), if it is one.
@@ -197,6 +203,13 @@ std::optional<std::uint8_t> device_mode(const Frame& reply) {
 
 // The §3.17 mode bytes of a 40h reply, as the model keeps them.
 ModeState mode_state(const ExtendedStatusReply& x) { return ModeState{x.mode, x.state, x.last_mode, x.exit_status}; }
+
+// Whether a command may move the antenna in any of its forms (the catalog's
+// effects).
+bool moves_antenna(std::uint8_t code) {
+  const CommandInfo* info = find_command(code);
+  return info && info->effects().moves_antenna;
+}
 
 // Whether `position` is at a limit of the axis (a move or jog there ends on it).
 bool at_a_limit(const AxisProfile& a, double position) {
@@ -299,7 +312,8 @@ void Lockstep::rebuild(TimePoint now) {
   half_turn_ = false;
   at_limit_agreed_ = {};
   uncertainty_since_rest_ = Duration{0};
-  moving_to_ = arrived_at_ = {};
+  auto_moving_ = {};
+  arrived_at_ = {};
   settle_mode_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
@@ -409,7 +423,7 @@ void Lockstep::take_positions(const std::vector<Frame>& device, const std::funct
       const double distance = difference(*dv, *reading, heading);
       const long delta = std::lround(distance * 10);
       if (!take(*axis, distance) || delta == 0) continue;
-      AxisState& s = *axis == 0 ? m.mutable_state().az : *axis == 1 ? m.mutable_state().el : m.mutable_state().pol;
+      AxisState& s = axis_state(m.mutable_state(), *axis);
       s.position += delta / 10.0;
       drifted_[*axis] = true;
       ++coverage_.resyncs;
@@ -526,11 +540,16 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // The device's word on a limit holds for the status that follows it: a
   // status block compared its limit bits, and what stands after it is its
   // own word again (note_limits_shown).
+  // A command the device took that moves the antenna (§3.3, §3.4, §3.7,
+  // §3.18) may have taken its axis a hair off, even one the model keeps at
+  // rest (a move to where it stands): the word ends with it.
   for (const Frame& dev : device)
-    if (status_block(dev) && form_of_reply(dev) == ReplyForm::kAck) at_limit_agreed_ = {};
+    if (form_of_reply(dev) == ReplyForm::kAck &&
+        (status_block(dev) || moves_antenna(dev.command)))
+      at_limit_agreed_ = {};
   note_limits_shown(j, device);
   for (std::size_t a = 0; a < 3; ++a) {
-    AxisState& ax = a == 0 ? model().mutable_state().az : a == 1 ? model().mutable_state().el : model().mutable_state().pol;
+    AxisState& ax = axis_state(model().mutable_state(), a);
     if (ax.motion != AxisState::Motion::kIdle) {
       at_limit_agreed_[a] = false;
     } else if (j.limit_refused[a] && std::abs(ax.position - *j.limit_refused[a]) <= drift_window(axis_profile(a), uncertainty)) {
@@ -572,13 +591,22 @@ std::vector<Lockstep::Run> Lockstep::runs_of(const FuzzFrame& frame, TimePoint a
     // frames run microseconds apart in a device, 1 ms apart in the model)
     // takes a device's axis a hair off it where the model's stays (three
     // random profiles over a pty gave JogIntoLimit findings without this).
+    // Not in a write of one frame: an axis the device has said is at a
+    // limit stands there, and the frame is judged by that (its limit bits,
+    // a jog into it NAKed: §3.2 bytes 32-34, §3.4).
+    const bool one_frame = cuts_.empty();
     if (moved_on_line_[0] || moved_on_line_[1] || moved_on_line_[2])
       for (const double nudge : kNudgesDeg) {
         Bus nudged(*bus_);
+        // At the frame's time first: a jog that has run out by then (a 0 ms
+        // one still pending after the write before) is at rest, and nudged.
+        clock_->set(at);
+        nudged.tick();
         ControllerState& st = nudged.controller(0).mutable_state();
         for (std::size_t a = 0; a < 3; ++a) {
-          AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
-          if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle) ax.position += nudge;
+          AxisState& ax = axis_state(st, a);
+          if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle && !(one_frame && at_limit_agreed_[a]))
+            ax.position += nudge;
         }
         runs.push_back(run(nudged, at, frame));
       }
@@ -596,7 +624,7 @@ void Lockstep::note_settling(const Controller& nominal, const Judging& j) {
   const ControllerState& st = nominal.state();
   if (j.inexact)
     for (std::size_t a = 0; a < 3; ++a) {
-      const AxisState& ax = a == 0 ? st.az : a == 1 ? st.el : st.pol;
+      const AxisState& ax = axis_state(st, a);
       if ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
           std::abs(ax.aim - ax.position) <= drift_window(axis_profile(a), j.uncertainty)) {
         settle_until_ = std::max(settle_until_, j.at + kSettle);
@@ -695,7 +723,7 @@ bool Lockstep::judge_reply(Judging& j, std::size_t i) {
     if (rule && *rule == name(NakRule::kJogIntoLimit) && same.size() < with.size()) {
       const ControllerState& s = same.front()->bus->controller(0).state();
       for (std::size_t a = 0; a < 3; ++a) {
-        const AxisState& ax = a == 0 ? s.az : a == 1 ? s.el : s.pol;
+        const AxisState& ax = axis_state(s, a);
         const AxisProfile& ap = axis_profile(a);
         if (ax.motion != AxisState::Motion::kIdle) continue;
         if (ax.position <= ap.min_deg + 1e-6) j.limit_refused[a] = ap.min_deg;
@@ -854,7 +882,7 @@ bool Lockstep::held_by_a_command(const AckJudging& r, const ReplyField& f) const
   const ControllerState& s = r.nominal();
   if (device_led_mode(s.mode.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
   for (std::size_t a = 0; a < 3; ++a)
-    if ((a == 0 ? s.az : a == 1 ? s.el : s.pol).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
+    if (axis_state(s, a).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
   return true;
 }
 
@@ -900,7 +928,7 @@ bool Lockstep::motion_bits_unjudged(const Judging& j, const AckJudging& r, const
   // stop out of a STOW, DEPLOY or search: there the motion bits are all that
   // is judged, and the earlier and later runs give the line's timing.
   const AxisProfile& ap = axis_profile(axis);
-  const AxisState& ax = axis == 0 ? r.nominal().az : axis == 1 ? r.nominal().el : r.nominal().pol;
+  const AxisState& ax = axis_state(r.nominal(), axis);
   // The model's state is the one after the whole write: of a reply before
   // the last of a burst it says nothing (a later frame of the burst may have
   // started, ended or turned the motion), so those bits are left on a line.
@@ -969,20 +997,21 @@ const AxisProfile& Lockstep::axis_profile(std::size_t axis) const {
 void Lockstep::note_arrivals() {
   const ControllerState& s = model().state();
   for (std::size_t a = 0; a < 3; ++a) {
-    const AxisState& ax = a == 0 ? s.az : a == 1 ? s.el : s.pol;
+    const AxisState& ax = axis_state(s, a);
     if (ax.motion == AxisState::Motion::kRemoteAutoMove) {
-      moving_to_[a] = ax.target;
+      auto_moving_[a] = true;
       arrived_at_[a].reset();
     } else if (ax.motion == AxisState::Motion::kIdle) {
       // The move's target now: a later move within the deadband of where the
       // axis stood ended at once (ControllerState's aim) and set its own.
-      if (moving_to_[a] && std::abs(ax.position - ax.aim) < 1e-6) {
+      if (auto_moving_[a] && std::abs(ax.position - ax.aim) < 1e-6) {
         arrived_at_[a] = ax.target;
         arrived_position_[a] = ax.position;
       }
-      moving_to_[a].reset();
+      auto_moving_[a] = false;
     } else {
-      moving_to_[a] = arrived_at_[a] = std::nullopt;
+      auto_moving_[a] = false;
+      arrived_at_[a].reset();
     }
   }
 }

@@ -414,6 +414,63 @@ TEST(LiveFuzzLockstep, OnALineADeviceAtALimitPutsTheModelExactlyThere) {
   EXPECT_EQ(model.model().state().az.position, -20.0);
 }
 
+// On a line an axis the device has said is at a limit (its status at rest
+// asserts it, or it refused a jog into it) stands exactly there in every run
+// of a write of one frame: a jog into it must be NAKed (§3.4), and its limit
+// bits must show it (§3.2 bytes 32-34). Runs nudged a hair off would take
+// either fault for a device standing a hair off.
+TEST(LiveFuzzLockstep, OnALineTheLimitFaultsAreFoundAtALimitTheDeviceHasNamed) {
+  Profile p = profile();
+  p.az.min_deg = -20;
+  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "-20.0"}, {"elevation", "45.0"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), into = write(0x33, "ES0500");
+  for (const Fault fault : {Fault::kJogIntoLimitAcked, Fault::kAzLimitBitsMissing}) {
+    SCOPED_TRACE(fault == Fault::kJogIntoLimitAcked ? "jog-into-limit-acked" : "az-limit-bits-missing");
+    Lockstep model(p, at_ms(0));
+    Device device(p, FaultSet{fault});
+    auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), 50ms, device.send(f, at_ms(ms))); };
+    ASSERT_EQ(step(move, 100), std::nullopt);
+    // Both faults pass here: at rest the status's limit bits are judged
+    // only where the device has said where the axis is.
+    ASSERT_EQ(step(status, 60000), std::nullopt);
+    std::optional<Verdict> v = step(into, 60100);
+    if (fault == Fault::kJogIntoLimitAcked) {
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->kind, FindingKind::kNakRule) << v->message;
+      EXPECT_NE(v->message.find("JogIntoLimit"), std::string::npos) << v->message;
+    } else {
+      ASSERT_EQ(v, std::nullopt) << v->message;  // NAKed by both: the device's word
+      v = step(status, 60200);
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->field, "az limits") << v->message;
+    }
+  }
+}
+
+// A 0 ms jog away from a limit may take a device's axis a step off it (a
+// device executes it at once; the model's jog is still pending when the next
+// write comes), and a jog back into the limit is then ACKed: a run of the
+// model with that axis nudged off the limit agrees (§3.4). A sweep profile
+// over a pty gave a JogIntoLimit finding for this.
+TEST(LiveFuzzLockstep, OnALineAZeroJogOffALimitThenAJogBackIntoItIsNoFinding) {
+  Profile p = profile();
+  p.az.max_deg = 20;
+  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "20.0"}, {"elevation", "45.0"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31),
+      away = write(0x33, "ES0000"), back = write(0x47, "WS0000");
+  Lockstep model(p, at_ms(0));
+  Device device(p);
+  auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), 20ms, device.send(f, at_ms(ms))); };
+  ASSERT_EQ(step(move, 100), std::nullopt);
+  ASSERT_EQ(step(status, 60000), std::nullopt);  // at rest at the limit
+  ASSERT_EQ(step(away, 60100), std::nullopt);
+  device.t->bus().controller(0).mutable_state().az.position = 19.999;  // the device's jog took a step
+  const auto v = step(back, 60125);
+  EXPECT_EQ(v, std::nullopt) << v->message;
+}
+
 // On a line a jog that reaches a limit within the timing's window may have
 // ended there in the device while the model still moves: its motion bits
 // are not judged then (a clean device executed it a few milliseconds

@@ -409,17 +409,21 @@ class Lockstep {
   TimePoint last_{};
   std::array<bool, 3> drifted_{};     // az, el, pol resynchronized: hundredths and counts not compared
   std::array<bool, 3> moved_on_line_{};  // moved with a timing uncertainty: likewise
-  // At a limit by the device's own word (it NAKed a jog into it, §3.4):
-  // its limit bits are compared at rest, on a line too.
+  // At a limit by the device's own word (its status at rest asserts it,
+  // §3.2 bytes 32-34, or it NAKed a jog into it, §3.4), until the next status
+  // block or a command the device takes that moves the antenna: in a write
+  // of one frame every run has the axis exactly there (not nudged), so its
+  // limit bits and a jog into it are judged on a line too.
   std::array<bool, 3> at_limit_agreed_{};
   // The widest timing uncertainty of the writes since the model and the
   // device were last both at rest: a motion's position carries the error of
   // the write that started it as well as the one that reads it.
   Duration uncertainty_since_rest_{0};
-  // A §3.3 auto move's target while the model's axis runs it, and once it
-  // has arrived there and rests: its hundredths are then judged on a line
-  // too (ERRATA E-86: within the arrival window of the target).
-  std::array<std::optional<double>, 3> moving_to_{}, arrived_at_{};
+  // Whether the model's axis runs a §3.3 auto move, and the target of the
+  // one it has arrived at and rests on: its hundredths are then judged on a
+  // line too (ERRATA E-86: within the arrival window of the target).
+  std::array<bool, 3> auto_moving_{};
+  std::array<std::optional<double>, 3> arrived_at_{};
   std::array<double, 3> arrived_position_{};  // the model's position then: judged only while it stands there
   void note_arrivals();
   TimePoint settle_until_{};             // mode bytes taken from the device until then
