@@ -320,8 +320,9 @@ FuzzFrame Generator::make(Mutation m) {
 }
 
 FuzzFrame Generator::sequence() {
-  // Half stored writes: they take no time, a motion or an arrival seconds.
-  const bool stored = options_.allow_destructive && (!options_.allow_motion || uniform(0, 1) == 0);
+  // Half stored data (a write and its read, or a read a third of the time):
+  // they take no time, a motion or an arrival seconds.
+  const bool stored = !options_.allow_motion || uniform(0, 1) == 0;
   // An arrival after every three motions with their stops: an arrival
   // takes seconds, and a motion sequence waits while one runs.
   if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= kMotionsPerArrival)
@@ -329,10 +330,9 @@ FuzzFrame Generator::sequence() {
       motions_since_arrival_ = 0;
       return *a;
     }
-  if (stored) return stored_sequence();
+  if (stored) return options_.allow_destructive && uniform(0, 2) > 0 ? stored_sequence() : stored_read();
   ++motions_since_arrival_;
-  if (options_.allow_motion) return motion_sequence();
-  return make(Mutation::kBoundary);
+  return motion_sequence();
 }
 
 FuzzFrame Generator::stored_sequence() {
@@ -347,6 +347,24 @@ FuzzFrame Generator::stored_sequence() {
                                               : std::string();
   queued_.push_back({command(rb.read, index), {}, "read back"});
   return {std::move(f), {}, "sequence: stored write"};
+}
+
+FuzzFrame Generator::stored_read() {
+  // A read of a stored list at any index it has, or one past its end (§3.6
+  // 35h, §3.11 3Ah, §3.13 3Ch, §3.21 44h): an entry in the middle of a list
+  // as often as its ends. A read changes nothing, so one may go out while
+  // an arrival waits.
+  if (!model_) return make(Mutation::kBoundary);
+  const ControllerState& s = model_().controller->state();
+  struct List {
+    std::uint8_t read;
+    std::size_t size;
+  };
+  const List lists[] = {{0x35, s.store.size()}, {0x3A, s.presets.size()}, {0x3C, s.tles.size()}, {0x44, s.signposts.size()}};
+  const List& list = lists[uniform(0, std::size(lists) - 1)];
+  char index[8];
+  std::snprintf(index, sizeof index, "%02zu", uniform(1, list.size + 1));
+  return {command(list.read, index), {}, "sequence: read of a stored list"};
 }
 
 FuzzFrame Generator::motion_sequence() {
@@ -447,14 +465,14 @@ std::optional<FuzzFrame> Generator::arrival() {
                                                   {{counts ? 'B' : 'A', -1, true}, p.az.min_deg < 0 || p.el.min_deg < 0},
                                                   {{'C', -1, true}, p.hundredths},
                                                   {{'L', -1, false}, true}}};
-  // While no site is known, a LOCATE waits for one (E-59): a state only
-  // this part of a session shows (a navigation write may give a site
-  // later), so the first arrival goes there.
+  // The first arrival is a LOCATE: its geometry has the most rules of any
+  // aim, and a limit may take a slow mount a quarter of a minute (three
+  // limits first left a minute without one). While no site is known, a
+  // LOCATE waits for one (E-59): a state only this part of a session shows
+  // (a navigation write may give a site later).
   constexpr std::size_t kLocateGoal = 5;
   static_assert(kArrivalGoalNames[kLocateGoal] == "LOCATE");
-  const bool no_site =
-      !look::site_of(model_().controller->state().navigation, p.az_sensor, p.fluxgate_heading).site.has_value();
-  const std::size_t goal = no_site && arrivals_aimed_[kLocateGoal] == 0
+  const std::size_t goal = arrivals_aimed_[kLocateGoal] == 0
                                ? kLocateGoal
                                : least_covered(arrivals_aimed_, [&](std::size_t k) { return goals[k].available; });
   const Aim aim = goals[goal].aim;
@@ -609,8 +627,7 @@ std::optional<FuzzFrame> Generator::while_arriving() {
   // Anything that cannot move the antenna (nor start another sequence).
   for (;;) {
     const auto m = static_cast<Mutation>(std::uniform_int_distribution<unsigned>(0, static_cast<unsigned>(Mutation::kCount) - 1)(rng_));
-    if (m == Mutation::kSequence) continue;
-    FuzzFrame f = make(m);
+    FuzzFrame f = m == Mutation::kSequence ? stored_read() : make(m);
     if (is_safe_to_send(f.chars, false, options_.allow_destructive, tail_)) return f;
   }
 }

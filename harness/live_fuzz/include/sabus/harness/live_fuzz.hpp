@@ -143,9 +143,11 @@ class Generator {
   // when no model or profile is set.
   std::optional<FuzzFrame> arrival();
   // A sequence (Mutation::kSequence): an arrival, a stored write and the
-  // read that shows it, or a motion, its stop and the status after it.
+  // read that shows it, a read of a stored list at any of its indexes, or a
+  // motion, its stop and the status after it.
   FuzzFrame sequence();
   FuzzFrame stored_sequence();
+  FuzzFrame stored_read();
   FuzzFrame motion_sequence();
   std::vector<const Bytes*> bases_where(const std::function<bool(const Bytes&)>& keep) const;
   Bytes command(std::uint8_t code, std::string_view data = {}) const;  // a well-formed command frame to the device
