@@ -325,14 +325,32 @@ FuzzFrame Generator::sequence() {
   const bool stored = !options_.allow_motion || uniform(0, 1) == 0;
   // An arrival after every three motions with their stops: an arrival
   // takes seconds, and a motion sequence waits while one runs.
-  if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= kMotionsPerArrival)
+  if (!stored && options_.allow_motion && !arriving_ && motions_since_arrival_ >= kMotionsPerArrival) {
+    // From rest: a motion still running (a DEPLOY a damaged frame began)
+    // is stopped first, and the status and extended status show where it
+    // ended; the arrival comes with a later sequence. One begun inside such
+    // a mode would be the device's to run until both were at rest, its
+    // target unjudged (a LOCATE the device failed went unseen so).
+    if (model_ && !at_rest_out_of_modes_that_move()) {
+      queued_.push_back({command(0x31), {}, "status after the stop"});
+      queued_.push_back({command(0x40), {}, "extended status after the stop"});
+      return {command(0x33, "XS0000"), {}, "sequence: stop before an arrival"};
+    }
     if (auto a = arrival()) {
       motions_since_arrival_ = 0;
       return *a;
     }
+  }
   if (stored) return options_.allow_destructive && uniform(0, 2) > 0 ? stored_sequence() : stored_read();
   ++motions_since_arrival_;
   return motion_sequence();
+}
+
+bool Generator::at_rest_out_of_modes_that_move() {
+  const Controller& c = *model_().controller;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (axis_state(c, a).motion != AxisState::Motion::kIdle) return false;
+  return !moves_by_itself(c.state().mode.mode);
 }
 
 FuzzFrame Generator::stored_sequence() {

@@ -2,6 +2,7 @@
 // step with the device, every reply compared with the model's by the class of
 // each field (field_classes.hpp).
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -106,6 +107,15 @@ std::vector<Field> value_fields(const Frame& reply) {
   return out;
 }
 
+// The value of a one-byte field from its raw text ("0x45"), or nullopt.
+std::optional<std::uint8_t> one_byte(const std::string& raw) {
+  unsigned value = 0;
+  if (raw.size() != 4 || !raw.starts_with("0x") ||
+      std::from_chars(raw.data() + 2, raw.data() + 4, value, 16).ptr != raw.data() + 4)
+    return std::nullopt;
+  return static_cast<std::uint8_t>(value);
+}
+
 // The raw text of the `occurrence`-th field called `name`, or nullptr.
 const std::string* find_field(const std::vector<Field>& fields, std::string_view name, std::size_t occurrence) {
   for (const Field& f : fields)
@@ -177,14 +187,6 @@ bool all_at_rest(const Controller& c) {
 bool is_stop_exit(std::uint8_t mode, std::uint8_t exit_status) {
   const std::string exit = meanings::exit_name(mode, exit_status);
   return exit.ends_with("_STOP_KEY") || exit.ends_with("_MOVE_STOPPED") || exit.find("_MODE_CHANGE") != std::string::npos;
-}
-
-// §3.7 'S', 'D', 'A' (ERRATA E-89, E-90): how a STOW, a DEPLOY or a search
-// moves the antenna, in what order and for how long, the spec leaves to the
-// controller; the model's is one reading.
-bool device_led_mode(std::uint8_t mode) {
-  const auto name = meanings::mode_name(mode);
-  return name == "STOW_MODE" || name == "DEPLOY_MODE" || name == "SPIRAL_REMOTE_MODE";
 }
 
 // A 40h reply's fields, if it is one.
@@ -260,6 +262,14 @@ bool hundredths_within(double tenths_deg, std::uint32_t digit, double target, do
 }
 
 }  // namespace
+
+// §3.7 'S', 'D', 'A' (ERRATA E-89, E-90): how a STOW, a DEPLOY or a search
+// moves the antenna, in what order and for how long, the spec leaves to the
+// controller; the model's is one reading.
+bool moves_by_itself(std::uint8_t mode) {
+  const auto name = meanings::mode_name(mode);
+  return name == "STOW_MODE" || name == "DEPLOY_MODE" || name == "SPIRAL_REMOTE_MODE";
+}
 
 std::size_t comparable_reply_fields() {
   std::set<std::string> names;
@@ -649,9 +659,9 @@ bool Lockstep::follow_device_led(const Controller& nominal, const std::vector<Fr
   // and taken over once both are at rest out of it (E-89, E-90). A stop
   // still has to stop: after it the model is at rest and compares again.
   const ModeState& ms = nominal.state().mode;
-  if (device_led_mode(ms.mode)) device_led_ = true;
+  if (moves_by_itself(ms.mode)) device_led_ = true;
   for (const Frame& dev : device)
-    if (const auto mode = device_mode(dev); mode && device_led_mode(*mode)) device_led_ = true;
+    if (const auto mode = device_mode(dev); mode && moves_by_itself(*mode)) device_led_ = true;
   // Where such a mode leaves the axes the model knows only to the tenths the
   // device's readings show: counts and hundredths are not compared after it.
   if (device_led_) drifted_ = {true, true, true};
@@ -669,11 +679,11 @@ bool Lockstep::follow_device_led(const Controller& nominal, const std::vector<Fr
       at_rest = at_rest && m == AxisState::Motion::kIdle;
       driving = driving || (m != AxisState::Motion::kIdle && m != AxisState::Motion::kStopping);
     }
-    if (model_was_led_ && !device_led_mode(ms.mode) && driving) handed_over_ = true;
-    stopped_out = !handed_over_ && at_rest && !device_led_mode(ms.mode) && device_led_mode(ms.last_mode) &&
+    if (model_was_led_ && !moves_by_itself(ms.mode) && driving) handed_over_ = true;
+    stopped_out = !handed_over_ && at_rest && !moves_by_itself(ms.mode) && moves_by_itself(ms.last_mode) &&
                   is_stop_exit(ms.last_mode, ms.exit_status);
   }
-  model_was_led_ = device_led_mode(ms.mode);
+  model_was_led_ = moves_by_itself(ms.mode);
   // The write that stopped it: whether the device's last status before it
   // showed the device moving (then its exit must be a stop's too).
   if (stopped_out && !stopped_out_) moving_when_stopped_ = device_seen_moving_;
@@ -780,6 +790,16 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
       j.take_modes = j.take_modes || (is_mode_byte(f.name) && !j.stopped_out);
       return true;
     }
+    // Whether it moves, which way and its alarms; the speed bit (0x10) is
+    // that of the last leg the device ran (§3.2 bytes 36-38, E-89, E-90),
+    // taken when the episode ends (keep_in_step).
+    const auto motion_code = [](const std::string* raw) -> std::optional<int> {
+      const auto b = raw ? one_byte(*raw) : std::nullopt;
+      return b ? std::optional<int>(*b & 0x0F) : std::nullopt;
+    };
+    if (f.name.ends_with(" status") && motion_code(&f.raw) &&
+        std::any_of(values.begin(), values.end(), [&](const std::string* v) { return motion_code(v) == motion_code(&f.raw); }))
+      return true;
   }
   bool moving = false;
   if (has_axis)
@@ -880,7 +900,7 @@ bool Lockstep::held_by_a_command(const AckJudging& r, const ReplyField& f) const
   // is not: a mode the device ran to its end leaves it there as a stop does.
   if (f.name != "current mode" && f.name != "current state") return false;
   const ControllerState& s = r.nominal();
-  if (device_led_mode(s.mode.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
+  if (moves_by_itself(s.mode.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
   for (std::size_t a = 0; a < 3; ++a)
     if (axis_state(s, a).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
   return true;
@@ -961,7 +981,7 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   // within its tolerance, a stop a few milliseconds apart: §3.2).
   Controller& m = model();
   take_positions(device, [&](std::size_t axis, double distance) {
-    if (device_led_ && !device_led_mode(m.state().mode.mode)) return true;  // out of a STOW, DEPLOY or search, at rest
+    if (device_led_ && !moves_by_itself(m.state().mode.mode)) return true;  // out of a STOW, DEPLOY or search, at rest
     if (device_led_) return false;
     if (axis == 0 && half_turn_) {
       half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
@@ -971,7 +991,7 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   });
   // Judged again once the model is out of such a mode and at rest, and the
   // device's extended status shows every axis at rest.
-  if (!device_led_ || device_led_mode(m.state().mode.mode)) return;
+  if (!device_led_ || moves_by_itself(m.state().mode.mode)) return;
   // A 40h reply: its positions taken above and its mode bytes with them.
   const bool device_at_rest = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
     return device_mode(dev).has_value() && shows_moving(dev) == false;
@@ -983,6 +1003,9 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
     if (const auto x = extended_status(dev)) {
       m.mutable_state().mode = mode_state(*x);
       ++coverage_.resyncs;
+      // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10).
+      const std::uint8_t speeds[] = {x->status.az_status, x->status.el_status, x->status.pol_status};
+      for (std::size_t a = 0; a < 3; ++a) axis_state(m.mutable_state(), a).fast = (speeds[a] & 0x10) != 0;
     }
 }
 

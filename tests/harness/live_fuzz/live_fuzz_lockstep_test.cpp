@@ -2,6 +2,7 @@
 // against a reference controller kept in step with the device. The "device"
 // here is the in-process reference controller on its own clock, with a fault
 // or its replies edited, or run a little later than the model.
+#include <filesystem>
 #include <map>
 #include <set>
 
@@ -9,6 +10,7 @@
 
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/profile_generator.hpp"
+#include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -233,6 +235,70 @@ TEST(LiveFuzzLockstep, ASearchOtherThanTheModelsIsNoFindingButItsStopIs) {
       EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
     }
   }
+}
+
+// After a stop out of a search, an axis's speed bit (§3.2 bytes 36-38, 0x10)
+// is that of the last leg the device ran, which the spec leaves to it
+// (E-90): not judged, and taken into the model when the episode ends; the
+// bits of whether it moves still are.
+TEST(LiveFuzzLockstep, AfterASearchTheSpeedBitIsTheDevicesButNotWhetherItMoves) {
+  const FuzzFrame search = write(0x36, "AE"), status = write(0x31), extended = write(0x40), stop = write(0x36, "KA");
+  auto flipped = [](Frame reply, std::uint8_t bits) {
+    for (const FieldDescription& fd : describe_frame(encode_frame(reply)).fields)
+      if (fd.name == "el status") {
+        const auto raw = static_cast<char>(encode_frame(reply)[fd.first] ^ bits);
+        return with_field(std::move(reply), "el status", std::string(1, raw));
+      }
+    return reply;
+  };
+  for (const std::uint8_t bits : {std::uint8_t{0x10}, std::uint8_t{0x04}}) {
+    SCOPED_TRACE(bits == 0x10 ? "speed bit" : "moving bit");
+    Lockstep model(profile(), at_ms(0));
+    Device device(profile());
+    auto step = [&](const FuzzFrame& f, long ms, bool edit) {
+      std::vector<Frame> replies = device.send(f, at_ms(ms));
+      if (edit)
+        for (Frame& r : replies) r = flipped(std::move(r), bits);
+      return model.step(f, at_ms(ms), Duration{0}, replies);
+    };
+    ASSERT_EQ(step(search, 100, false), std::nullopt);
+    ASSERT_EQ(step(status, 1100, false), std::nullopt);
+    ASSERT_EQ(step(stop, 2000, false), std::nullopt);
+    const std::optional<Verdict> v = step(status, 4000, true);
+    if (bits == 0x04) {
+      ASSERT_TRUE(v);
+      EXPECT_EQ(v->field, "el status") << v->message;
+      continue;
+    }
+    EXPECT_EQ(v, std::nullopt) << v->message;
+    const std::optional<Verdict> x = step(extended, 4100, true);  // at rest: the episode ends
+    EXPECT_EQ(x, std::nullopt) << x->message;
+    const std::optional<Verdict> after = step(status, 4200, true);  // the model has the device's speed
+    EXPECT_EQ(after, std::nullopt) << after->message;
+  }
+}
+
+// A LOCATE the device computes from the wrong hemisphere of its site's
+// longitude (§3.22, §3.23) ends at once in an elevation range error where
+// the model's moves: on a line that is a finding by the next reply (the
+// extended status the arrival asks as its move begins).
+TEST(LiveFuzzLockstep, OnALineALocateTheDeviceDoesNotRunIsAFinding) {
+  const std::string dir = std::filesystem::path(default_profile_path()).parent_path().string();
+  const ProfileResult loaded = load_profile_file(dir + "/fast-mount-manual-nav.yaml");
+  ASSERT_TRUE(loaded);
+  const Profile& p = *loaded.profile;
+  const auto request = build_request(*find_command(0x41), "data",
+                                     {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"}, {"band", "1"},
+                                      {"pol offset", "0.0"}, {"receive polarization", "N"}, {"position update", "A"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame locate{encode_request(request.value(), p.address), {}, "test"},
+      extended{encode_frame({FrameKind::kCommand, p.address, 0x40, {}}), {}, "test"};
+  Lockstep model(p, at_ms(0));
+  Device device(p, FaultSet{Fault::kLocateEasternLongitude});
+  ASSERT_EQ(model.step(locate, at_ms(600), 5ms, device.send(locate, at_ms(600))), std::nullopt);
+  const auto v = model.step(extended, at_ms(604), 5ms, device.send(extended, at_ms(604)));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
 }
 
 // The whole session in-process, motion and stored writes allowed, on random
@@ -559,6 +625,11 @@ TEST(LiveFuzzLockstep, MotionsAndArrivalsGoToWhatIsLeastCovered) {
     FuzzFrame f = m.generator.next();
     if (f.what.starts_with("sequence: motion (")) ++motions[f.what], ++motion_count;
     if (f.what.starts_with("sequence: arrival (")) {
+      // From rest, out of a STOW, DEPLOY or search (which a damaged frame
+      // may have begun): a stop goes first.
+      for (const AxisState* ax : {&m.l->model().state().az, &m.l->model().state().el, &m.l->model().state().pol})
+        EXPECT_EQ(ax->motion, AxisState::Motion::kIdle) << f.what;
+      EXPECT_FALSE(moves_by_itself(m.l->model().state().mode.mode)) << f.what;
       if (arrival_count == 0) {
         EXPECT_EQ(f.what, "sequence: arrival (LOCATE)");  // the most rules, first
       }

@@ -62,6 +62,11 @@ struct FuzzFrame {
 bool is_safe_to_send(ByteView chars, bool allow_motion, bool allow_destructive, ByteView before = {},
                      std::string* why = nullptr);
 
+// Whether a §3.17 mode moves the antenna by itself, in an order and for a
+// time the spec leaves to the controller: STOW, DEPLOY and the spiral search
+// (ERRATA E-89, E-90).
+bool moves_by_itself(std::uint8_t mode);
+
 // The liveness probe: a device type query (§3.1), which every SAbus slave
 // answers (§1 Command Restrictions).
 FuzzFrame liveness_probe(std::uint8_t address);
@@ -148,6 +153,7 @@ class Generator {
   FuzzFrame sequence();
   FuzzFrame stored_sequence();
   FuzzFrame stored_read();
+  bool at_rest_out_of_modes_that_move();  // the model's axes, and its mode (moves_by_itself)
   FuzzFrame motion_sequence();
   std::vector<const Bytes*> bases_where(const std::function<bool(const Bytes&)>& keep) const;
   Bytes command(std::uint8_t code, std::string_view data = {}) const;  // a well-formed command frame to the device
