@@ -10,7 +10,9 @@
 # just powered on); prints found (the first finding's kind,
 # seconds and writes to it) or missed, and the total. Then a clean run per
 # shipped profile and per random legal profile (sabus vectors sweep's
-# generator, --random N): 0 findings expected.
+# generator, --random N): 0 findings expected; a clean run's finding is kept
+# (its vector, the fuzzer's output, the sim's transcript, the profile) in a
+# new directory whose name is printed.
 #
 #   tools/fuzz-faults.sh [--max-time S] [--seed N] [--random N] [--no-faults] [--no-clean] [FAULT[@PROFILE] ...]
 set -euo pipefail
@@ -65,9 +67,9 @@ trap cleanup EXIT
 # Prints the fuzzer's first FINDING line (or nothing) and the writes line.
 session() {
   local profile=$1 fault=$2 link="$work/pty" out="$work/fuzz.out"
-  local args=(sim --pty --link "$link" --profile "$profile")
+  local args=(sim --pty --link "$link" --profile "$profile" --log "$work/sim.log")
   [[ -n $fault ]] && args+=(--fault "$fault")
-  rm -rf "$work/findings" "$link"
+  rm -rf "$work/findings" "$link" "$work/sim.log"
   "$sabus" "${args[@]}" >"$work/sim.out" 2>&1 &
   sim_pid=$!
   for _ in $(seq 100); do grep -q READY "$work/sim.out" 2>/dev/null && break; sleep 0.05; done
@@ -106,11 +108,25 @@ if ((faults_on)); then
   echo "found $found of $total faults"
 fi
 
+# A clean run's finding is a false alarm to chase: its vector, the fuzzer's
+# output, the sim's transcript and the profile go to a new directory of
+# their own (printed), which the clean-up leaves.
+clean_result() {
+  local profile=$1 result=$2
+  if [[ $result != *FINDING* ]]; then
+    echo "0 findings, $(grep -oE '^[0-9]+ writes' <<<"$result")"
+    return
+  fi
+  local kept; kept=$(mktemp -d /tmp/sabus-clean-finding.XXXXXX)
+  cp -r "$work/findings" "$work/fuzz.out" "$work/sim.log" "$profile" "$kept/" 2>/dev/null || true
+  echo "FINDING: ${result%%$'\n'*} (kept in $kept)"
+}
+
 if ((clean_on)); then
   echo "clean controllers over a pty, ${max_time} s each (0 findings expected):"
   for p in vectors/profiles/*.yaml; do
     result=$(session "$p" "")
-    printf '  %-40s %s\n' "$(basename "$p" .yaml)" "$( [[ $result == *FINDING* ]] && echo "FINDING: ${result%%$'\n'*}" || echo "0 findings, $(grep -oE '^[0-9]+ writes' <<<"$result")")"
+    printf '  %-40s %s\n' "$(basename "$p" .yaml)" "$(clean_result "$p" "$result")"
   done
   if ((random > 0)); then
     # The sweep's generator (harness/profile profile_generator): its profiles
@@ -119,7 +135,7 @@ if ((clean_on)); then
     for f in "$work"/random/*.yaml; do
       [[ -f $f ]] || continue
       result=$(session "$f" "")
-      printf '  %-40s %s\n' "$(basename "$f" .yaml)" "$( [[ $result == *FINDING* ]] && echo "FINDING: ${result%%$'\n'*}" || echo "0 findings, $(grep -oE '^[0-9]+ writes' <<<"$result")")"
+      printf '  %-40s %s\n' "$(basename "$f" .yaml)" "$(clean_result "$f" "$result")"
     done
   fi
 fi
