@@ -155,10 +155,6 @@ struct Target {
   int limit;
 };
 
-const AxisState& axis_state(const Controller& c, std::size_t a) {
-  return a == 0 ? c.state().az : a == 1 ? c.state().el : c.state().pol;
-}
-
 }  // namespace
 
 bool is_safe_to_send(ByteView chars, bool allow_motion, bool allow_destructive, ByteView before, std::string* why) {
@@ -349,7 +345,7 @@ FuzzFrame Generator::sequence() {
 bool Generator::at_rest_out_of_modes_that_move() {
   const Controller& c = *model_().controller;
   for (std::size_t a = 0; a < 3; ++a)
-    if (axis_state(c, a).motion != AxisState::Motion::kIdle) return false;
+    if (by_axis(c.state(), a).motion != AxisState::Motion::kIdle) return false;
   return !moves_by_itself(c.state().mode.mode);
 }
 
@@ -533,8 +529,8 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
   // negative position one time in four where the reach has one (§3.3's
   // signed forms), rounded to what the form carries.
   auto target = [&](std::size_t a, double step) -> Target {
-    const AxisProfile& ap = a == 0 ? p.az : a == 1 ? p.el : p.pol;
-    const double from = axis_state(m, a).position, reach = ap.fast_dps * kReachSeconds;
+    const AxisProfile& ap = by_axis(p, a);
+    const double from = by_axis(m.state(), a).position, reach = ap.fast_dps * kReachSeconds;
     const double lo = std::max(ap.min_deg, from - reach), hi = std::min(ap.max_deg, from + reach);
     const std::size_t r = static_cast<int>(a) == aim.limit_axis ? 0 : aim.negative ? 1 : uniform(0, 3);
     if (r == 0) {  // the nearer limit, or a step toward it where it is far
@@ -629,7 +625,7 @@ std::optional<FuzzFrame> Generator::while_arriving() {
   if (!arriving_) return std::nullopt;
   const ModelView view = model_();
   bool at_rest = true;
-  for (std::size_t a = 0; a < 3; ++a) at_rest = at_rest && axis_state(*view.controller, a).motion == AxisState::Motion::kIdle;
+  for (std::size_t a = 0; a < 3; ++a) at_rest = at_rest && by_axis(view.controller->state(), a).motion == AxisState::Motion::kIdle;
   if (!at_rest) at_rest_since_.reset();
   else if (!at_rest_since_) at_rest_since_ = view.now;
   if ((at_rest_since_ && view.now - *at_rest_since_ >= kRestFor) || view.now - arrival_start_ >= kArrivalLimit) {
@@ -744,7 +740,7 @@ FuzzFrame Generator::next() {
       if (q.what == "stop" && stop_pending_) {
         bool moving = !model_;
         for (std::size_t a = 0; a < 3 && !moving; ++a)
-          moving = axis_state(*model_().controller, a).motion != AxisState::Motion::kIdle;
+          moving = by_axis(model_().controller->state(), a).motion != AxisState::Motion::kIdle;
         motions_stopped_[stop_pending_->first][stop_pending_->second] += moving ? 1.0 : 1.0 / 3;
         stop_pending_.reset();
       }

@@ -138,15 +138,9 @@ std::string field_key(std::uint8_t command, std::string_view field) {
   return describe_byte(command).substr(0, 4) + " " + std::string(field);
 }
 
-// The state of an axis (0 azimuth, 1 elevation, 2 polarization).
-template <typename State>
-auto& axis_state(State& s, std::size_t axis) {
-  return axis == 0 ? s.az : axis == 1 ? s.el : s.pol;
-}
-
 AxisState::Motion motion_of(const Controller& c, std::size_t axis) {
   const ControllerState& s = c.state();
-  return axis_state(s, axis).motion;
+  return by_axis(s, axis).motion;
 }
 
 // The status block of a 31h or 40h reply (§3.2, §3.17), if it is one.
@@ -433,7 +427,7 @@ void Lockstep::take_positions(const std::vector<Frame>& device, const std::funct
       const double distance = difference(*dv, *reading, heading);
       const long delta = std::lround(distance * 10);
       if (!take(*axis, distance) || delta == 0) continue;
-      AxisState& s = axis_state(m.mutable_state(), *axis);
+      AxisState& s = by_axis(m.mutable_state(), *axis);
       s.position += delta / 10.0;
       drifted_[*axis] = true;
       ++coverage_.resyncs;
@@ -559,7 +553,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       at_limit_agreed_ = {};
   note_limits_shown(j, device);
   for (std::size_t a = 0; a < 3; ++a) {
-    AxisState& ax = axis_state(model().mutable_state(), a);
+    AxisState& ax = by_axis(model().mutable_state(), a);
     if (ax.motion != AxisState::Motion::kIdle) {
       at_limit_agreed_[a] = false;
     } else if (j.limit_refused[a] && std::abs(ax.position - *j.limit_refused[a]) <= drift_window(axis_profile(a), uncertainty)) {
@@ -614,7 +608,7 @@ std::vector<Lockstep::Run> Lockstep::runs_of(const FuzzFrame& frame, TimePoint a
         nudged.tick();
         ControllerState& st = nudged.controller(0).mutable_state();
         for (std::size_t a = 0; a < 3; ++a) {
-          AxisState& ax = axis_state(st, a);
+          AxisState& ax = by_axis(st, a);
           if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle && !(one_frame && at_limit_agreed_[a]))
             ax.position += nudge;
         }
@@ -634,7 +628,7 @@ void Lockstep::note_settling(const Controller& nominal, const Judging& j) {
   const ControllerState& st = nominal.state();
   if (j.inexact)
     for (std::size_t a = 0; a < 3; ++a) {
-      const AxisState& ax = axis_state(st, a);
+      const AxisState& ax = by_axis(st, a);
       if ((ax.motion == AxisState::Motion::kAutoMove || ax.motion == AxisState::Motion::kRemoteAutoMove) &&
           std::abs(ax.aim - ax.position) <= drift_window(axis_profile(a), j.uncertainty)) {
         settle_until_ = std::max(settle_until_, j.at + kSettle);
@@ -733,7 +727,7 @@ bool Lockstep::judge_reply(Judging& j, std::size_t i) {
     if (rule && *rule == name(NakRule::kJogIntoLimit) && same.size() < with.size()) {
       const ControllerState& s = same.front()->bus->controller(0).state();
       for (std::size_t a = 0; a < 3; ++a) {
-        const AxisState& ax = axis_state(s, a);
+        const AxisState& ax = by_axis(s, a);
         const AxisProfile& ap = axis_profile(a);
         if (ax.motion != AxisState::Motion::kIdle) continue;
         if (ax.position <= ap.min_deg + 1e-6) j.limit_refused[a] = ap.min_deg;
@@ -863,7 +857,7 @@ std::optional<std::string> Lockstep::judge_arrival_hundredths(const AckJudging& 
   const auto tenths = position_value(r.dev, *a == 0 ? "azimuth" : "elevation", &heading);
   // The axis still where it arrived (not moved since by a motion between
   // two writes, nor taken a tenth from the device's reading).
-  const AxisState& ax = *a == 0 ? r.nominal().az : r.nominal().el;
+  const AxisState& ax = by_axis(r.nominal(), *a);
   if (!x || !tenths || heading || !profile_.hundredths || device_led_ || !arrived_at_[*a] ||
       ax.motion != AxisState::Motion::kIdle || std::abs(ax.position - arrived_position_[*a]) > 1e-6 || device_moving(r.dev, *a))
     return std::nullopt;
@@ -902,7 +896,7 @@ bool Lockstep::held_by_a_command(const AckJudging& r, const ReplyField& f) const
   const ControllerState& s = r.nominal();
   if (moves_by_itself(s.mode.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
   for (std::size_t a = 0; a < 3; ++a)
-    if (axis_state(s, a).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
+    if (by_axis(s, a).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
   return true;
 }
 
@@ -948,7 +942,7 @@ bool Lockstep::motion_bits_unjudged(const Judging& j, const AckJudging& r, const
   // stop out of a STOW, DEPLOY or search: there the motion bits are all that
   // is judged, and the earlier and later runs give the line's timing.
   const AxisProfile& ap = axis_profile(axis);
-  const AxisState& ax = axis_state(r.nominal(), axis);
+  const AxisState& ax = by_axis(r.nominal(), axis);
   // The model's state is the one after the whole write: of a reply before
   // the last of a burst it says nothing (a later frame of the burst may have
   // started, ended or turned the motion), so those bits are left on a line.
@@ -1005,12 +999,12 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
       ++coverage_.resyncs;
       // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10).
       const std::uint8_t speeds[] = {x->status.az_status, x->status.el_status, x->status.pol_status};
-      for (std::size_t a = 0; a < 3; ++a) axis_state(m.mutable_state(), a).fast = (speeds[a] & 0x10) != 0;
+      for (std::size_t a = 0; a < 3; ++a) by_axis(m.mutable_state(), a).fast = (speeds[a] & 0x10) != 0;
     }
 }
 
 const AxisProfile& Lockstep::axis_profile(std::size_t axis) const {
-  return axis == 0 ? profile_.az : axis == 1 ? profile_.el : profile_.pol;
+  return by_axis(profile_, axis);
 }
 
 // Before the device's positions are taken over (they move the model's a
@@ -1020,7 +1014,7 @@ const AxisProfile& Lockstep::axis_profile(std::size_t axis) const {
 void Lockstep::note_arrivals() {
   const ControllerState& s = model().state();
   for (std::size_t a = 0; a < 3; ++a) {
-    const AxisState& ax = axis_state(s, a);
+    const AxisState& ax = by_axis(s, a);
     if (ax.motion == AxisState::Motion::kRemoteAutoMove) {
       auto_moving_[a] = true;
       arrived_at_[a].reset();

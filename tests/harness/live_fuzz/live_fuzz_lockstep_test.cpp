@@ -457,17 +457,27 @@ TEST(LiveFuzzLockstep, OnALineTheHundredthsOfAnArrivalLieInItsWindow) {
   }
 }
 
+// A profile whose azimuth ends at -20 deg, the 32h move there, a status poll
+// and a jog further into the limit (§3.4).
+struct AzimuthLimit {
+  Profile p = [] {
+    Profile p = profile();
+    p.az.min_deg = -20;
+    return p;
+  }();
+  FuzzFrame move{encode_request(build_request(*find_command(0x32), "2A", {{"azimuth", "-20.0"}, {"elevation", "45.0"}}).value(), '2'),
+                 {}, "test"};
+  FuzzFrame status = write(0x31), into = write(0x33, "ES0500");
+};
+
 // §3.4, §3.2 bytes 32-34 on a line: a device at rest whose status asserts a
 // limit, or that refuses a jog into it where a run a hair off it takes the
 // jog, has said its axis is there: the model's axis stands exactly at the
-// limit (its nudged runs still a hair to each side: a clean device may be
-// there), and a clean device gives no finding.
+// limit, and a clean device gives no finding.
 TEST(LiveFuzzLockstep, OnALineADeviceAtALimitPutsTheModelExactlyThere) {
-  Profile p = profile();
-  p.az.min_deg = -20;
-  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "-20.0"}, {"elevation", "45.0"}});
-  ASSERT_TRUE(request);
-  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), into = write(0x33, "ES0500");
+  const AzimuthLimit l;
+  const Profile& p = l.p;
+  const FuzzFrame &move = l.move, &status = l.status, &into = l.into;
   Lockstep model(p, at_ms(0));
   Device device(p);
   auto step = [&](const FuzzFrame& f, long ms) { return model.step(f, at_ms(ms), 50ms, device.send(f, at_ms(ms))); };
@@ -487,11 +497,9 @@ TEST(LiveFuzzLockstep, OnALineADeviceAtALimitPutsTheModelExactlyThere) {
 // bits must show it (§3.2 bytes 32-34). Runs nudged a hair off would take
 // either fault for a device standing a hair off.
 TEST(LiveFuzzLockstep, OnALineTheLimitFaultsAreFoundAtALimitTheDeviceHasNamed) {
-  Profile p = profile();
-  p.az.min_deg = -20;
-  const auto request = build_request(*find_command(0x32), "2A", {{"azimuth", "-20.0"}, {"elevation", "45.0"}});
-  ASSERT_TRUE(request);
-  const FuzzFrame move{encode_request(request.value(), '2'), {}, "test"}, status = write(0x31), into = write(0x33, "ES0500");
+  const AzimuthLimit l;
+  const Profile& p = l.p;
+  const FuzzFrame &move = l.move, &status = l.status, &into = l.into;
   for (const Fault fault : {Fault::kJogIntoLimitAcked, Fault::kAzLimitBitsMissing}) {
     SCOPED_TRACE(fault == Fault::kJogIntoLimitAcked ? "jog-into-limit-acked" : "az-limit-bits-missing");
     Lockstep model(p, at_ms(0));

@@ -62,6 +62,13 @@ struct FuzzFrame {
 bool is_safe_to_send(ByteView chars, bool allow_motion, bool allow_destructive, ByteView before = {},
                      std::string* why = nullptr);
 
+// The azimuth, elevation or polarization member (axis 0, 1, 2) of a
+// controller's state or of a profile.
+template <typename T>
+auto& by_axis(T& s, std::size_t axis) {
+  return axis == 0 ? s.az : axis == 1 ? s.el : s.pol;
+}
+
 // Whether a §3.17 mode moves the antenna by itself, in an order and for a
 // time the spec leaves to the controller: STOW, DEPLOY and the spiral search
 // (ERRATA E-89, E-90).
