@@ -654,8 +654,13 @@ bool Lockstep::follow_device_led(const Controller& nominal, const std::vector<Fr
   // still has to stop: after it the model is at rest and compares again.
   const ModeState& ms = nominal.state().mode;
   if (moves_by_itself(ms.mode)) device_led_ = true;
+  // The device in such a mode where the model is not: only where the model
+  // has been in one (it left it a little earlier, or later); else the
+  // device's mode byte is judged (a wrong mode code that names one made
+  // every mode byte the device's for the rest of the episode).
+  const bool model_has_been = model_was_led_ || moves_by_itself(ms.last_mode);
   for (const Frame& dev : device)
-    if (const auto mode = device_mode(dev); mode && moves_by_itself(*mode)) device_led_ = true;
+    if (const auto mode = device_mode(dev); mode && moves_by_itself(*mode) && model_has_been) device_led_ = true;
   // Where such a mode leaves the axes the model knows only to the tenths the
   // device's readings show: counts and hundredths are not compared after it.
   if (device_led_) drifted_ = {true, true, true};

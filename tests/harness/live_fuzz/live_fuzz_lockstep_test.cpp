@@ -301,6 +301,32 @@ TEST(LiveFuzzLockstep, OnALineALocateTheDeviceDoesNotRunIsAFinding) {
   EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
 }
 
+// A device whose mode code names a STOW, a DEPLOY or a search where the model
+// has not been in one is judged, not followed (E-89, E-90): here every mode
+// code one too high (the mode taken from the device at the start, as a
+// session on a bench does), a LOCATE shows as 0x26.
+TEST(LiveFuzzLockstep, AModeCodeNamingAStowTheModelWasNotInIsJudged) {
+  // A site the LOCATE moves from (one without waits for it at rest, E-59).
+  const ProfileResult loaded = load_profile_file(
+      (std::filesystem::path(default_profile_path()).parent_path() / "fast-mount-manual-nav.yaml").string());
+  ASSERT_TRUE(loaded);
+  const Profile& p = *loaded.profile;
+  const auto request = build_request(*find_command(0x41), "data",
+                                     {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"}, {"band", "1"},
+                                      {"pol offset", "0.0"}, {"receive polarization", "N"}, {"position update", "A"}});
+  ASSERT_TRUE(request);
+  const FuzzFrame locate{encode_request(request.value(), p.address), {}, "test"},
+      extended{encode_frame({FrameKind::kCommand, p.address, 0x40, {}}), {}, "test"};
+  Lockstep model(p, at_ms(0));
+  Device device(p, FaultSet{Fault::kModeEnumOffByOne});
+  model.adopt(extended, at_ms(10), device.send(extended, at_ms(10)));
+  ASSERT_EQ(model.step(locate, at_ms(100), 0ms, device.send(locate, at_ms(100))), std::nullopt);
+  ASSERT_TRUE(moves_by_itself(0x26));
+  const auto v = model.step(extended, at_ms(200), 0ms, device.send(extended, at_ms(200)));
+  ASSERT_TRUE(v);
+  EXPECT_EQ(v->field, "current mode") << v->message;
+}
+
 // The whole session in-process, motion and stored writes allowed, on random
 // legal profiles (the sweep's generator): the lockstep oracle never fires on
 // the reference controller, and it compares fields and meets NAK rules.
