@@ -278,25 +278,36 @@ TEST(LiveFuzzLockstep, AfterASearchTheSpeedBitIsTheDevicesButNotWhetherItMoves) 
   }
 }
 
+// fast-mount-manual-nav (a site at 40 N 100 W, mount azimuth 0 at heading
+// 90), a 41h LOCATE of a satellite at 81.5 W that its axes reach within a
+// second, and the extended status poll.
+struct LocateFromASite {
+  Profile p = [] {
+    const ProfileResult loaded = load_profile_file(
+        (std::filesystem::path(default_profile_path()).parent_path() / "fast-mount-manual-nav.yaml").string());
+    EXPECT_TRUE(loaded);
+    return loaded ? *loaded.profile : Profile{};
+  }();
+  FuzzFrame locate{encode_request(build_request(*find_command(0x41), "data",
+                                                {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"},
+                                                 {"band", "1"}, {"pol offset", "0.0"}, {"receive polarization", "N"},
+                                                 {"position update", "A"}})
+                                      .value(),
+                                  p.address),
+                   {}, "test"};
+  FuzzFrame extended{encode_frame({FrameKind::kCommand, p.address, 0x40, {}}), {}, "test"};
+};
+
 // A LOCATE the device computes from the wrong hemisphere of its site's
 // longitude (§3.22, §3.23) ends at once in an elevation range error where
 // the model's moves: on a line that is a finding by the next reply (the
 // extended status the arrival asks as its move begins).
 TEST(LiveFuzzLockstep, OnALineALocateTheDeviceDoesNotRunIsAFinding) {
-  const std::string dir = std::filesystem::path(default_profile_path()).parent_path().string();
-  const ProfileResult loaded = load_profile_file(dir + "/fast-mount-manual-nav.yaml");
-  ASSERT_TRUE(loaded);
-  const Profile& p = *loaded.profile;
-  const auto request = build_request(*find_command(0x41), "data",
-                                     {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"}, {"band", "1"},
-                                      {"pol offset", "0.0"}, {"receive polarization", "N"}, {"position update", "A"}});
-  ASSERT_TRUE(request);
-  const FuzzFrame locate{encode_request(request.value(), p.address), {}, "test"},
-      extended{encode_frame({FrameKind::kCommand, p.address, 0x40, {}}), {}, "test"};
-  Lockstep model(p, at_ms(0));
-  Device device(p, FaultSet{Fault::kLocateEasternLongitude});
-  ASSERT_EQ(model.step(locate, at_ms(600), 5ms, device.send(locate, at_ms(600))), std::nullopt);
-  const auto v = model.step(extended, at_ms(604), 5ms, device.send(extended, at_ms(604)));
+  const LocateFromASite l;
+  Lockstep model(l.p, at_ms(0));
+  Device device(l.p, FaultSet{Fault::kLocateEasternLongitude});
+  ASSERT_EQ(model.step(l.locate, at_ms(600), 5ms, device.send(l.locate, at_ms(600))), std::nullopt);
+  const auto v = model.step(l.extended, at_ms(604), 5ms, device.send(l.extended, at_ms(604)));
   ASSERT_TRUE(v);
   EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
 }
@@ -304,25 +315,16 @@ TEST(LiveFuzzLockstep, OnALineALocateTheDeviceDoesNotRunIsAFinding) {
 // A device whose mode code names a STOW, a DEPLOY or a search where the model
 // has not been in one is judged, not followed (E-89, E-90): here every mode
 // code one too high (the mode taken from the device at the start, as a
-// session on a bench does), a LOCATE shows as 0x26.
+// session on a bench does), a moving LOCATE shows as 0x26 (a LOCATE without
+// a site would wait for one at rest, E-59, and be judged as a held mode).
 TEST(LiveFuzzLockstep, AModeCodeNamingAStowTheModelWasNotInIsJudged) {
-  // A site the LOCATE moves from (one without waits for it at rest, E-59).
-  const ProfileResult loaded = load_profile_file(
-      (std::filesystem::path(default_profile_path()).parent_path() / "fast-mount-manual-nav.yaml").string());
-  ASSERT_TRUE(loaded);
-  const Profile& p = *loaded.profile;
-  const auto request = build_request(*find_command(0x41), "data",
-                                     {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"}, {"band", "1"},
-                                      {"pol offset", "0.0"}, {"receive polarization", "N"}, {"position update", "A"}});
-  ASSERT_TRUE(request);
-  const FuzzFrame locate{encode_request(request.value(), p.address), {}, "test"},
-      extended{encode_frame({FrameKind::kCommand, p.address, 0x40, {}}), {}, "test"};
-  Lockstep model(p, at_ms(0));
-  Device device(p, FaultSet{Fault::kModeEnumOffByOne});
-  model.adopt(extended, at_ms(10), device.send(extended, at_ms(10)));
-  ASSERT_EQ(model.step(locate, at_ms(100), 0ms, device.send(locate, at_ms(100))), std::nullopt);
+  const LocateFromASite l;
+  Lockstep model(l.p, at_ms(0));
+  Device device(l.p, FaultSet{Fault::kModeEnumOffByOne});
+  model.adopt(l.extended, at_ms(10), device.send(l.extended, at_ms(10)));
+  ASSERT_EQ(model.step(l.locate, at_ms(100), 0ms, device.send(l.locate, at_ms(100))), std::nullopt);
   ASSERT_TRUE(moves_by_itself(0x26));
-  const auto v = model.step(extended, at_ms(200), 0ms, device.send(extended, at_ms(200)));
+  const auto v = model.step(l.extended, at_ms(200), 0ms, device.send(l.extended, at_ms(200)));
   ASSERT_TRUE(v);
   EXPECT_EQ(v->field, "current mode") << v->message;
 }
