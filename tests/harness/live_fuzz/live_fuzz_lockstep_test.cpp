@@ -315,9 +315,10 @@ TEST(LiveFuzzLockstep, OnALineALocateTheDeviceDoesNotRunIsAFinding) {
 // A device whose mode code names a STOW, a DEPLOY or a search where the model
 // has not been in one is judged, not followed (E-89, E-90): here every mode
 // code one too high (the mode taken from the device at the start, as a
-// session on a bench does), a moving LOCATE shows as 0x26 (a LOCATE without
-// a site would wait for one at rest, E-59, and be judged as a held mode).
-TEST(LiveFuzzLockstep, AModeCodeNamingAStowTheModelWasNotInIsJudged) {
+// session on a bench does), a moving LOCATE shows as 0x26, the spiral
+// search's code (a LOCATE without a site would wait for one at rest, E-59,
+// and be judged as a held mode).
+TEST(LiveFuzzLockstep, AModeCodeNamingASearchTheModelWasNotInIsJudged) {
   const LocateFromASite l;
   Lockstep model(l.p, at_ms(0));
   Device device(l.p, FaultSet{Fault::kModeEnumOffByOne});
