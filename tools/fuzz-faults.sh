@@ -117,9 +117,14 @@ clean_result() {
     echo "0 findings, $(grep -oE '^[0-9]+ writes' <<<"$result")"
     return
   fi
-  local kept; kept=$(mktemp -d /tmp/sabus-clean-finding.XXXXXX)
-  cp -r "$work/findings" "$work/fuzz.out" "$work/sim.log" "$profile" "$kept/" 2>/dev/null || true
-  echo "FINDING: ${result%%$'\n'*} (kept in $kept)"
+  # A directory of its own, never one that exists (mktemp), so nothing is
+  # replaced; what is not there to keep (no vector written, say) is named.
+  local kept missing=() item
+  kept=$(mktemp -d /tmp/sabus-clean-finding.XXXXXX)
+  for item in "$work/findings" "$work/fuzz.out" "$work/sim.log" "$profile"; do
+    cp -r "$item" "$kept/" 2>/dev/null || missing+=("$(basename "$item")")
+  done
+  echo "FINDING: ${result%%$'\n'*} (kept in $kept${missing[*]:+; not kept: ${missing[*]}})"
 }
 
 if ((clean_on)); then

@@ -327,7 +327,8 @@ FuzzFrame Generator::sequence() {
     // ended; the arrival comes with a later sequence. One begun inside such
     // a mode would be the device's to run until both were at rest, its
     // target unjudged (a LOCATE the device failed went unseen so).
-    if (model_ && !at_rest_out_of_modes_that_move()) {
+    if (const Controller* c = model_ ? model_().controller : nullptr;
+        c && (!all_at_rest(*c) || moves_by_itself(c->state().mode.mode))) {
       queued_.push_back({command(0x31), {}, "status after the stop"});
       queued_.push_back({command(0x40), {}, "extended status after the stop"});
       return {command(0x33, "XS0000"), {}, "sequence: stop before an arrival"};
@@ -340,13 +341,6 @@ FuzzFrame Generator::sequence() {
   if (stored) return options_.allow_destructive && uniform(0, 2) > 0 ? stored_sequence() : stored_read();
   ++motions_since_arrival_;
   return motion_sequence();
-}
-
-bool Generator::at_rest_out_of_modes_that_move() {
-  const Controller& c = *model_().controller;
-  for (std::size_t a = 0; a < 3; ++a)
-    if (by_axis(c.state(), a).motion != AxisState::Motion::kIdle) return false;
-  return !moves_by_itself(c.state().mode.mode);
 }
 
 FuzzFrame Generator::stored_sequence() {
@@ -624,8 +618,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
 std::optional<FuzzFrame> Generator::while_arriving() {
   if (!arriving_) return std::nullopt;
   const ModelView view = model_();
-  bool at_rest = true;
-  for (std::size_t a = 0; a < 3; ++a) at_rest = at_rest && by_axis(view.controller->state(), a).motion == AxisState::Motion::kIdle;
+  const bool at_rest = all_at_rest(*view.controller);
   if (!at_rest) at_rest_since_.reset();
   else if (!at_rest_since_) at_rest_since_ = view.now;
   if ((at_rest_since_ && view.now - *at_rest_since_ >= kRestFor) || view.now - arrival_start_ >= kArrivalLimit) {
@@ -738,9 +731,7 @@ FuzzFrame Generator::next() {
       queued_.pop_front();
       if (!safe(q)) continue;
       if (q.what == "stop" && stop_pending_) {
-        bool moving = !model_;
-        for (std::size_t a = 0; a < 3 && !moving; ++a)
-          moving = by_axis(model_().controller->state(), a).motion != AxisState::Motion::kIdle;
+        const bool moving = !model_ || !all_at_rest(*model_().controller);
         motions_stopped_[stop_pending_->first][stop_pending_->second] += moving ? 1.0 : 1.0 / 3;
         stop_pending_.reset();
       }

@@ -2,7 +2,6 @@
 // step with the device, every reply compared with the model's by the class of
 // each field (field_classes.hpp).
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -107,15 +106,6 @@ std::vector<Field> value_fields(const Frame& reply) {
   return out;
 }
 
-// The value of a one-byte field from its raw text ("0x45"), or nullopt.
-std::optional<std::uint8_t> one_byte(const std::string& raw) {
-  unsigned value = 0;
-  if (raw.size() != 4 || !raw.starts_with("0x") ||
-      std::from_chars(raw.data() + 2, raw.data() + 4, value, 16).ptr != raw.data() + 4)
-    return std::nullopt;
-  return static_cast<std::uint8_t>(value);
-}
-
 // The raw text of the `occurrence`-th field called `name`, or nullptr.
 const std::string* find_field(const std::vector<Field>& fields, std::string_view name, std::size_t occurrence) {
   for (const Field& f : fields)
@@ -152,13 +142,19 @@ std::optional<StatusBlock> status_block(const Frame& reply) {
   return std::nullopt;
 }
 
+// The status byte of an axis (§3.2 bytes 36-38): its speed bit (0x10) and
+// its motion or alarm code (the low nibble).
+std::uint8_t axis_status(const StatusBlock& b, std::size_t axis) {
+  return axis == 0 ? b.az_status : axis == 1 ? b.el_status : b.pol_status;
+}
+
 // Whether a status reply shows the axis moving (§3.2 bytes 36-38: jog
 // pending, movement or auto move in progress); a reply without the byte:
 // as if it does (no resync from it).
 bool device_moving(const Frame& reply, std::size_t axis) {
   const auto status = status_block(reply);
   if (!status) return true;
-  const std::uint8_t code = (axis == 0 ? status->az_status : axis == 1 ? status->el_status : status->pol_status) & 0x0F;
+  const std::uint8_t code = axis_status(*status, axis) & 0x0F;
   return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
 }
 
@@ -167,13 +163,6 @@ bool device_moving(const Frame& reply, std::size_t axis) {
 std::optional<bool> shows_moving(const Frame& reply) {
   if (!status_block(reply)) return std::nullopt;
   return device_moving(reply, 0) || device_moving(reply, 1) || device_moving(reply, 2);
-}
-
-// Whether every axis of the controller is at rest.
-bool all_at_rest(const Controller& c) {
-  for (std::size_t a = 0; a < 3; ++a)
-    if (motion_of(c, a) != AxisState::Motion::kIdle) return false;
-  return true;
 }
 
 // An exit status by which a stop ends a mode (§3.17 exit lists): the
@@ -260,6 +249,12 @@ bool hundredths_within(double tenths_deg, std::uint32_t digit, double target, do
 // §3.7 'S', 'D', 'A' (ERRATA E-89, E-90): how a STOW, a DEPLOY or a search
 // moves the antenna, in what order and for how long, the spec leaves to the
 // controller; the model's is one reading.
+bool all_at_rest(const Controller& c) {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (by_axis(c.state(), a).motion != AxisState::Motion::kIdle) return false;
+  return true;
+}
+
 bool moves_by_itself(std::uint8_t mode) {
   const auto name = meanings::mode_name(mode);
   return name == "STOW_MODE" || name == "DEPLOY_MODE" || name == "SPIRAL_REMOTE_MODE";
@@ -541,16 +536,13 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     if (runs[k].differences < runs[best].differences) best = k;
   if (runs[best].copy) bus_ = std::move(runs[best].copy);
   runs.clear();
-  // The device's word on a limit holds for the status that follows it: a
-  // status block compared its limit bits, and what stands after it is its
-  // own word again (note_limits_shown).
-  // A command the device took that moves the antenna (§3.3, §3.4, §3.7,
-  // §3.18) may have taken its axis a hair off, even one the model keeps at
-  // rest (a move to where it stands): the word ends with it.
+  // The device's word on a limit holds until a status block (which judged
+  // its limit bits, and whose own word note_limits_shown reads below) or a
+  // command the device took that moves the antenna (§3.3, §3.4, §3.7,
+  // §3.18): that may take its axis a hair off, even where the model's stays
+  // at rest (a move to where it stands).
   for (const Frame& dev : device)
-    if (form_of_reply(dev) == ReplyForm::kAck &&
-        (status_block(dev) || moves_antenna(dev.command)))
-      at_limit_agreed_ = {};
+    if (form_of_reply(dev) == ReplyForm::kAck && (status_block(dev) || moves_antenna(dev.command))) at_limit_agreed_ = {};
   note_limits_shown(j, device);
   for (std::size_t a = 0; a < 3; ++a) {
     AxisState& ax = by_axis(model().mutable_state(), a);
@@ -590,14 +582,13 @@ std::vector<Lockstep::Run> Lockstep::runs_of(const FuzzFrame& frame, TimePoint a
     // An axis that has moved on a line stands where the device's stand
     // only to within what its readings resolve: a move to where the model
     // already is may move the device's a hair, either way (§3.2 shows
-    // tenths). The model is also run with those axes a little to each side,
-    // one the device has said is at a limit too: a 0 ms jog in a burst (its
-    // frames run microseconds apart in a device, 1 ms apart in the model)
-    // takes a device's axis a hair off it where the model's stays (three
-    // random profiles over a pty gave JogIntoLimit findings without this).
-    // Not in a write of one frame: an axis the device has said is at a
-    // limit stands there, and the frame is judged by that (its limit bits,
-    // a jog into it NAKed: §3.2 bytes 32-34, §3.4).
+    // tenths). The model is also run with those axes a little to each side.
+    // An axis the device has said is at a limit stands there in a write of
+    // one frame, which is judged by that (its limit bits, a jog into it
+    // NAKed: §3.2 bytes 32-34, §3.4); in a burst it is nudged too: a 0 ms
+    // jog there (its frames run microseconds apart in a device, 1 ms apart
+    // in the model) takes a device's axis a hair off where the model's
+    // stays (random profiles over a pty gave JogIntoLimit findings).
     const bool one_frame = cuts_.empty();
     if (moved_on_line_[0] || moved_on_line_[1] || moved_on_line_[2])
       for (const double nudge : kNudgesDeg) {
@@ -792,12 +783,11 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
     // Whether it moves, which way and its alarms; the speed bit (0x10) is
     // that of the last leg the device ran (§3.2 bytes 36-38, E-89, E-90),
     // taken when the episode ends (keep_in_step).
-    const auto motion_code = [](const std::string* raw) -> std::optional<int> {
-      const auto b = raw ? one_byte(*raw) : std::nullopt;
-      return b ? std::optional<int>(*b & 0x0F) : std::nullopt;
-    };
-    if (f.name.ends_with(" status") && motion_code(&f.raw) &&
-        std::any_of(values.begin(), values.end(), [&](const std::string* v) { return motion_code(v) == motion_code(&f.raw); }))
+    const auto dev_status = has_axis && f.name.ends_with(" status") ? status_block(r.dev) : std::nullopt;
+    if (dev_status && std::any_of(r.same.begin(), r.same.end(), [&](const Run* run) {
+          const auto model_status = status_block(run->replies[r.index]);
+          return model_status && (axis_status(*model_status, axis) & 0x0F) == (axis_status(*dev_status, axis) & 0x0F);
+        }))
       return true;
   }
   bool moving = false;
@@ -1003,8 +993,7 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
       m.mutable_state().mode = mode_state(*x);
       ++coverage_.resyncs;
       // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10).
-      const std::uint8_t speeds[] = {x->status.az_status, x->status.el_status, x->status.pol_status};
-      for (std::size_t a = 0; a < 3; ++a) by_axis(m.mutable_state(), a).fast = (speeds[a] & 0x10) != 0;
+      for (std::size_t a = 0; a < 3; ++a) by_axis(m.mutable_state(), a).fast = (axis_status(x->status, a) & 0x10) != 0;
     }
 }
 

@@ -69,6 +69,9 @@ auto& by_axis(T& s, std::size_t axis) {
   return axis == 0 ? s.az : axis == 1 ? s.el : s.pol;
 }
 
+// Whether every axis of the controller is at rest.
+bool all_at_rest(const Controller& c);
+
 // Whether a §3.17 mode moves the antenna by itself, in an order and for a
 // time the spec leaves to the controller: STOW, DEPLOY and the spiral search
 // (ERRATA E-89, E-90).
@@ -160,7 +163,6 @@ class Generator {
   FuzzFrame sequence();
   FuzzFrame stored_sequence();
   FuzzFrame stored_read();
-  bool at_rest_out_of_modes_that_move();  // the model's axes, and its mode (moves_by_itself)
   FuzzFrame motion_sequence();
   std::vector<const Bytes*> bases_where(const std::function<bool(const Bytes&)>& keep) const;
   Bytes command(std::uint8_t code, std::string_view data = {}) const;  // a well-formed command frame to the device
