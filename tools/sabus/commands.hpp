@@ -29,6 +29,12 @@ inline constexpr int kExitStopped = 4;
 // pytest's "no tests ran" is 5 too, so a CI set up for either reads it the same.
 inline constexpr int kExitNothingRan = 5;
 
+// --reading of sabus sim, run --sim and fuzz --sim (readings.hpp).
+inline constexpr const char* kReadingHelp =
+    "The side of the spec's open points the reference controller takes (protocol/ERRATA.md, class reading): "
+    "other (every one flipped), reference, or E-NN=other|reference,... one at a time (default: the profile's pins, "
+    "else reference)";
+
 // How much the commands say: -q only failures and the summary, -v also every
 // vector on a terminal and the notes of how a port was opened (options of
 // the whole program, taken before or after the subcommand).

@@ -22,6 +22,7 @@ void add_device_options(CLI::App* sub, DeviceOptions& o) {
       ->check(CLI::IsMember({"8N1", "7E1"}));
   add_serial_backend_option(sub, o.serial_backend);
   sub->add_option("--fault", o.faults, "With --sim: inject a named fault (sabus sim --list-faults)");
+  sub->add_option("--reading", o.reading, kReadingHelp);
 }
 
 TelnetNote telnet_note(const std::string& tool) {
@@ -59,11 +60,18 @@ OpenedDevice open_device(const std::string& tool, DeviceOptions o) {
     if (!f || !o.sim) return usage(o.sim ? "unknown fault \"" + name + "\"" : "--fault needs --sim");
     d.faults.set(*f);
   }
+  // The controller's profile: the device's, with the sides --reading pins;
+  // the verdicts keep the profile as the user wrote it.
+  Profile controller_profile = d.profile;
+  if (!o.reading.empty()) {
+    if (!o.sim) return usage("--reading needs --sim");
+    if (auto why = apply_reading_spec(o.reading, controller_profile.readings)) return usage("--reading: " + *why);
+  }
   std::optional<HostPort> tcp;
   if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) return usage("--tcp HOST:PORT, with a port 0-65535");
   try {
     if (o.sim) {
-      d.transport = make_in_process_transport(bus_of(d.profile), d.faults);  // §1 multi-drop: bus_peers
+      d.transport = make_in_process_transport(bus_of(controller_profile), d.faults);  // §1 multi-drop: bus_peers
     } else if (is_rfc2217_url(o.port)) {
       std::string error;
       const auto url = parse_rfc2217_url(o.port, error);

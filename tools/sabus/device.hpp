@@ -21,11 +21,14 @@ struct DeviceOptions {
   std::string port, tcp, profile, address;
   std::string line = "8N1", serial_backend = "auto";
   std::vector<std::string> faults;
+  // With --sim: the side of the spec's open points the reference controller
+  // takes (readings.hpp); the runner's profile keeps its own pins.
+  std::string reading;
   int baud = 0;
 };
 
 // Registers --sim, --port, --tcp, --profile, --address, --baud, --line,
-// --serial-backend and --fault on `sub`.
+// --serial-backend, --fault and --reading on `sub`.
 void add_device_options(CLI::App* sub, DeviceOptions& o);
 // --serial-backend (auto, libserialport or termios), for every command that
 // opens a serial port.

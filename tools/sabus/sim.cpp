@@ -38,6 +38,7 @@ struct SimOptions {
   std::string addresses;
   bool remote_disabled = false;
   std::vector<std::string> faults;
+  std::string reading;
   std::string state_file;
   bool emulate_line = false;
   double turnaround_ms = -1;
@@ -63,6 +64,11 @@ std::optional<std::vector<Profile>> profiles(const SimOptions& o) {
   }
   Profile base = *loaded.profile;
   if (o.remote_disabled) base.remote_enabled = false;
+  if (!o.reading.empty())
+    if (auto why = apply_reading_spec(o.reading, base.readings)) {
+      std::cerr << "sabus sim: --reading: " << *why << "\n";
+      return std::nullopt;
+    }
   if (o.addresses.empty()) return bus_of(base);  // the profile's bus_peers (§1 multi-drop)
   std::vector<std::uint8_t> addresses;
   std::stringstream list(o.addresses);
@@ -213,6 +219,7 @@ Command add_sim_command(CLI::App& app) {
   sub->add_option("--address", o->addresses, "Address, or a list for a multi-drop bus: 50,51,60");
   sub->add_flag("--remote-disabled", o->remote_disabled, "Remote control disabled: valid commands get the offline reply");
   sub->add_option("--fault", o->faults, "Inject a named fault (repeatable); see --list-faults");
+  sub->add_option("--reading", o->reading, kReadingHelp);
   sub->add_option("--state-file", o->state_file, "Keep non-volatile data (STORE list, presets, ...) in this file");
   sub->add_flag("--emulate-line", o->emulate_line, "Hold each reply byte for its wire time at the baud rate");
   sub->add_option("--turnaround", o->turnaround_ms, "Reply turnaround in ms with --emulate-line, 0-10000 (default: the profile's)")

@@ -89,12 +89,14 @@ struct ProfileOutcome {
   std::string aborted;
 };
 
-ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed) {
+ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed, const std::string& reading) {
   ProfileOutcome o;
   o.seed = seed;
   o.profile = random_profile(seed);
   const Profile& p = o.profile;
-  auto transport = make_in_process_transport(bus_of(p), {});
+  Profile controller = p;  // --reading: the controller's side, checked in run_sweep
+  if (!reading.empty()) (void)apply_reading_spec(reading, controller.readings);
+  auto transport = make_in_process_transport(bus_of(controller), {});
   RunOptions options;
   options.allow_motion = true;
   options.allow_destructive = true;
@@ -157,6 +159,11 @@ int run_sweep(const SweepOptions& opts) {
   for (auto& f : suite.files)
     for (auto& v : f.vectors) vectors.push_back(std::move(v));
 
+  if (ReadingPins pins; !opts.reading.empty())
+    if (auto why = apply_reading_spec(opts.reading, pins)) {
+      std::cerr << "sabus vectors sweep: --reading: " << *why << "\n";
+      return kExitUsage;
+    }
   const std::optional<std::uint64_t> seed = sweep_seed(opts.seed);
   if (!seed) {
     std::cerr << "sabus vectors sweep: --seed " << opts.seed << ": a whole number below 2^64, or fresh\n";
@@ -176,7 +183,7 @@ int run_sweep(const SweepOptions& opts) {
   std::mutex print;
   auto worker = [&] {
     for (std::size_t i = next++; i < seeds.size(); i = next++) {
-      outcomes[i] = sweep_one(vectors, seeds[i]);
+      outcomes[i] = sweep_one(vectors, seeds[i], opts.reading);
       const ProfileOutcome& o = outcomes[i];
       const std::lock_guard lock(print);
       std::cout << fmt::format("profile {} seed {}: {} ran, {} failed, {} skipped ({})\n", i + 1, o.seed, o.ran,
@@ -229,6 +236,7 @@ void add_sweep_subcommand(CLI::App& vectors, std::shared_ptr<SweepOptions> o) {
   sub->add_option("--out", o->out, "Where failing profiles are written (default sweep-failures/)");
   sub->add_option("--write-profiles", o->write_profiles,
                   "Write every profile (not only the failing ones) to this folder as sweep-SEED.yaml");
+  sub->add_option("--reading", o->reading, kReadingHelp);
   sub->add_option("--jobs", o->jobs, "Profiles run at once (default: the machine's cores)")->check(CLI::Range(1, 256));
   o->command = sub;
 }

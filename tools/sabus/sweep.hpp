@@ -19,6 +19,9 @@ struct SweepOptions {
   std::string out = "sweep-failures";
   std::string write_profiles;  // when set: every profile written there, failing or not
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  // The side of the spec's open points the reference controller takes
+  // (readings.hpp; "" the profile's own); the verdicts keep the profile's pins.
+  std::string reading;
   CLI::App* command = nullptr;  // the subcommand, to tell whether it was given
 };
 

@@ -257,16 +257,23 @@ int run_summary(const VectorsOptions& o) {
   return r.errors.empty() ? kExitOk : kExitFailed;
 }
 
-// Errata entry -> the vectors whose flags rest on it (the notes' `errata`).
+// Errata entry -> the vectors that rest on it: through their flags (the
+// notes' `errata`), or by accepting the other side of a reading (an
+// expectation's `readings:`).
 std::map<std::string, std::vector<std::string>> errata_vectors(const LoadResult& r) {
   std::map<std::string, std::vector<std::string>> out;
+  auto add = [&](const std::string& entry, const std::string& id) {
+    auto& ids = out[entry];
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  };
   for (const auto& f : r.files)
-    for (const auto& v : f.vectors)
+    for (const auto& v : f.vectors) {
       for (const auto& flag : v.flags)
-        if (auto n = f.notes.find(flag); n != f.notes.end() && !n->second.errata.empty()) {
-          auto& ids = out[n->second.errata];
-          if (std::find(ids.begin(), ids.end(), v.id) == ids.end()) ids.push_back(v.id);
-        }
+        if (auto n = f.notes.find(flag); n != f.notes.end() && !n->second.errata.empty()) add(n->second.errata, v.id);
+      for (const auto* steps : {&v.setup, &v.steps, &v.teardown})
+        for (const harness::Step& s : *steps)
+          for (const auto& alt : s.expect.readings) add(alt.errata, v.id);
+    }
   return out;
 }
 

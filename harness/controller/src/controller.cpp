@@ -27,6 +27,8 @@ constexpr int kMaxPhases = 16;
 // gives up, and the tick its legs (and a DEPLOY's movements) are timed on.
 constexpr double kSpiralStepDeg = 1.0;
 constexpr std::chrono::seconds kSearchTime{20};
+// E-90's other side: a search that gives up within a second.
+constexpr std::chrono::milliseconds kShortSearchTime{300};
 constexpr std::chrono::milliseconds kSearchTick{100};
 
 double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
@@ -170,7 +172,8 @@ Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faul
   // What the controller shows at power-on (§3.2 bytes 3-12, 35 ZZZ, 36-38 'S').
   state_.displayed_sat = profile_.display.satellite;
   state_.pol_code = profile_.display.pol_code;
-  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) axis(a).fast = axis_profile(a).power_on_speed == AxisSpeed::kFast;
+  for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
+    axis(a).fast = axis(a).configured_fast = axis_profile(a).power_on_speed == AxisSpeed::kFast;
   // Power-on: INIT has finished; MANUAL (or TRACK, for profiles that test it).
   state_.mode.last_mode = mode_value("INIT_MODE");
   state_.mode.exit_status = enum_value(enums::exit_list_for_mode(state_.mode.last_mode, enum_reading()),
@@ -186,6 +189,10 @@ Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faul
 
 enums::EnumReading Controller::enum_reading() const {
   return enums::EnumReading{profile_.restore_lost_locate_exit};
+}
+
+bool Controller::reads_other(std::string_view errata_id) const {
+  return side_taken(profile_.readings, errata_id) == ReadingSide::kOther;
 }
 
 const AxisProfile& Controller::axis_profile(AxisId a) const {
@@ -303,7 +310,7 @@ void Controller::start_jog(AxisId a, int direction, bool fast, Duration duration
   AxisState& s = axis(a);
   s.motion = AxisState::Motion::kJog;
   s.direction = direction;
-  s.fast = fast;
+  s.fast = s.configured_fast = fast;
   s.jog_end = clock_.now() + duration;
 }
 
@@ -400,6 +407,12 @@ void Controller::advance(TimePoint to, bool at_tick) {
   const bool was_moving = moving();
   for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) step_axis(a, last_update_, to);
   last_update_ = to;
+  // E-90's other side: a search whose time is over gives up where it is
+  // (next_search_leg exits once the axes have stopped).
+  if (at_tick && in_mode("SPIRAL_REMOTE_MODE") && reads_other("E-90") && !search_.returning && to >= search_.end) {
+    search_.returning = true;
+    stop_all();
+  }
   if (moving() || !(was_moving || chain_pending_)) return;
   if (!at_tick) {
     chain_pending_ = true;
@@ -409,7 +422,10 @@ void Controller::advance(TimePoint to, bool at_tick) {
   on_motion_done();
 }
 
-bool Controller::chains_movements() const { return in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE"); }
+bool Controller::chains_movements() const {
+  // E-94's other side: a LOCATE's movements follow each other too.
+  return in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE") || (in_mode("LOCATE_MODE") && reads_other("E-94"));
+}
 
 void Controller::update() {
   const TimePoint now = clock_.now();
@@ -432,8 +448,12 @@ void Controller::update() {
 void Controller::start_search(char pattern) {
   tick_origin_ = last_update_;
   chain_pending_ = false;
-  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0,
-                   clock_.now() + std::chrono::duration_cast<Duration>(kSearchTime), false};
+  // ERRATA E-90: how long a search lasts is the controller's; the other side
+  // gives up within a second.
+  const Duration search_time = reads_other("E-90") ? std::chrono::duration_cast<Duration>(kShortSearchTime)
+                                                   : std::chrono::duration_cast<Duration>(kSearchTime);
+  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now() + search_time,
+                   false};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
   next_search_leg();
 }
@@ -490,9 +510,26 @@ void Controller::on_motion_done() {
   // A LOCATE completes when its movement arrives: not in a range error or
   // while it waits for data (E-81), where a stop may still be ramping down.
   const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
-  const bool locate_moving = states && states->name_of(state_.mode.state) == "LOCATE_AZIM_MOVEMENT";
+  const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
   if (in_mode("LOCATE_MODE")) {
-    if (locate_moving) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
+    // E-94's other side: the movements of locate_states one after the
+    // other; the feed has no polarization target (the offset is unused,
+    // §3.18 bytes 24-28) and the first elevation movement went all the way.
+    if (state == "LOCATE_FIRST_ELEV_MOVEMENT") {
+      set_state("LOCATE_POL_MOVEMENT");
+      return on_motion_done();
+    }
+    if (state == "LOCATE_POL_MOVEMENT") {
+      set_state("LOCATE_AZIM_MOVEMENT");
+      start_move(AxisId::kAz, locate_az_target_, false);
+      if (moving()) return;
+      return on_motion_done();
+    }
+    if (state == "LOCATE_AZIM_MOVEMENT" && reads_other("E-94")) set_state("LOCATE_SECOND_ELEV_MOVEMENT");
+    // E-93: where a LOCATE that completes goes (E-52: MANUAL_MODE).
+    const bool completed = state == "LOCATE_AZIM_MOVEMENT" || state == "LOCATE_SECOND_ELEV_MOVEMENT";
+    if (completed && reads_other("E-93")) enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", "LOCATE_FUNCTION_COMPLETED");
+    else if (completed) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
   } else if (in_mode("STOW_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
   else if (in_mode("DEPLOY_MODE")) {
     const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
@@ -573,7 +610,9 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
     case AxisState::Motion::kRemoteAutoMove: code = 0x7; break;
   }
   if (s.alarm) code = s.alarm;
-  return static_cast<std::uint8_t>((s.fast ? 0x10 : 0) | code);
+  // E-98: 'S' is the speed of the move, or (other side) the configured speed.
+  const bool fast = reads_other("E-98") ? s.configured_fast : s.fast;
+  return static_cast<std::uint8_t>((fast ? 0x10 : 0) | code);
 }
 
 bool Controller::pol_moves_allowed() const {
@@ -610,9 +649,15 @@ StatusBlock Controller::status_block() const {
   b.el_limits = limit_bits(AxisId::kEl);
   b.pol_limits = profile_.pol_type == PolType::kCircular ? 0 : limit_bits(AxisId::kPol);
   const std::uint8_t feed = profile_.pol_type == PolType::kCircular ? 0 : profile_.pol_type == PolType::kSinglePort ? 1 : 2;
-  const std::uint8_t code = state_.pol_code == 'H' ? 0 : state_.pol_code == 'h' ? 1 : state_.pol_code == 'V' ? 2
-                            : state_.pol_code == 'v' ? 3 : 4;
-  b.pol_equipment = static_cast<std::uint8_t>(feed << 4 | (pol_moves_allowed() ? 8 : 0) | code);
+  // E-96's other side: the code in lower case while the feed still moves to it.
+  char shown = state_.pol_code;
+  if (reads_other("E-96") && state_.pol.motion != AxisState::Motion::kIdle && (shown == 'H' || shown == 'V'))
+    shown = static_cast<char>(shown - 'A' + 'a');
+  const std::uint8_t code = shown == 'H' ? 0 : shown == 'h' ? 1 : shown == 'V' ? 2 : shown == 'v' ? 3 : 4;
+  // §3.2 byte 35 'Y' "only contains meaningful data when TRACK mode is
+  // active" (E-95): the other side shows 0 outside TRACK.
+  const bool y = pol_moves_allowed() && (state_.track.active || !reads_other("E-95"));
+  b.pol_equipment = static_cast<std::uint8_t>(feed << 4 | (y ? 8 : 0) | code);
   b.az_status = axis_status_bits(AxisId::kAz);
   b.el_status = axis_status_bits(AxisId::kEl);
   b.pol_status = profile_.pol_type == PolType::kCircular ? 0 : axis_status_bits(AxisId::kPol);

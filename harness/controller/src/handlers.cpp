@@ -42,6 +42,33 @@ bool Handlers::implemented(const C& c, std::uint8_t code) {
 
 // ---- the front door ------------------------------------------------------------
 
+namespace {
+
+// ERRATA E-91's other side: the polarization fields of 41h (byte 29) and 42h
+// (bytes 29-39) are not read on a circular feed, so whatever they hold
+// decodes as a selection with no values ('N' none; 'H' with blank
+// positions, which §3.19 stores as nothing on a circular feed).
+void blank_polarization_fields(Frame& f) {
+  constexpr std::size_t kFirstDataByte = 3;  // after STX, address and command (§1)
+  constexpr std::size_t kByte29 = 29 - kFirstDataByte;
+  if (f.command == 0x41 && f.data.size() > kByte29) f.data[kByte29] = 'N';
+  if (f.command == 0x42 && f.data.size() > kByte29 + 10) {
+    f.data[kByte29] = 'H';
+    std::fill(f.data.begin() + kByte29 + 1, f.data.begin() + kByte29 + 11, ' ');
+  }
+}
+
+// ERRATA E-66's other side: the commands that leave a LOCATE "immediately
+// prior" to a 42h: reads of the state (§3.1, §3.2, §3.8, §3.16, §3.17), the
+// LOCATE itself and the Remote Store.
+bool keeps_locate_claim(std::uint8_t code) {
+  for (std::uint8_t read : {0x30, 0x31, 0x37, 0x3F, 0x40, 0x41, 0x42})
+    if (code == read) return true;
+  return false;
+}
+
+}  // namespace
+
 Outcome Controller::execute(const Frame& f) {
   update();
   const CommandInfo* info = find_command(f.command);
@@ -68,14 +95,24 @@ Outcome Controller::execute(const Frame& f) {
       return unknown(NakRule::kWrongLength,
                      std::to_string(length) + " bytes, " + std::to_string(*info->request_length) + " expected");
   }
-  // §3 Online/Offline Reply: a valid command while remote control is disabled.
-  if (offline) return offline_outcome();
-  if (!Handlers::implemented(*this, f.command)) return Handlers::nak(*this, f.command, NakRule::kNotImplemented);
+  // §3 Online/Offline Reply: a valid command while remote control is
+  // disabled; whether one the controller does not implement is "valid" is
+  // ERRATA E-97 (the other side NAKs it, offline or not).
+  const bool implemented = Handlers::implemented(*this, f.command);
+  if (offline && (implemented || !reads_other("E-97"))) return offline_outcome();
+  if (!implemented) return Handlers::nak(*this, f.command, NakRule::kNotImplemented);
 
+  // §3.18 byte 29, §3.19 bytes 29-39: "Not applicable if feed type is
+  // circular"; the other side of ERRATA E-91 does not read them there.
+  if (reads_other("E-91") && profile_.pol_type == PolType::kCircular) blank_polarization_fields(command);
   auto request = decode_request(command);
   if (!request) return Handlers::nak(*this, f.command, NakRule::kMalformedData, request.error().message());
   Outcome o = dispatch(command, request.value());
   if (o.reply && o.note.empty()) o.note = std::string(info->name);
+  // ERRATA E-66's other side: 42h 'C' needs the LOCATE "immediately prior":
+  // any command the controller takes in between, reads aside, voids it.
+  if (reads_other("E-66") && o.reply && !o.reply->empty() && o.reply->front() == ACK && !keeps_locate_claim(f.command))
+    state_.last_located.reset();
   return o;
 }
 

@@ -197,7 +197,10 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
       return nak(c, 0x41, NakRule::kLocateField, "preset " + std::to_string(l.preset.index));
     sat = p->data;
   } else {
-    if (!satellite_fields_ok(l.sat) || l.sat.name.empty()) return nak(c, 0x41, NakRule::kLocateField);
+    // §3.18 asks for a "10 character satellite name"; whether a blank one is
+    // an error in the supplied data is ERRATA E-92 (the other side ACKs).
+    if (!satellite_fields_ok(l.sat) || (l.sat.name.empty() && !c.reads_other("E-92")))
+      return nak(c, 0x41, NakRule::kLocateField);
     sat = l.sat;
   }
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
@@ -232,6 +235,17 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
     c.set_state(error);
     c.state_.last_located.reset();  // no LOCATE performed for 42h 'C' (E-83)
     return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": " + std::string(error));
+  }
+  if (c.reads_other("E-94")) {
+    // ERRATA E-94's other side: the movements of §3.17 locate_states one
+    // after the other, elevation first (on_motion_done chains them).
+    c.tick_origin_ = c.last_update_;
+    c.chain_pending_ = false;
+    c.locate_az_target_ = az.value_or(to.azimuth_deg);
+    c.set_state("LOCATE_FIRST_ELEV_MOVEMENT");
+    c.start_move(AxisId::kEl, to.elevation_deg, false);
+    if (!c.moving()) c.on_motion_done();
+    return ack(c, 0x41, AckReply{}, "locate " + sat.name);
   }
   c.set_state("LOCATE_AZIM_MOVEMENT");
   c.start_move(AxisId::kAz, az.value_or(to.azimuth_deg), false);  // clamped at the limits under the fault

@@ -345,6 +345,14 @@ void deploy_positions(Draw& d, Profile& p) {
   if (d.chance(0.5)) p.az.deploy_deg = inside(d, {p.az.min_deg, p.az.max_deg});
 }
 
+// The spec's open points (readings.hpp): most are left open, as a profile
+// that knows nothing of its firmware's reading would; one in four is pinned
+// to a side, which the controller then takes and the vectors hold it to.
+void readings(Draw& d, Profile& p) {
+  for (const ReadingPoint& point : reading_points())
+    if (d.chance(0.25)) p.readings[std::string(point.id)] = d.chance(0.5) ? ReadingSide::kOther : ReadingSide::kReference;
+}
+
 }  // namespace
 
 Profile random_profile(std::uint64_t seed) {
@@ -361,7 +369,8 @@ Profile random_profile(std::uint64_t seed) {
   display(d, p);
   track_and_alarms(d, p);
   errata(d, p);
-  deploy_positions(d, p);  // drawn last: the fields before keep their draws
+  deploy_positions(d, p);
+  readings(d, p);  // drawn last: the fields before keep their draws
   return p;
 }
 

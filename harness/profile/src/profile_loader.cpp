@@ -443,6 +443,23 @@ void read_errata(const YAML::Node& v, const At& at, Profile& p) {
              std::to_string(p.locate_index_max));
 }
 
+// The sides of the spec's open points this device is pinned to (readings.hpp,
+// ERRATA entries of class reading): `E-90: other`.
+void read_readings(const YAML::Node& v, const At& at, Profile& p) {
+  std::vector<std::string_view> ids;
+  for (const ReadingPoint& point : reading_points()) ids.push_back(point.id);
+  MapReader r(v, at, ids);
+  for (const ReadingPoint& point : reading_points())
+    r.with(point.id, [&](const YAML::Node& n, const At& a) {
+      const std::string& name = scalar(n, a, "reference or other");
+      const auto side = reading_side_named(name);
+      if (!side)
+        fail(a, quoted_clip(name) + " is not a side: reference (" + std::string(point.reference) + ") or other (" +
+                    std::string(point.other) + ")");
+      p.readings[std::string(point.id)] = *side;
+    });
+}
+
 // §1 multi-drop: the other addresses on the line, one address or a list;
 // each distinct and not the profile's own.
 void read_bus_peers(const YAML::Node& v, const At& at, Profile& p) {
@@ -464,7 +481,7 @@ Profile read_profile(const YAML::Node& root) {
               {"name", "address", "bus_peers", "remote_enabled", "baud", "firmware", "polarization", "azimuth_sensor",
                "fluxgate_heading", "hundredths", "stow", "deploy", "dvb_receiver", "counts_per_degree", "count_offset", "axes",
                "turnaround_ms", "agc", "agc_channel", "display", "store", "presets", "tles", "signposts", "navigation",
-               "track", "alarms", "errata"});
+               "track", "alarms", "errata", "readings"});
   r.read("name", p.name, [](const YAML::Node& n, const At& a) { return to_field_text(n, a, 1, kMaxProfileName); });
   r.read("address", p.address, to_address);
   r.with("bus_peers", [&](const YAML::Node& n, const At& a) { read_bus_peers(n, a, p); });
@@ -498,6 +515,7 @@ Profile read_profile(const YAML::Node& root) {
   r.with("track", [&](const YAML::Node& n, const At& a) { read_track(n, a, p.track); });
   r.with("alarms", [&](const YAML::Node& n, const At& a) { read_alarms(n, a, p.alarms); });
   r.with("errata", [&](const YAML::Node& n, const At& a) { read_errata(n, a, p); });
+  r.with("readings", [&](const YAML::Node& n, const At& a) { read_readings(n, a, p); });
   // §3.20 NOTE / ERRATA E-23: signposts exist only with the DVB receiver option.
   if (!p.signposts.empty() && !p.dvb_receiver)
     fail(r.at("signposts"), "signposts need the DVB receiver option (dvb_receiver: true; §3.20, ERRATA E-23)");

@@ -194,6 +194,11 @@ std::string to_yaml(const Profile& p) {
   sub("locate_index_min", std::to_string(p.locate_index_min));
   sub("locate_index_max", std::to_string(p.locate_index_max));
   sub("restore_lost_locate_exit", bool_text(p.restore_lost_locate_exit));
+  // The pinned readings only: an open point is no key (readings.hpp).
+  if (!p.readings.empty()) {
+    out += "readings:\n";
+    for (const auto& [id, side] : p.readings) sub(id, std::string(to_string(side)));
+  }
   return out;
 }
 

@@ -60,6 +60,15 @@ class Session : public ReceiverSink {
   std::optional<std::string> run_step(const Step& s);
   std::optional<std::string> run_send(const Step& s);
   std::optional<std::string> run_poll(const Step& s);
+  // What came back to a send, as its expectation is checked against it.
+  struct Reply {
+    const std::vector<Frame>& replies;
+    const std::optional<std::vector<std::string>>& nak_rules;  // the reference controller's, when it says
+    std::uint8_t address = 0, command = 0;                    // the frame the device acted on
+  };
+  std::optional<std::string> check_reply(const Expectation& e, const Reply& got);
+  // check_reply against each side of the open points `e.readings` names.
+  std::optional<std::string> check_sides(const Expectation& e, const Reply& got);
 
   double t_ms() const;
   // Profile expressions of the current vector: the profile, its captures, the pace.

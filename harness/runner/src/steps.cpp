@@ -6,6 +6,7 @@
 
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/profile_records.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/protocol/lrc.hpp"
 #include "session.hpp"
@@ -226,22 +227,56 @@ std::optional<std::string> Session::run_send(const Step& step) {
                                   : SentFrame{wire.size() > 1 ? wire[1] : profile.address,
                                               static_cast<std::uint8_t>(wire.size() > 2 ? wire[2] : 0)};
   const std::uint8_t want_address = s.command && s.command->address ? *s.command->address : sent.address;
-  if (auto e = check_kind(s.expect, replies, want_address, sent.command)) return e;
-  if (auto e = check_nak_rule(s.expect, nak_rules)) return e;
-  if (replies.empty()) return std::nullopt;
-  const Bytes reply = encode_frame(replies[0]);
-  if (s.expect.bytes) {
-    const Expansion template_ = expand_raw_expressions(s.expect.bytes->hex, expr_context());
+  const Reply got{replies, nak_rules, want_address, sent.command};
+  if (s.expect.readings.empty()) return check_reply(s.expect, got);
+  return check_sides(s.expect, got);
+}
+
+std::optional<std::string> Session::check_reply(const Expectation& e, const Reply& got) {
+  if (auto err = check_kind(e, got.replies, got.address, got.command)) return err;
+  if (auto err = check_nak_rule(e, got.nak_rules)) return err;
+  if (got.replies.empty()) return std::nullopt;
+  const Bytes reply = encode_frame(got.replies[0]);
+  if (e.bytes) {
+    const Expansion template_ = expand_raw_expressions(e.bytes->hex, expr_context());
     if (!template_.ok()) return "expected bytes: " + problem_text(template_);
     auto want = expand_raw_bytes(template_.text, profile.address, captures);
     if (!want) return "bad expected bytes: " + want.error().message();
     if (want.value() != reply) return "expected bytes " + to_hex(want.value()) + ", got " + to_hex(reply);
   }
   const FrameDescription d = describe_frame(reply);
-  if (s.expect.kind == Expectation::Kind::kAck && d.error) return "reply does not decode: " + d.error->message();
-  if (!s.expect.from_profile.empty())
-    if (auto e = check_record(s.expect, replies[0], expr_context())) return e;
-  return check_matchers(d, s.expect.fields);
+  if (e.kind == Expectation::Kind::kAck && d.error) return "reply does not decode: " + d.error->message();
+  if (!e.from_profile.empty())
+    if (auto err = check_record(e, got.replies[0], expr_context())) return err;
+  return check_matchers(d, e.fields);
+}
+
+// An expectation with `readings:` (ERRATA class reading): the reply passes
+// when it meets the side of some point the profile has not pinned away —
+// the reference side (`e` itself) unless a listed point is pinned `other`,
+// or a point's other side unless it is pinned `reference`. The captures are
+// those of the side that passed.
+std::optional<std::string> Session::check_sides(const Expectation& e, const Reply& got) {
+  auto pinned = [&](const std::string& id) { return side_pinned(profile.readings, id); };
+  std::string ids, failures;
+  bool reference_allowed = true;
+  for (const auto& alt : e.readings) {
+    ids += (ids.empty() ? "" : ", ") + alt.errata;
+    if (pinned(alt.errata) == ReadingSide::kOther) reference_allowed = false;
+  }
+  const Captures before = captures;
+  auto attempt = [&](const Expectation& side, const std::string& name) {
+    captures = before;
+    auto failure = check_reply(side, got);
+    if (failure) failures += (failures.empty() ? "" : "; ") + name + ": " + *failure;
+    return !failure;
+  };
+  if (reference_allowed && attempt(e, ids + " reference")) return std::nullopt;
+  for (const auto& alt : e.readings)
+    if (pinned(alt.errata) != ReadingSide::kReference && attempt(alt.expect, alt.errata + " other")) return std::nullopt;
+  captures = before;
+  if (failures.empty()) return "no side of " + ids + " is left by the profile's readings: pins";
+  return "no legal reading holds (ERRATA " + ids + "): " + failures;
 }
 
 // A poll without a timeout of its own waits as long as the longest move it

@@ -10,6 +10,7 @@
 #include "sabus/harness/expressions.hpp"
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/nak_rules.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/profile_records.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
@@ -304,15 +305,38 @@ std::string to_record(const YAML::Node& v, const At& at, const CommandInfo& comm
   return s;
 }
 
-Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInfo* command, StepContext& cx) {
+// A field matcher list with `overrides` put in: one of the same field
+// replaces the first's, the rest are added.
+std::vector<FieldMatcher> merged(std::vector<FieldMatcher> base, const std::vector<FieldMatcher>& overrides) {
+  for (const FieldMatcher& m : overrides) {
+    auto same = [&](const FieldMatcher& b) { return b.field == m.field; };
+    base.erase(std::remove_if(base.begin(), base.end(), same), base.end());
+    base.push_back(m);
+  }
+  return base;
+}
+
+// `expect:` of a send or poll; with `base`, an alternative under `readings:`
+// (the other side of an open point of the spec): it inherits the base's
+// reply kind and checks unless it names its own reply, and its fields
+// replace the base's of the same name.
+Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInfo* command, StepContext& cx,
+                             const Expectation* base = nullptr) {
   Expectation e;
   e.where = cx.file.loc(at.mark);
   if (v.IsScalar()) {
     e.kind = to_reply_kind(v, at);
     return e;
   }
-  MapReader r(v, at, {"reply", "bytes", "fields", "rule", "from_profile"});
-  require_keys(r, at, {"reply"}, "expect");
+  MapReader r = base ? MapReader(v, at, {"reply", "bytes", "fields", "rule", "from_profile"})
+                     : MapReader(v, at, {"reply", "bytes", "fields", "rule", "from_profile", "readings"});
+  if (base && !r.has("reply")) {
+    e = *base;
+    e.readings.clear();
+    e.where = cx.file.loc(at.mark);
+  } else {
+    require_keys(r, at, {"reply"}, "expect");
+  }
   r.read("reply", e.kind, to_reply_kind);
   r.with("rule", [&](const YAML::Node& n, const At& a) {
     if (e.kind != Expectation::Kind::kNak) fail(a, "only a nak reply names a rule");
@@ -332,13 +356,26 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     e.bytes = read_raw(n, a, cx, elements);
     check_reply_bytes(sketch_of(elements), e.kind, command, a);
   });
-  r.with("fields", [&](const YAML::Node& n, const At& a) { e.fields = read_matchers(n, a, reply_fields(command, e.kind), cx); });
+  r.with("fields", [&](const YAML::Node& n, const At& a) {
+    e.fields = merged(std::move(e.fields), read_matchers(n, a, reply_fields(command, e.kind), cx));
+  });
   r.with("from_profile", [&](const YAML::Node& n, const At& a) {
     if (e.kind != Expectation::Kind::kAck) fail(a, "from_profile is an ack reply's");
     if (r.has("bytes")) fail(a, "give bytes or from_profile, not both");
     const bool read = command && takes_profile_record(command->code) && command->forms.front().effects.changes_stored_data == false;
     if (!read) fail(a, "from_profile checks the reply of a read of stored data: 35h, 3Ah, 3Ch, 44h or 45h");
     e.from_profile = to_record(n, a, *command, cx);
+  });
+  // The other side of open points of the spec (ERRATA class reading,
+  // readings.hpp): what a controller of that side answers instead.
+  r.with("readings", [&](const YAML::Node& n, const At& a) {
+    std::vector<std::string_view> ids;
+    for (const ReadingPoint& p : reading_points()) ids.push_back(p.id);
+    MapReader alternatives(n, a, ids);
+    for (const std::string_view id : ids)
+      alternatives.with(id, [&](const YAML::Node& alt, const At& alt_at) {
+        e.readings.push_back(ReadingAlternative{std::string(id), read_expectation(alt, alt_at, command, cx, &e)});
+      });
   });
   keep_captures(e.fields, cx);
   return e;

@@ -34,6 +34,10 @@ struct AxisState {
   double aim = 0;             // auto moves: where the drive stops (within the axis's tolerance of target)
   double velocity = 0;        // degrees per second, signed; with an acceleration ramp only
   bool fast = true;           // §3.2 'S': configured for fast speed
+  // §3.2 'S' as ERRATA E-98's other side reads it: the speed the axis is
+  // configured for (power-on, a jog's speed, the '0' key), which an auto move
+  // does not change.
+  bool configured_fast = true;
   TimePoint jog_end{};
   std::uint8_t alarm = 0;     // §3.2 XXXX alarm code 8-C, 0 for none
   bool operator==(const AxisState&) const = default;
@@ -111,6 +115,9 @@ class Controller {
   AxisState& axis(AxisId a);
   const AxisState& axis(AxisId a) const;
   enums::EnumReading enum_reading() const;
+  // Whether this controller takes the other side of an open point of the
+  // spec (readings.hpp; the profile's `readings:` pins, sabus sim --reading).
+  bool reads_other(std::string_view errata_id) const;
   // §3.17: enter `mode` in `state`; the old mode becomes the last exited mode
   // with `exit_of_old` (default: its normal exit) as its exit status.
   void enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old = {});
@@ -178,6 +185,9 @@ class Controller {
     TimePoint end{};           // when it gives up with no peak found
     bool returning = false;    // moving back to az0, el0
   } search_;
+  // §3.18 under ERRATA E-94's other side: the azimuth a LOCATE moves to
+  // after its first elevation movement.
+  double locate_az_target_ = 0;
   int signal_strength_ = 0;  // §3.9, when a profile implements 38h
   std::array<std::optional<std::string>, 10> iess_;  // §3.14, when a profile implements 3Dh/3Eh
 };

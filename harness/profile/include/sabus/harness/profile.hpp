@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sabus/harness/readings.hpp"
 #include "sabus/protocol/bytes.hpp"
 #include "sabus/protocol/messages.hpp"
 
@@ -189,6 +190,10 @@ struct Profile {
   std::uint8_t locate_index_min = 1;                       // E-22
   std::uint8_t locate_index_max = 20;
   bool restore_lost_locate_exit = true;                    // E-28
+  // The side of each open point of the spec this device is known to take
+  // (readings.hpp): the reference controller acts on it, and the vectors
+  // hold a pinned device to its side; a point not pinned is open.
+  ReadingPins readings;
 
   // Every field, `source` (where it was read from) included.
   bool operator==(const Profile&) const = default;

@@ -113,6 +113,8 @@ struct FieldMatcher {
   bool hundredths = false;
 };
 
+struct ReadingAlternative;
+
 struct Expectation {
   // kAnswered: an ACK or NAK reply to the frame sent, either (a frame whose
   // check byte or address a vector computes, where only its receipt matters).
@@ -129,6 +131,16 @@ struct Expectation {
   // (an index, a number or a profile expression) or the navigation data holds.
   std::string from_profile;
   SourceLocation where;
+  // `readings:`: what a controller answers that takes the other side of an
+  // open point of the spec (an ERRATA entry of class reading, readings.hpp).
+  // This expectation is the reference side's. The reply passes when it meets
+  // any side the device's profile does not pin away (side_pinned), and a
+  // failure names every side it was held to.
+  std::vector<ReadingAlternative> readings;
+};
+struct ReadingAlternative {
+  std::string errata;  // "E-91"
+  Expectation expect;  // the whole expectation of that side
 };
 // The reply kinds as vector files spell them: ack, nak, offline, silence, any.
 std::string_view to_string(Expectation::Kind kind);

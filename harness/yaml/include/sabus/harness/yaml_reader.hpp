@@ -26,6 +26,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -173,7 +174,7 @@ inline std::uint8_t to_address(const YAML::Node& v, const At& at) {
 
 namespace detail {
 
-inline std::string join(std::initializer_list<std::string_view> keys) {
+inline std::string join(std::span<const std::string_view> keys) {
   std::string out;
   for (auto k : keys) out += (out.empty() ? "" : ", ") + std::string(k);
   return out;
@@ -186,7 +187,7 @@ inline std::string first_at(const YAML::Mark& m) {
 // Every key a scalar and not seen before; `allowed` (when given) names the
 // keys that may appear. Calls keep(key, mark, value) for each entry.
 template <class F>
-void check_keys(const YAML::Node& node, const At& at, const std::initializer_list<std::string_view>* allowed, F&& keep) {
+void check_keys(const YAML::Node& node, const At& at, const std::span<const std::string_view>* allowed, F&& keep) {
   if (!node.IsMap()) fail(at, "expected a map, got " + kind_of(node));
   std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (auto it = node.begin(); it != node.end(); ++it) {
@@ -209,7 +210,10 @@ void check_keys(const YAML::Node& node, const At& at, const std::initializer_lis
 // entries are kept, whatever the input.
 class MapReader {
  public:
-  MapReader(const YAML::Node& node, const At& at, std::initializer_list<std::string_view> allowed) : at_(at) {
+  MapReader(const YAML::Node& node, const At& at, std::initializer_list<std::string_view> allowed)
+      : MapReader(node, at, std::span<const std::string_view>(allowed.begin(), allowed.size())) {}
+  // Keys from a table (readings.hpp's ids, say).
+  MapReader(const YAML::Node& node, const At& at, std::span<const std::string_view> allowed) : at_(at) {
     detail::check_keys(node, at, &allowed, [this](const std::string& k, const YAML::Mark& m, const YAML::Node& v) {
       entries_.push_back({k, m, v});
     });

@@ -1,0 +1,92 @@
+// The switchable readings of protocol/ERRATA.md (readings.hpp).
+#include "sabus/harness/readings.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace sabus::harness {
+namespace {
+
+// One row per ERRATA entry of class *reading* with a `readings:` switch; the
+// entry says more, and names the vectors that accept both sides.
+constexpr std::array kPoints{
+    ReadingPoint{"E-66", "§3.19 byte 29 'C'",
+                 "a LOCATE keeps its claim for 42h 'C' until an automatic function (STOW, DEPLOY, a search) starts",
+                 "42h 'C' needs the LOCATE as the last command before it, status reads aside"},
+    ReadingPoint{"E-90", "§3.7 'A'", "a search gives up after 20 s with no peak found",
+                 "a search gives up within a second"},
+    ReadingPoint{"E-91", "§3.18 byte 29; §3.19 bytes 29-39",
+                 "an invalid polarization field is NAKed on a circular feed too",
+                 "the polarization fields are not applicable on a circular feed and are not read"},
+    ReadingPoint{"E-92", "§3.18 bytes 5-14", "41h with a blank satellite name is NAKed",
+                 "41h with a blank satellite name is ACKed"},
+    ReadingPoint{"E-93", "§3.17 locate_exit_conditions", "a LOCATE that completes returns to MANUAL_MODE",
+                 "a LOCATE that completes returns to REMOTE_MODE"},
+    ReadingPoint{"E-94", "§3.17 locate_states", "a LOCATE moves azimuth and elevation together",
+                 "a LOCATE moves in the order of locate_states: elevation, polarization, azimuth, elevation"},
+    ReadingPoint{"E-95", "§3.2 byte 35 Y", "Y is 1 whenever polarization moves are allowed",
+                 "Y is 0 outside TRACK, where it carries no meaning"},
+    ReadingPoint{"E-96", "§3.2 byte 35 ZZZ", "the code shown is the one asked for, in capitals",
+                 "the code is shown in lower case while the feed is still moving to it"},
+    ReadingPoint{"E-97", "§3 Online/Offline Reply; §3.14", "an unimplemented command while offline gets the offline reply",
+                 "an unimplemented command is NAKed, offline or not"},
+    ReadingPoint{"E-98", "§3.2 bytes 36-38 S", "S during an auto move is the speed of the move (fast)",
+                 "S is the speed the axis is configured for, whatever moves it"},
+};
+
+}  // namespace
+
+std::string_view to_string(ReadingSide side) { return side == ReadingSide::kReference ? "reference" : "other"; }
+
+std::optional<ReadingSide> reading_side_named(std::string_view name) {
+  if (name == "reference") return ReadingSide::kReference;
+  if (name == "other") return ReadingSide::kOther;
+  return std::nullopt;
+}
+
+std::span<const ReadingPoint> reading_points() { return kPoints; }
+
+const ReadingPoint* find_reading_point(std::string_view id) {
+  auto it = std::find_if(kPoints.begin(), kPoints.end(), [&](const ReadingPoint& p) { return p.id == id; });
+  return it == kPoints.end() ? nullptr : &*it;
+}
+
+ReadingSide side_taken(const ReadingPins& pins, std::string_view id) {
+  return side_pinned(pins, id).value_or(ReadingSide::kReference);
+}
+
+std::optional<ReadingSide> side_pinned(const ReadingPins& pins, std::string_view id) {
+  auto it = pins.find(id);
+  return it == pins.end() ? std::nullopt : std::optional<ReadingSide>(it->second);
+}
+
+std::optional<std::string> apply_reading_spec(std::string_view spec, ReadingPins& pins) {
+  if (auto every = reading_side_named(spec)) {
+    for (const ReadingPoint& p : kPoints) pins[std::string(p.id)] = *every;
+    return std::nullopt;
+  }
+  ReadingPins added;
+  for (bool more = !spec.empty(); more;) {
+    const std::size_t comma = spec.find(',');
+    const std::string_view item = spec.substr(0, comma);
+    more = comma != std::string_view::npos;  // "E-90=other," leaves an empty item: an error
+    spec = more ? spec.substr(comma + 1) : std::string_view{};
+    const std::size_t eq = item.find('=');
+    const std::string_view id = item.substr(0, eq);
+    if (eq == std::string_view::npos)
+      return "\"" + std::string(item) + "\": expected other, reference or a list of E-NN=other|reference";
+    if (!find_reading_point(id)) {
+      std::string known;
+      for (const ReadingPoint& p : kPoints) known += (known.empty() ? "" : ", ") + std::string(p.id);
+      return "\"" + std::string(id) + "\" is not a switchable reading (ERRATA entries: " + known + ")";
+    }
+    const auto side = reading_side_named(item.substr(eq + 1));
+    if (!side) return "\"" + std::string(item.substr(eq + 1)) + "\": a side is reference or other";
+    added[std::string(id)] = *side;
+  }
+  if (added.empty()) return std::string("an empty --reading: expected other, reference or E-NN=other|reference");
+  for (auto& [id, side] : added) pins[id] = side;
+  return std::nullopt;
+}
+
+}  // namespace sabus::harness

@@ -1,0 +1,304 @@
+// The reference controller on either side of the spec's open points
+// (readings.hpp, the protocol/ERRATA.md entries of class reading): each
+// switch changes what its entry says and nothing else, and the profile's
+// `readings:` pins load, write back and parse from --reading.
+#include <gtest/gtest.h>
+
+#include "sabus/harness/controller.hpp"
+#include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/readings.hpp"
+
+namespace sabus::harness {
+namespace {
+
+using namespace std::chrono_literals;
+
+Profile site_profile() {
+  Profile p;
+  p.store = {{"SBS 6", -74.0, 40.0, 10.0, -80.0}};
+  PresetSatellite g19;
+  g19.index = 1;
+  g19.data = {"GALAXY 19", -971, 0, '1', '0', -125};
+  p.presets = {g19};
+  p.navigation.latlon_source = 7;
+  p.navigation.latitude_min = 40 * 60;
+  p.navigation.longitude_min = -75 * 60;
+  p.navigation.heading_source = 7;
+  p.navigation.heading_tenths = 0;
+  return p;
+}
+
+Profile reading(Profile p, std::string_view id, ReadingSide side = ReadingSide::kOther) {
+  p.readings[std::string(id)] = side;
+  return p;
+}
+
+struct Rig {
+  explicit Rig(Profile p) : profile(std::move(p)), c(profile, clock) {}
+  VirtualClock clock;
+  Profile profile;
+  Controller c;
+
+  Outcome send(const Request& r) { return c.execute(request_frame(r, profile.address)); }
+  Outcome send_raw(std::uint8_t code, std::string_view data) {
+    return c.execute(Frame{FrameKind::kCommand, profile.address, code, Bytes(data.begin(), data.end())});
+  }
+  template <class T>
+  T reply(const Request& r) {
+    Outcome o = send(r);
+    EXPECT_TRUE(o.reply.has_value()) << o.note;
+    auto d = decode_reply(decode_frame(*o.reply).value());
+    EXPECT_TRUE(d.ok() && std::holds_alternative<T>(d.value())) << o.note;
+    return std::get<T>(d.value());
+  }
+  void wait(Duration d) {
+    clock.advance(d);
+    c.update();
+  }
+  StatusBlock status() { return reply<StatusReply>(StatusPoll{}).status; }
+  ExtendedStatusReply extended() { return reply<ExtendedStatusReply>(ExtendedStatusPoll{}); }
+  std::string mode() { return std::string(meanings::mode_name(extended().mode)); }
+  std::string state() {
+    const auto x = extended();
+    return std::string(meanings::state_name(x.mode, x.state));
+  }
+};
+
+bool is_nak(const Outcome& o) { return o.reply && !o.reply->empty() && (*o.reply)[0] == NAK; }
+bool is_offline(const Outcome& o) {
+  return o.reply && is_offline_reply(decode_frame(*o.reply).value());
+}
+
+RemoteLocate locate_on_meridian() {
+  RemoteLocate l;
+  l.preset.preset = false;
+  l.sat = {"ON MERIDIAN", -750, 0, '1', '0', 0};
+  return l;
+}
+
+// ---- the table and the pins --------------------------------------------------
+
+TEST(Readings, EveryPointHasAnIdAParagraphAndTwoSides) {
+  ASSERT_FALSE(reading_points().empty());
+  for (const ReadingPoint& p : reading_points()) {
+    EXPECT_TRUE(p.id.starts_with("E-")) << p.id;
+    EXPECT_FALSE(p.paragraph.empty()) << p.id;
+    EXPECT_FALSE(p.reference.empty()) << p.id;
+    EXPECT_FALSE(p.other.empty()) << p.id;
+    EXPECT_NE(p.reference, p.other) << p.id;
+    EXPECT_EQ(find_reading_point(p.id), &p);
+  }
+  EXPECT_EQ(find_reading_point("E-1"), nullptr) << "7E1 is the spec's text, no reading";
+}
+
+TEST(Readings, ASpecFlipsEveryPointOrTheOnesItNames) {
+  ReadingPins pins;
+  EXPECT_FALSE(apply_reading_spec("other", pins));
+  EXPECT_EQ(pins.size(), reading_points().size());
+  for (const auto& [id, side] : pins) EXPECT_EQ(side, ReadingSide::kOther) << id;
+  ReadingPins some;
+  EXPECT_FALSE(apply_reading_spec("E-90=other,E-93=reference", some));
+  EXPECT_EQ(some, (ReadingPins{{"E-90", ReadingSide::kOther}, {"E-93", ReadingSide::kReference}}));
+  EXPECT_EQ(side_taken(some, "E-91"), ReadingSide::kReference);
+  EXPECT_EQ(side_pinned(some, "E-91"), std::nullopt);
+}
+
+TEST(Readings, ABadSpecSaysWhyAndChangesNothing) {
+  ReadingPins pins{{"E-90", ReadingSide::kOther}};
+  const ReadingPins before = pins;
+  for (std::string_view bad : {"", "others", "E-90", "E-1=other", "E-90=other,E-91=sideways", "E-90=other,"}) {
+    const auto why = apply_reading_spec(bad, pins);
+    ASSERT_TRUE(why) << "\"" << bad << "\" was taken";
+    EXPECT_FALSE(why->empty());
+    EXPECT_EQ(pins, before) << bad;
+  }
+  EXPECT_NE(apply_reading_spec("E-1=other", pins)->find("E-90"), std::string::npos) << "names the switchable ones";
+}
+
+TEST(Readings, ProfilePinsLoadAndWriteBack) {
+  auto loaded = load_profile_text("readings:\n  E-90: other\n  E-93: reference\n");
+  ASSERT_TRUE(loaded) << loaded.error->text();
+  EXPECT_EQ(loaded.profile->readings,
+            (ReadingPins{{"E-90", ReadingSide::kOther}, {"E-93", ReadingSide::kReference}}));
+  auto again = load_profile_text(to_yaml(*loaded.profile));
+  ASSERT_TRUE(again) << again.error->text();
+  EXPECT_EQ(*again.profile, *loaded.profile);
+  auto none = load_profile_text(to_yaml(Profile{}));
+  ASSERT_TRUE(none);
+  EXPECT_TRUE(none.profile->readings.empty()) << "an open point is no key";
+}
+
+TEST(Readings, ABadPinNamesItsLineAndKey) {
+  auto side = load_profile_text("name: x\nreadings:\n  E-90: sideways\n", "p.yaml");
+  ASSERT_FALSE(side);
+  EXPECT_EQ(side.error->line, 3);
+  EXPECT_EQ(side.error->key, "readings.E-90");
+  EXPECT_NE(side.error->message.find("reference"), std::string::npos) << side.error->message;
+  auto id = load_profile_text("readings:\n  E-1: other\n", "p.yaml");
+  ASSERT_FALSE(id);
+  EXPECT_EQ(id.error->line, 2);
+  EXPECT_NE(id.error->message.find("E-90"), std::string::npos) << "lists the keys: " << id.error->message;
+}
+
+// ---- each point, both sides ---------------------------------------------------
+
+// E-90: the reference search lasts 20 s; the other gives up within a second.
+TEST(Readings, E90TheOtherSearchEndsWithinASecond) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-90"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(Misc{'A', 'E'})));
+    r->wait(1000ms);
+  }
+  EXPECT_EQ(ref.mode(), "SPIRAL_REMOTE_MODE");
+  EXPECT_EQ(other.mode(), "MANUAL_MODE");
+  const auto x = other.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "SPIRAL_NO_PEAK_FOUND");
+}
+
+// E-91: §3.18 byte 29 and §3.19 bytes 29-39 on a circular feed.
+TEST(Readings, E91TheOtherSideDoesNotReadPolarizationOnACircularFeed) {
+  Profile circular = site_profile();
+  circular.pol_type = PolType::kCircular;
+  Rig ref(circular), other(reading(circular, "E-91"));
+  // 41h by preset 1 (byte 3 0x40 | A=1 << 4) with receive polarization '?' (byte 29).
+  const std::string locate = "P1" + std::string(24, ' ') + "?A    ";
+  EXPECT_EQ(ref.send_raw(0x41, locate).nak, NakRule::kMalformedData);
+  EXPECT_FALSE(is_nak(other.send_raw(0x41, locate)));
+  EXPECT_EQ(other.mode(), "LOCATE_MODE");
+  // 42h by preset 1, selection '?' and odd positions (bytes 29-39).
+  const std::string store = "P1" + std::string(24, ' ') + "?x1.2.3y4.5H     ";
+  EXPECT_EQ(ref.send_raw(0x42, store).nak, NakRule::kMalformedData);
+  EXPECT_FALSE(is_nak(other.send_raw(0x42, store)));
+  // Every other byte is still read: a bad byte 3 is malformed on either side.
+  EXPECT_EQ(other.send_raw(0x41, "01" + locate.substr(2)).nak, NakRule::kMalformedData);
+  // On a rotating feed both sides read them.
+  Rig single(reading(site_profile(), "E-91"));
+  EXPECT_EQ(single.send_raw(0x41, locate).nak, NakRule::kMalformedData);
+}
+
+// E-92: 41h with a blank satellite name.
+TEST(Readings, E92TheOtherSideLocatesABlankName) {
+  RemoteLocate blank = locate_on_meridian();
+  blank.sat.name = "";
+  Rig ref(site_profile()), other(reading(site_profile(), "E-92"));
+  EXPECT_EQ(ref.send(blank).nak, NakRule::kLocateField);
+  EXPECT_FALSE(is_nak(other.send(blank)));
+  EXPECT_EQ(other.mode(), "LOCATE_MODE");
+}
+
+// E-93 and E-94: where a completed LOCATE goes, and the order of its movements.
+TEST(Readings, E93TheOtherLocateCompletesIntoRemoteMode) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-93"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(locate_on_meridian())));
+    r->wait(600s);
+    const auto x = r->extended();
+    EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FUNCTION_COMPLETED");
+  }
+  EXPECT_EQ(ref.mode(), "MANUAL_MODE");
+  EXPECT_EQ(other.mode(), "REMOTE_MODE");
+}
+
+TEST(Readings, E94TheOtherLocateMovesElevationThenAzimuth) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-94"));
+  const double az0 = other.c.state().az.position;
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(locate_on_meridian())));
+  EXPECT_EQ(ref.state(), "LOCATE_AZIM_MOVEMENT");
+  EXPECT_EQ(other.state(), "LOCATE_FIRST_ELEV_MOVEMENT");
+  other.wait(500ms);
+  EXPECT_EQ(other.c.state().az.position, az0) << "the azimuth waits for the elevation";
+  EXPECT_NE(ref.c.state().az.motion, AxisState::Motion::kIdle);
+  bool azimuth_leg = false;
+  for (int i = 0; i < 3000 && other.mode() == "LOCATE_MODE"; ++i) {
+    other.wait(200ms);
+    azimuth_leg = azimuth_leg || other.state() == "LOCATE_AZIM_MOVEMENT";
+  }
+  EXPECT_TRUE(azimuth_leg);
+  ref.wait(600s);
+  // Both end where the look angles are, and complete.
+  EXPECT_EQ(other.status().azimuth.tenths, ref.status().azimuth.tenths);
+  EXPECT_EQ(other.status().elevation, ref.status().elevation);
+  const auto x = other.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FUNCTION_COMPLETED");
+}
+
+// E-94 other: a LOCATE stopped in its first movement exits with that movement's entry.
+TEST(Readings, E94AStopInTheFirstMovementNamesIt) {
+  Rig other(reading(site_profile(), "E-94"));
+  ASSERT_FALSE(is_nak(other.send(locate_on_meridian())));
+  other.wait(200ms);
+  ASSERT_FALSE(is_nak(other.send(Jog{{'X', 'F', 0}})));
+  const auto x = other.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FIRST_ELEV_MOVEMENT_STOP_KEY");
+}
+
+// E-95: byte 35 Y outside TRACK.
+TEST(Readings, E95TheOtherSideShowsYZeroOutsideTrack) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-95"));
+  EXPECT_EQ(ref.status().pol_equipment & 0x08, 0x08);
+  EXPECT_EQ(other.status().pol_equipment & 0x08, 0);
+  Profile tracking = reading(site_profile(), "E-95");
+  tracking.track.active = true;
+  tracking.track.activity = TrackActivity::kIdle;
+  Rig in_track(tracking);
+  EXPECT_EQ(in_track.status().pol_equipment & 0x08, 0x08) << "meaningful in TRACK: both sides agree";
+}
+
+// E-96: byte 35 ZZZ while the feed moves to a 34h preset.
+TEST(Readings, E96TheOtherSideShowsLowerCaseWhileTheFeedMoves) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-96"));
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(PolPreset{'V'})));
+  ASSERT_NE(other.c.state().pol.motion, AxisState::Motion::kIdle);
+  EXPECT_EQ(ref.status().pol_equipment & 0x07, 2) << "V";
+  EXPECT_EQ(other.status().pol_equipment & 0x07, 3) << "v while moving";
+  other.wait(300s);
+  EXPECT_EQ(other.status().pol_equipment & 0x07, 2) << "V once there";
+}
+
+// E-97: an unimplemented command while remote control is disabled.
+TEST(Readings, E97TheOtherSideNaksAnUnimplementedCommandOffline) {
+  Profile offline = site_profile();
+  offline.remote_enabled = false;
+  Rig ref(offline), other(reading(offline, "E-97"));
+  const std::string iess = "01IESS-412";  // index 01 and data: the layout is TBD (E-37)
+  EXPECT_TRUE(is_offline(ref.send_raw(0x3D, iess)));
+  EXPECT_EQ(other.send_raw(0x3D, iess).nak, NakRule::kNotImplemented);
+  EXPECT_TRUE(is_offline(other.send(StatusPoll{}))) << "an implemented one still gets the offline reply";
+}
+
+// E-98: the speed bit during an auto move.
+TEST(Readings, E98TheOtherSideShowsTheConfiguredSpeedInAnAutoMove) {
+  Profile slow = site_profile();
+  slow.az.power_on_speed = AxisSpeed::kSlow;
+  Rig ref(slow), other(reading(slow, "E-98"));
+  EXPECT_EQ(ref.status().az_status & 0x10, 0) << "configured slow at power-on";
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMoveAzEl{200, 450}})));
+  }
+  EXPECT_EQ(ref.status().az_status, 0x17) << "fast, remote auto move";
+  EXPECT_EQ(other.status().az_status, 0x07) << "slow as configured, remote auto move";
+}
+
+// E-66: 'C' after a LOCATE and a jog.
+TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-66"));
+  RemoteLocate l;
+  l.preset = {true, 1};
+  RemoteStore s;
+  s.preset = {true, 1};
+  s.pol_selection = 'C';
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(l)));
+    r->wait(300s);
+    (void)r->status();
+    ASSERT_FALSE(is_nak(r->send(Jog{{'W', 'S', 50}})));
+  }
+  EXPECT_FALSE(is_nak(ref.send(s))) << "a jog keeps the LOCATE's claim";
+  EXPECT_EQ(other.send(s).nak, NakRule::kStoreNeedsLocate);
+  ASSERT_FALSE(is_nak(other.send(l)));
+  (void)other.extended();
+  EXPECT_FALSE(is_nak(other.send(s))) << "status reads between are no command";
+}
+
+}  // namespace
+}  // namespace sabus::harness
