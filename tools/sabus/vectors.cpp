@@ -302,7 +302,8 @@ int run_errata_classes(const std::string& path) {
 // Printed (the vector lists only), written back (--update) or compared
 // (--check, exit 1 when the file is not current); both also check the
 // entries' rules (check_errata: every entry classified, every reading with
-// its alternatives) and exit 1 when one is broken.
+// its alternatives) and exit 1 when one is broken. --check prints the counts
+// of each class ("errata: 25 text, 70 reading, 0 withdrawn") for CI logs.
 int run_errata(const VectorsOptions& o) {
   if (!o.classes.empty()) return run_errata_classes(o.classes);
   LoadResult r = load(o);
@@ -357,6 +358,8 @@ int run_errata(const VectorsOptions& o) {
   for (const auto& p : problems) std::cerr << path << ": " << p << "\n";
   if (!o.check.empty()) {
     if (index_stale) std::cout << path << ": the index is not current\n";
+    const auto n = harness::count_classes(doc);
+    std::cout << fmt::format("errata: {} text, {} reading, {} withdrawn\n", n.text, n.reading, n.withdrawn);
     if (stale || index_stale)
       std::cout << stale << " entr" << (stale == 1 ? "y" : "ies") << (index_stale ? " and the index" : "")
                 << " to update: sabus vectors errata --update " << path << "\n";
