@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Rewrites the generated parts of the suite's documents after vectors change:
 # the table by paragraph in vectors/README.md (sabus vectors list --summary)
-# and the Vectors line of every entry of protocol/ERRATA.md. Tests check both.
+# and, in protocol/ERRATA.md, the Vectors line of every entry and the index
+# table at the top (id, title, class, level, switch). Tests check all three.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sabus=${SABUS:-build/tools/sabus}

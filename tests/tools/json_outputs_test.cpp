@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -308,6 +309,29 @@ TEST_F(JsonOutputs, ErrataUpdateReplacesOnlyTheFileItIsGivenWhole) {
   EXPECT_TRUE(fs::is_symlink(path("link.md")));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 2) << "no temporary left";
   EXPECT_EQ(sabus({"vectors", "errata", "--check", path("ERRATA.md")}).status, 0);
+}
+
+// --classes: one line per entry ("E-10 reading reference|other", "E-1 text"),
+// then the counts; a copy with one Class line removed exits 1.
+TEST_F(JsonOutputs, ErrataClassesListsEveryEntryThenTheCounts) {
+  const Output o = sabus({"vectors", "errata", "--classes", SABUS_SOURCE_DIR "/protocol/ERRATA.md"});
+  EXPECT_EQ(o.status, 0) << o.out;
+  std::istringstream in(o.out);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_GE(lines.size(), 96u) << o.out;
+  const std::regex entry(R"(E-[0-9]+ (text|reading|withdrawn)( reference\|other(\|other-[0-9]+)*)?)");
+  for (std::size_t k = 0; k + 1 < lines.size(); ++k) EXPECT_TRUE(std::regex_match(lines[k], entry)) << lines[k];
+  EXPECT_TRUE(std::regex_match(lines.back(), std::regex(R"(errata: [0-9]+ text, [0-9]+ reading, [0-9]+ withdrawn)")))
+      << lines.back();
+
+  std::string errata = test::slurp(SABUS_SOURCE_DIR "/protocol/ERRATA.md");
+  const auto at = errata.find("- **Class:** ");
+  ASSERT_NE(at, std::string::npos);
+  errata.erase(at, errata.find('\n', at) + 1 - at);
+  write("ERRATA.md", errata);
+  EXPECT_EQ(sabus({"vectors", "errata", "--classes", path("ERRATA.md")}).status, 1);
+  EXPECT_EQ(sabus({"vectors", "errata", "--check", path("ERRATA.md")}).status, 1);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -20,6 +21,7 @@
 #include "selection.hpp"
 #include "sweep.hpp"
 #include "sabus/harness/coverage.hpp"
+#include "sabus/harness/errata.hpp"
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/expressions.hpp"
 #include "sabus/harness/files.hpp"
@@ -41,6 +43,7 @@ struct VectorsOptions {
   bool missing_only = false;
   bool summary = false;
   std::string update, check;  // errata: the ERRATA.md to rewrite or compare
+  std::string classes;        // errata: the ERRATA.md whose entries' classes to list
 };
 
 LoadResult load(const VectorsOptions& o) {
@@ -277,10 +280,39 @@ std::map<std::string, std::vector<std::string>> errata_vectors(const LoadResult&
   return out;
 }
 
-// The "- **Vectors:**" line of every entry of protocol/ERRATA.md, from the
-// suite: printed, written back (--update) or compared (--check, exit 1 when
-// the file is not current).
+// One line per entry of an ERRATA.md: its id, class and the labels of its
+// alternatives ("E-10 reading reference|other"), then the counts
+// ("errata: 37 text, 50 reading, 0 withdrawn"); exit 1 when the document
+// breaks a rule of check_errata (each printed to stderr).
+int run_errata_classes(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << "sabus vectors errata: cannot read " << path << "\n";
+    return kExitUsage;
+  }
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto doc = harness::parse_errata(text);
+  for (const auto& e : doc.entries) {
+    std::string labels;
+    for (const auto& a : e.alternatives) labels += (labels.empty() ? " " : "|") + a.label;
+    std::cout << e.id() << " " << harness::to_string(e.cls) << labels << "\n";
+  }
+  const auto n = harness::count_classes(doc);
+  std::cout << fmt::format("errata: {} text, {} reading, {} withdrawn\n", n.text, n.reading, n.withdrawn);
+  const auto problems = harness::check_errata(doc);
+  for (const auto& p : problems) std::cerr << path << ": " << p << "\n";
+  return problems.empty() ? kExitOk : kExitFailed;
+}
+
+// The generated parts of protocol/ERRATA.md, from the suite and the entries:
+// the "- **Vectors:**" line of every entry and the index table at the top.
+// Printed (the vector lists only), written back (--update) or compared
+// (--check, exit 1 when the file is not current); both also check the
+// entries' rules (check_errata: every entry classified, every reading with
+// its alternatives) and exit 1 when one is broken. --check prints the counts
+// of each class ("errata: 25 text, 70 reading, 0 withdrawn") for CI logs.
 int run_errata(const VectorsOptions& o) {
+  if (!o.classes.empty()) return run_errata_classes(o.classes);
   LoadResult r = load(o);
   for (const auto& e : r.errors) std::cerr << e.text() << "\n";
   if (!r.errors.empty()) return kExitUsage;
@@ -318,9 +350,27 @@ int run_errata(const VectorsOptions& o) {
     }
     out += line + "\n";
   }
+  // The index, from the entries as they now read; a document with entries
+  // and no index markers is broken.
+  const auto doc = harness::parse_errata(out);
+  auto problems = harness::check_errata(doc);
+  bool index_stale = false;
+  if (auto indexed = harness::with_errata_index(out)) {
+    index_stale = *indexed != out;
+    out = std::move(*indexed);
+  } else if (!doc.entries.empty()) {
+    problems.push_back(fmt::format("no index: the lines {} and {} are missing or out of order", harness::kErrataIndexBegin,
+                                   harness::kErrataIndexEnd));
+  }
+  for (const auto& p : problems) std::cerr << path << ": " << p << "\n";
   if (!o.check.empty()) {
-    if (stale) std::cout << stale << " entr" << (stale == 1 ? "y" : "ies") << " to update: sabus vectors errata --update " << path << "\n";
-    return stale ? kExitFailed : kExitOk;
+    if (index_stale) std::cout << path << ": the index is not current\n";
+    const auto n = harness::count_classes(doc);
+    std::cout << fmt::format("errata: {} text, {} reading, {} withdrawn\n", n.text, n.reading, n.withdrawn);
+    if (stale || index_stale)
+      std::cout << stale << " entr" << (stale == 1 ? "y" : "ies") << (index_stale ? " and the index" : "")
+                << " to update: sabus vectors errata --update " << path << "\n";
+    return stale || index_stale || !problems.empty() ? kExitFailed : kExitOk;
   }
   // Whole or not at all: ERRATA.md is a document people edit, and a write
   // cut short (a full disk) would have left it truncated.
@@ -329,8 +379,9 @@ int run_errata(const VectorsOptions& o) {
     std::cerr << "sabus vectors errata: " << error << "\n";
     return kExitFailed;
   }
-  std::cout << "updated " << stale << " entr" << (stale == 1 ? "y" : "ies") << " of " << path << "\n";
-  return kExitOk;
+  std::cout << "updated " << stale << " entr" << (stale == 1 ? "y" : "ies") << (index_stale ? " and the index" : "") << " of "
+            << path << "\n";
+  return problems.empty() ? kExitOk : kExitFailed;
 }
 
 // The expression functions' one table (expressions.cpp): name(arguments) and what it gives.
@@ -356,11 +407,21 @@ Command add_vectors_command(CLI::App& app) {
   list->add_flag("--json", opts->json, "Print JSON");
   list->add_flag("--summary", opts->summary, "Print the suite by paragraph with counts per level (Markdown)");
   add_selection_options(list, opts->selection);
-  CLI::App* errata = sub->add_subcommand("errata", "The vectors resting on each errata entry (their flags' notes)");
+  CLI::App* errata = sub->add_subcommand(
+      "errata", "The vectors resting on each errata entry (their flags' notes); the generated parts of ERRATA.md; its classes");
   errata->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
-  auto* update = errata->add_option("--update", opts->update, "Rewrite the Vectors lines of this ERRATA.md");
-  errata->add_option("--check", opts->check, "Exit 1 when the Vectors lines of this ERRATA.md are not current")
-      ->excludes(update);
+  auto* update = errata->add_option("--update", opts->update, "Rewrite the Vectors lines and the index of this ERRATA.md");
+  auto* check = errata
+                    ->add_option("--check", opts->check,
+                                 "Exit 1 when the Vectors lines or the index of this ERRATA.md are not current, or an "
+                                 "entry breaks a rule (unclassified, a reading without its alternatives)")
+                    ->excludes(update);
+  errata
+      ->add_option("--classes", opts->classes,
+                   "List each entry of this ERRATA.md with its class and alternatives, then the counts; exit 1 when an "
+                   "entry is unclassified or a reading lacks its alternatives")
+      ->excludes(update)
+      ->excludes(check);
   CLI::App* cov = sub->add_subcommand(
       "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids; exit 1 when a cell "
                   "the spec defines has no vector");

@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "sabus/harness/errata.hpp"
 #include "sabus/harness/expressions.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
@@ -45,16 +46,8 @@ ErrataIndex read_errata() {
     index.error = error;
     return index;
   }
-  std::istringstream in(*text);
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("### E-", 0) != 0) continue;
-    const std::size_t colon = line.find(':');
-    std::size_t n = 0;
-    if (colon == std::string::npos || !parse_whole(std::string_view(line).substr(6, colon - 6), n)) continue;
-    std::string lower = line;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    index.withdrawn[n] = lower.find("withdrawn") != std::string::npos;
-  }
+  for (const auto& e : parse_errata(*text).entries)
+    if (e.number) index.withdrawn[e.number] = e.withdrawn();
   return index;
 }
 
