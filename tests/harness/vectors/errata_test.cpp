@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sabus/harness/errata.hpp"
+#include "sabus/harness/readings.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -245,6 +246,32 @@ TEST(ErrataRules, EachBrokenRuleIsNamed) {
   EXPECT_TRUE(mentions(check_errata(parse_errata(withdrawn)), "the heading says withdrawn but the Class is text"));
   EXPECT_TRUE(check_errata(parse_errata(replaced(withdrawn, "- **Class:** text — one reconstruction", "- **Class:** withdrawn")))
                   .empty());
+}
+
+}  // namespace
+}  // namespace sabus::harness
+
+namespace sabus::harness {
+namespace {
+
+// The entries whose Switch is a `readings:` key are exactly the table the
+// profile loader, the reference controller and the vectors use
+// (readings.hpp), each with the two sides that table knows.
+TEST(Errata, ItsReadingsSwitchesAreTheControllersTable) {
+  std::ifstream in(SABUS_SOURCE_DIR "/protocol/ERRATA.md");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const ErrataDocument doc = parse_errata(text);
+  std::vector<std::string> switched;
+  for (const ErrataEntry& e : doc.entries)
+    if (e.switch_reading_id) {
+      switched.push_back(*e.switch_reading_id);
+      EXPECT_NE(find_reading_point(*e.switch_reading_id), nullptr)
+          << e.id() << " has a readings: switch the controller does not take (readings.hpp)";
+      EXPECT_EQ(e.switch_reading_labels, (std::vector<std::string>{"reference", "other"})) << e.id();
+    }
+  for (const ReadingPoint& p : reading_points())
+    EXPECT_NE(std::find(switched.begin(), switched.end(), std::string(p.id)), switched.end())
+        << p.id << " is in readings.hpp but its ERRATA entry has no readings: switch";
 }
 
 }  // namespace
