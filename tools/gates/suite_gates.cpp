@@ -11,6 +11,9 @@
 //     `sabus report` rebuilds the same reports from the run JSON, and the
 //     Markdown diff of a faulty run against its profile's clean run parses.
 //     The runs of a faulty controller are the ones whose records break.
+//  4. the same profiles and faults with the controller on the other side of
+//     every open point of the spec (readings.hpp): every profile passes, and a
+//     fault counts as caught when either side catches it (both are printed).
 // Exit 0 when every profile passes, the score is 100%, there are at least
 // kMinFaults faults and every record reads back; 1 otherwise; 2 when the suite or a profile does not load.
 //
@@ -28,6 +31,7 @@
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/faults.hpp"
 #include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
@@ -53,8 +57,13 @@ std::map<std::string, reports::RunDocument> g_clean_runs;
 
 // The suite against the reference controller, recorded as `sabus run
 // --report-dir` records it (tools/sabus/run.cpp), and the record read back.
-RunResult run_suite(const Profile& profile, const std::vector<Vector>& vectors, FaultSet faults, const std::string& what) {
-  auto transport = make_in_process_transport(bus_of(profile), faults);
+RunResult run_suite(const Profile& profile, const std::vector<Vector>& vectors, FaultSet faults, const std::string& what,
+                    const ReadingPins& controller_pins = {}) {
+  // The controller takes the sides `controller_pins` names (readings.hpp);
+  // the verdicts keep the profile as shipped, its open points open.
+  Profile controller = profile;
+  for (const auto& [id, side] : controller_pins) controller.readings[id] = side;
+  auto transport = make_in_process_transport(bus_of(controller), faults);
   RunOptions o;
   o.allow_motion = true;
   o.allow_destructive = true;
@@ -140,22 +149,48 @@ int main(int argc, char** argv) {
         std::cout << fmt::format("    {} ({}): {}\n", v.id, to_string(v.level), v.failures.empty() ? "" : v.failures[0]);
   }
 
-  std::cout << "== mutation: each injected fault must fail a must-level vector\n";
-  std::size_t caught = 0;
+  // The controller on the other side of every open point of the spec
+  // (issue 31): the suite holds on it too, and its faults are caught there.
+  ReadingPins other;
+  (void)apply_reading_spec("other", other);
+  std::cout << fmt::format("== profiles read the other way (sabus run --sim --reading other)\n");
+  for (const Profile& p : profiles) {
+    const RunResult r = run_suite(p, vectors, {}, p.name + " (other readings)", other);
+    const bool pass = r.failed == 0 && r.unexpected == 0 && !r.aborted && r.exit_code() == 0;
+    ok = ok && pass;
+    std::cout << fmt::format("{:<28} {:>4} passed, {} failed, {:>4} skipped{}{}\n", p.name, r.passed, r.failed, r.skipped,
+                             r.aborted ? ", ABORTED: " + r.abort_reason : "", pass ? "" : "  FAIL");
+    for (const auto& v : r.vectors)
+      if (v.verdict == Verdict::kFail)
+        std::cout << fmt::format("    {} ({}): {}\n", v.id, to_string(v.level), v.failures.empty() ? "" : v.failures[0]);
+  }
+
+  std::cout << "== mutation: each injected fault must fail a must-level vector, on the reference readings and on the other ones\n";
+  std::size_t caught = 0, caught_reference = 0, caught_other = 0;
   const auto faults = all_faults();
   for (const FaultInfo& f : faults) {
     FaultSet set;
     set.set(f.fault);
-    std::string where;
-    for (const Profile& p : profiles) {
-      const auto failed = failed_must_vectors(run_suite(p, vectors, set, fmt::format("{} on {}", f.name, p.name)));
-      if (failed.empty()) continue;
-      where = fmt::format("{}: {} must vector(s), e.g. {}", p.name, failed.size(), failed.front());
-      break;
-    }
-    caught += !where.empty();
-    std::cout << fmt::format("{:<30} {}\n", f.name, where.empty() ? "NOT CAUGHT: " + std::string(f.description) : where);
+    // Where the fault is caught with the controller on the given side ("": nowhere).
+    auto catch_it = [&](const ReadingPins& pins, std::string_view side) {
+      for (const Profile& p : profiles) {
+        const auto failed =
+            failed_must_vectors(run_suite(p, vectors, set, fmt::format("{} on {} ({})", f.name, p.name, side), pins));
+        if (!failed.empty()) return fmt::format("{}: {} must vector(s), e.g. {}", p.name, failed.size(), failed.front());
+      }
+      return std::string();
+    };
+    const std::string reference = catch_it({}, "reference"), flipped = catch_it(other, "other");
+    caught_reference += !reference.empty();
+    caught_other += !flipped.empty();
+    caught += !reference.empty() || !flipped.empty();
+    std::string where = reference.empty() && flipped.empty() ? "NOT CAUGHT: " + std::string(f.description)
+                        : reference.empty() ? "only with the other readings: " + flipped
+                                            : reference + (flipped.empty() ? "; NOT with the other readings" : "");
+    std::cout << fmt::format("{:<30} {}\n", f.name, where);
   }
+  std::cout << fmt::format("faults caught on the reference readings {}/{}, on the other readings {}/{}\n", caught_reference,
+                           faults.size(), caught_other, faults.size());
   const double score = faults.empty() ? 0.0 : 100.0 * static_cast<double>(caught) / static_cast<double>(faults.size());
   std::cout << fmt::format("mutation score: {}/{} faults caught ({:.1f}%)\n", caught, faults.size(), score);
   if (faults.size() < kMinFaults) {

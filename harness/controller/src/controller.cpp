@@ -409,7 +409,7 @@ void Controller::advance(TimePoint to, bool at_tick) {
   last_update_ = to;
   // E-90's other side: a search whose time is over gives up where it is
   // (next_search_leg exits once the axes have stopped).
-  if (at_tick && in_mode("SPIRAL_REMOTE_MODE") && reads_other("E-90") && !search_.returning && to >= search_.end) {
+  if (at_tick && in_mode("SPIRAL_REMOTE_MODE") && reads_other("E-90") && !search_.returning && to >= search_end()) {
     search_.returning = true;
     stop_all();
   }
@@ -448,14 +448,16 @@ void Controller::update() {
 void Controller::start_search(char pattern) {
   tick_origin_ = last_update_;
   chain_pending_ = false;
-  // ERRATA E-90: how long a search lasts is the controller's; the other side
-  // gives up within a second.
-  const Duration search_time = reads_other("E-90") ? std::chrono::duration_cast<Duration>(kShortSearchTime)
-                                                   : std::chrono::duration_cast<Duration>(kSearchTime);
-  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now() + search_time,
-                   false};
+  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now(), false};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
   next_search_leg();
+}
+
+// ERRATA E-90: how long a search lasts is the controller's; the other side
+// gives up within a second.
+TimePoint Controller::search_end() const {
+  return search_.began + (reads_other("E-90") ? std::chrono::duration_cast<Duration>(kShortSearchTime)
+                                              : std::chrono::duration_cast<Duration>(kSearchTime));
 }
 
 // Azimuth clockwise, elevation up, azimuth counterclockwise, elevation down,
@@ -478,7 +480,7 @@ void Controller::next_search_leg() {
     enter_mode("MANUAL_MODE", "MANUAL_IDLE", "SPIRAL_NO_PEAK_FOUND");
     return;
   }
-  for (std::size_t tries = 0; tries < std::size(kLegs) && last_update_ < search_.end; ++tries) {
+  for (std::size_t tries = 0; tries < std::size(kLegs) && last_update_ < search_end(); ++tries) {
     const Leg& leg = kLegs[static_cast<std::size_t>(search_.legs) % std::size(kLegs)];
     const int size = search_.legs / 2 + 1;
     ++search_.legs;

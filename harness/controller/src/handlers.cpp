@@ -109,10 +109,10 @@ Outcome Controller::execute(const Frame& f) {
   if (!request) return Handlers::nak(*this, f.command, NakRule::kMalformedData, request.error().message());
   Outcome o = dispatch(command, request.value());
   if (o.reply && o.note.empty()) o.note = std::string(info->name);
-  // ERRATA E-66's other side: 42h 'C' needs the LOCATE "immediately prior":
-  // any command the controller takes in between, reads aside, voids it.
-  if (reads_other("E-66") && o.reply && !o.reply->empty() && o.reply->front() == ACK && !keeps_locate_claim(f.command))
-    state_.last_located.reset();
+  // ERRATA E-66: 42h 'C' needs the LOCATE "immediately prior"; the commands
+  // taken since, reads aside, are counted (the other side wants none).
+  if (o.reply && !o.reply->empty() && o.reply->front() == ACK && !keeps_locate_claim(f.command))
+    ++state_.commands_since_locate;
   return o;
 }
 

@@ -206,6 +206,7 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
   c.state_.displayed_sat = capitals(sat.name);  // §3.2 bytes 3-12, ERRATA E-68
   c.state_.last_located = sat;
+  c.state_.commands_since_locate = 0;
   // ERRATA E-59, E-80: the site and how a true azimuth becomes the mount's.
   const look::SiteOf site =
       look::site_of(locate_navigation(c.state_.navigation, c.faults_), c.profile_.az_sensor, c.profile_.fluxgate_heading);

@@ -126,7 +126,10 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
     const double pol = c.state_.pol.position;
     switch (s.pol_selection) {
       case 'C':
-        if (!c.state_.last_located) return nak(c, 0x42, NakRule::kStoreNeedsLocate);
+        // ERRATA E-66: the LOCATE must be "immediately prior"; the other side
+        // takes no command in between, reads aside.
+        if (!c.state_.last_located || (c.reads_other("E-66") && c.state_.commands_since_locate > 0))
+          return nak(c, 0x42, NakRule::kStoreNeedsLocate);
         entry.h_pol_deg = c.state_.last_located->pol_offset.value_or(0) / 10.0;
         entry.v_pol_deg = wrap_pol(entry.h_pol_deg + 90);
         break;

@@ -490,11 +490,106 @@ struct Lockstep::AckJudging {
   const ControllerState& nominal() const { return same.front()->bus->controller(0).state(); }
 };
 
+struct Lockstep::Memory {
+  std::unique_ptr<Bus> bus;
+  TimePoint last;
+  std::array<bool, 3> drifted, moved_on_line, at_limit_agreed, auto_moving;
+  Duration uncertainty_since_rest;
+  std::array<std::optional<double>, 3> arrived_at;
+  std::array<double, 3> arrived_position;
+  TimePoint settle_until;
+  ModeState settle_mode;
+  bool device_led, stopped_out, handed_over, model_was_led, moving_when_stopped, device_seen_moving, half_turn;
+  LockstepCoverage coverage;
+};
+
+Lockstep::Memory Lockstep::remember() const {
+  return Memory{std::make_unique<Bus>(*bus_), last_, drifted_, moved_on_line_, at_limit_agreed_, auto_moving_,
+                uncertainty_since_rest_, arrived_at_, arrived_position_, settle_until_, settle_mode_, device_led_,
+                stopped_out_, handed_over_, model_was_led_, moving_when_stopped_, device_seen_moving_, half_turn_,
+                coverage_};
+}
+
+void Lockstep::recall(const Memory& m) {
+  bus_ = std::make_unique<Bus>(*m.bus);
+  last_ = m.last;
+  clock_->set(last_);
+  drifted_ = m.drifted;
+  moved_on_line_ = m.moved_on_line;
+  at_limit_agreed_ = m.at_limit_agreed;
+  auto_moving_ = m.auto_moving;
+  uncertainty_since_rest_ = m.uncertainty_since_rest;
+  arrived_at_ = m.arrived_at;
+  arrived_position_ = m.arrived_position;
+  settle_until_ = m.settle_until;
+  settle_mode_ = m.settle_mode;
+  device_led_ = m.device_led;
+  stopped_out_ = m.stopped_out;
+  handed_over_ = m.handed_over;
+  model_was_led_ = m.model_was_led;
+  moving_when_stopped_ = m.moving_when_stopped;
+  device_seen_moving_ = m.device_seen_moving;
+  half_turn_ = m.half_turn;
+  coverage_ = m.coverage;
+}
+
+std::vector<std::string> Lockstep::open_readings() const {
+  std::vector<std::string> ids;
+  for (const ReadingPoint& p : reading_points())
+    if (!side_pinned(profile_.readings, p.id)) ids.emplace_back(p.id);
+  return ids;
+}
+
+void Lockstep::note_reading(std::vector<std::string> ids, const Verdict& explained) {
+  std::string errata;
+  for (const auto& id : ids) errata += (errata.empty() ? "" : "+") + id;
+  const ReadingSide side = side_taken(model().profile().readings, ids.front());
+  for (ReadingNote& n : notes_)
+    if (n.errata == errata && n.side == side) {
+      ++n.count;
+      return;
+    }
+  notes_.push_back(ReadingNote{errata, side, 1, std::string(to_string(explained.kind)) + ": " + explained.message});
+}
+
+// A write whose replies the model does not give is judged again with the
+// model on the other side of each open point of the spec (ERRATA class
+// reading), one at a time, then of all of them at once: a side that
+// explains the replies is the device's (a note), and the model keeps it.
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                       const std::vector<Frame>& device) {
+  cuts_ = frame_cuts(frame);  // the reference receiver reads each write once
+  const std::vector<std::string> open = open_readings();
+  if (open.empty()) return judge_write(frame, sent_at, uncertainty, device);
+  const Memory before = remember();
+  std::optional<Verdict> finding = judge_write(frame, sent_at, uncertainty, device);
+  if (!finding) return finding;
+  auto flipped = [&](const std::string& id) {
+    return side_taken(before.bus->controller(0).profile().readings, id) == ReadingSide::kOther ? ReadingSide::kReference
+                                                                                             : ReadingSide::kOther;
+  };
+  auto try_sides = [&](const std::vector<std::string>& ids) {
+    recall(before);
+    for (const auto& id : ids) model().set_reading(id, flipped(id));
+    return !judge_write(frame, sent_at, uncertainty, device);
+  };
+  for (const auto& id : open)
+    if (try_sides({id})) {
+      note_reading({id}, *finding);
+      return std::nullopt;
+    }
+  if (open.size() > 1 && try_sides(open)) {
+    note_reading(open, *finding);
+    return std::nullopt;
+  }
+  recall(before);
+  return judge_write(frame, sent_at, uncertainty, device);
+}
+
+std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                                             const std::vector<Frame>& device) {
   if (uncertainty > Duration{0}) uncertainty = uncertainty_since_rest_ = std::max(uncertainty_since_rest_, uncertainty);
   const TimePoint at = std::max(sent_at, last_);
-  cuts_ = frame_cuts(frame);
   // In-process the device executes a whole write at one instant, as the model.
   spacing_ = uncertainty > Duration{0} ? kBetweenFrames : Duration{0};
   const ModeState mode_before = model().state().mode;

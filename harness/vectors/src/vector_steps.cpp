@@ -305,14 +305,14 @@ std::string to_record(const YAML::Node& v, const At& at, const CommandInfo& comm
   return s;
 }
 
-// A field matcher list with `overrides` put in: one of the same field
-// replaces the first's, the rest are added.
+// A field matcher list with `overrides` put in: a field they name loses
+// the base's matchers (a field may have several) for theirs.
 std::vector<FieldMatcher> merged(std::vector<FieldMatcher> base, const std::vector<FieldMatcher>& overrides) {
-  for (const FieldMatcher& m : overrides) {
-    auto same = [&](const FieldMatcher& b) { return b.field == m.field; };
-    base.erase(std::remove_if(base.begin(), base.end(), same), base.end());
-    base.push_back(m);
-  }
+  auto overridden = [&](const FieldMatcher& b) {
+    return std::any_of(overrides.begin(), overrides.end(), [&](const FieldMatcher& m) { return m.field == b.field; });
+  };
+  base.erase(std::remove_if(base.begin(), base.end(), overridden), base.end());
+  base.insert(base.end(), overrides.begin(), overrides.end());
   return base;
 }
 

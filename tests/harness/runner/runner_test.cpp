@@ -11,6 +11,7 @@
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
@@ -185,6 +186,65 @@ TEST(Runner, ShippedVectorsPassOnTheShippedProfiles) {
     for (const auto& v : r.vectors)
       EXPECT_NE(v.verdict, Verdict::kFail) << p.name << ": " << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
   }
+}
+
+// The same suite against the reference controller on the other side of
+// every open point of the spec (readings.hpp, `sabus run --sim --reading
+// other`), the profile left unpinned: a legal controller that reads the spec
+// the other way never fails.
+TEST(Runner, ShippedVectorsHoldOnAControllerThatReadsTheSpecTheOtherWay) {
+  std::vector<Vector> vectors;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors) vectors.push_back(std::move(v));
+  const auto profiles_dir = std::filesystem::path(default_profile_path()).parent_path();
+  for (const auto& e : std::filesystem::directory_iterator(profiles_dir)) {
+    if (e.path().extension() != ".yaml") continue;
+    const Profile p = load_profile_file(e.path().string()).profile.value();
+    Profile other = p;
+    ASSERT_FALSE(apply_reading_spec("other", other.readings));
+    auto t = make_in_process_transport(bus_of(other), {});
+    RunOptions o;
+    o.allow_motion = true;
+    o.allow_destructive = true;
+    const RunResult r = Runner(*t, p, o).run(vectors);
+    EXPECT_FALSE(r.aborted) << p.name << ": " << r.abort_reason;
+    for (const auto& v : r.vectors)
+      EXPECT_NE(v.verdict, Verdict::kFail) << p.name << ": " << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+  }
+}
+
+// An expectation's `readings:` (ERRATA class reading): the reply passes when
+// it meets a side the profile leaves open; a pinned side is held strictly;
+// the failure names every side it was held to.
+TEST(Runner, AReadingsAlternativeAcceptsEitherSideUnlessThePofilePinsOne) {
+  auto with_start = [](std::string byte) {
+    Step s = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+    s.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {std::move(byte)}));
+    return s;
+  };
+  // The reference side wants a start byte the controller never sends; the
+  // other side of E-91 the ACK it sends.
+  Step step = with_start("0x15");
+  step.expect.readings.push_back(ReadingAlternative{"E-91", with_start("0x06").expect});
+  auto run_pinned = [&](std::optional<ReadingSide> pin) {
+    Profile p = load_profile_file(default_profile_path()).profile.value();
+    if (pin) p.readings["E-91"] = *pin;
+    auto t = make_in_process_transport({p}, {});
+    return Runner(*t, p, RunOptions{}).run({vector_with("reading", {step})}).vectors.at(0);
+  };
+  EXPECT_EQ(run_pinned(std::nullopt).verdict, Verdict::kPass) << "open: either side";
+  EXPECT_EQ(run_pinned(ReadingSide::kOther).verdict, Verdict::kPass);
+  const VectorResult strict = run_pinned(ReadingSide::kReference);
+  ASSERT_EQ(strict.verdict, Verdict::kFail);
+  EXPECT_NE(strict.failures[0].find("E-91 reference: byte 0 start"), std::string::npos) << strict.failures[0];
+  EXPECT_EQ(strict.failures[0].find("E-91 other"), std::string::npos) << "the pinned-away side is not tried";
+  // Neither side holds: both named.
+  step.expect.readings[0].expect = with_start("0x02").expect;
+  const VectorResult neither = run_pinned(std::nullopt);
+  ASSERT_EQ(neither.verdict, Verdict::kFail);
+  EXPECT_NE(neither.failures[0].find("no legal reading holds (ERRATA E-91): E-91 reference:"), std::string::npos)
+      << neither.failures[0];
+  EXPECT_NE(neither.failures[0].find("; E-91 other:"), std::string::npos) << neither.failures[0];
 }
 
 TEST(Runner, PassFailSkipAndLiveness) {

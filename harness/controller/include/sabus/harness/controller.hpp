@@ -64,6 +64,9 @@ struct ControllerState {
   char pol_code = 0;                      // §3.2 byte 35 ZZZ: 'H', 'h', 'V', 'v' or 0 (none)
   std::optional<StoredSatellite> last_target;   // §3.5: the last target of an auto move
   std::optional<SatelliteData> last_located;    // §3.19 'C': a LOCATE performed before
+  // Commands taken since that LOCATE, reads aside: E-66's other side wants
+  // none ("immediately prior").
+  int commands_since_locate = 0;
   std::vector<StoredSatellite> store;     // §3.6, <= 50
   std::array<std::optional<PresetSatellite>, 20> presets;
   std::array<std::optional<TleSet>, 10> tles;
@@ -93,6 +96,9 @@ class Controller {
   const ControllerState& state() const { return state_; }
   ControllerState& mutable_state() { return state_; }
   const Profile& profile() const { return profile_; }
+  // Takes a side of an open point of the spec from now on (readings.hpp):
+  // the live fuzzer's model, once a device has shown its side.
+  void set_reading(const std::string& errata_id, ReadingSide side) { profile_.readings[errata_id] = side; }
   const FaultSet& faults() const { return faults_; }
 
   // Replies as the codecs build them from the state (also used by tests).
@@ -150,6 +156,9 @@ class Controller {
   // §3.7 'A' (ERRATA E-90): a square spiral about the current position, leg
   // by leg; when its time is over, back to where it began.
   void start_search(char pattern);
+  // When the search gives up with no peak found (E-90: the side taken
+  // decides, also of a search already running).
+  TimePoint search_end() const;
   void next_search_leg();
   // §3.7 'D' (ERRATA E-90): the elevation, then the azimuth when the profile
   // states a deploy position for it.
@@ -182,7 +191,7 @@ class Controller {
     char pattern = 'E';        // 'E' expanding, 'F' flat
     double az0 = 0, el0 = 0;   // where it began: the nominal position it returns to
     int legs = 0;              // legs begun
-    TimePoint end{};           // when it gives up with no peak found
+    TimePoint began{};         // how long it lasts is E-90's (search_end())
     bool returning = false;    // moving back to az0, el0
   } search_;
   // §3.18 under ERRATA E-94's other side: the azimuth a LOCATE moves to

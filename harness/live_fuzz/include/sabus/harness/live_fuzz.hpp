@@ -33,6 +33,7 @@
 
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/transport.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/receiver.hpp"
@@ -357,6 +358,18 @@ class Lockstep {
   // the device was where the model was).
   std::string adopt(const FuzzFrame& frame, TimePoint sent_at, const std::vector<Frame>& device);
   const LockstepCoverage& coverage() const { return coverage_; }
+  // A difference from the model that the other side of an open point of
+  // the spec explains (readings.hpp, ERRATA entries of class reading): a
+  // legal controller's, so a note, never a finding. The model takes that
+  // side for the rest of the session (the device has shown which it
+  // takes); a point the profile pins is never taken over.
+  struct ReadingNote {
+    std::string errata;   // "E-91", or "E-95+E-96" when only both together explain it
+    ReadingSide side;     // the side the device showed
+    std::size_t count = 0;
+    std::string example;  // what the model would have reported, the first time
+  };
+  const std::vector<ReadingNote>& notes() const { return notes_; }
   // The model (for tests, and for the generator's arrival sequences).
   Controller& model();
   const Controller& model() const;
@@ -383,6 +396,19 @@ class Lockstep {
   // A §3.16 count field's text as degrees (count_offset and counts_per_degree
   // of the profile); nullopt when it is no count.
   std::optional<double> count_degrees(std::string_view raw) const;
+  // One write's judgement against the model as it is (step tries it again
+  // with a reading flipped when it ends in a finding).
+  std::optional<Verdict> judge_write(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                                     const std::vector<Frame>& device);
+  // What judge_write changes, kept to judge a write again.
+  struct Memory;
+  Memory remember() const;
+  void recall(const Memory& m);
+  // The reading points the model may still take the other side of: those
+  // the profile leaves open.
+  std::vector<std::string> open_readings() const;
+  void note_reading(std::vector<std::string> ids, const Verdict& explained);
+  std::vector<ReadingNote> notes_;
   // One write's judgement, rule by rule (step).
   struct Judging;
   struct AckJudging;
