@@ -918,6 +918,43 @@ TEST(Runner, KnownIssuesAndRepeatsLeaveAnInconclusiveVectorAsItIs) {
   EXPECT_EQ(commands_sent(r.vectors[0]), (std::vector<std::uint8_t>{0x40})) << "run once";
 }
 
+// ERRATA E-90, §3.7: how long a search lasts is the controller's
+// configuration. The reference controller's lasts 20 s, then drives back
+// to where it began: stopped 1 s after it began (as shipped) each
+// search-stop vector passes; stopped 10 minutes after, the search is over,
+// the precondition right before the stop does not hold, and each vector
+// ends inconclusive, not failed.
+TEST(Runner, TheSearchStopVectorsAreInconclusiveWhenTheSearchHasEnded) {
+  const std::set<std::string> ids = {"3.7-misc-x-stops-search", "3.7-misc-stop-key-stops-search",
+                                     "3.7-misc-keypress-48h-stops-search"};
+  std::vector<Vector> shipped;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors)
+      if (ids.count(v.id)) shipped.push_back(v);
+  ASSERT_EQ(shipped.size(), 3u);
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult as_shipped = run_in_process(shipped, {}, o);
+  for (const auto& v : as_shipped.vectors)
+    EXPECT_EQ(v.verdict, Verdict::kPass) << v.id << ": " << (v.failures.empty() ? v.inconclusive_reason : v.failures[0]);
+
+  std::vector<Vector> late = shipped;
+  for (auto& v : late) {
+    const auto wait = std::find_if(v.steps.begin(), v.steps.end(), [](const Step& s) { return s.kind == Step::Kind::kWait; });
+    ASSERT_NE(wait, v.steps.end()) << v.id;
+    wait->timeout = std::chrono::milliseconds(600000);
+  }
+  const RunResult r = run_in_process(late, {}, o);
+  ASSERT_EQ(r.vectors.size(), 3u);
+  for (const auto& v : r.vectors) {
+    EXPECT_EQ(v.verdict, Verdict::kInconclusive) << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+    EXPECT_EQ(v.inconclusive_reason.rfind("precondition not met (the search is still running when the stop goes out): byte ", 0), 0u)
+        << v.id << ": " << v.inconclusive_reason;
+    EXPECT_NE(v.inconclusive_reason.find("current mode: expected 0x26, got 0x"), std::string::npos) << v.inconclusive_reason;
+  }
+  EXPECT_EQ(r.exit_code(), kNothingRanExitCode);
+}
+
 // Against a controller that is gone when the run ends (the in-process one),
 // nothing is backed up or restored.
 TEST(Runner, NoBackupWhenTheDeviceDoesNotOutliveTheRun) {
