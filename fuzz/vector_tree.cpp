@@ -452,6 +452,7 @@ Text step_text(const Step& s) {
       break;
     }
   }
+  if (!s.precondition.empty()) put(t, "precondition", quoted(s.precondition));
   return t;
 }
 

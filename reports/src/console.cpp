@@ -26,6 +26,7 @@ std::string_view colour_of(std::string_view word) {
   if (word == "PASS") return "\033[32m";       // green
   if (word == "FAIL") return "\033[1;31m";     // bold red
   if (word == "KNOWN") return "\033[35m";      // magenta
+  if (word == "INCONCLUSIVE") return "\033[36m";  // cyan
   return "\033[33m";                           // SKIP: yellow
 }
 
@@ -59,6 +60,7 @@ std::string_view verdict_word(const VectorRecord& v) {
   if (v.is_failure()) return "FAIL";
   if (v.outcome == "known failure") return "KNOWN";
   if (v.outcome == "skip") return "SKIP";
+  if (v.is_inconclusive()) return "INCONCLUSIVE";
   return "PASS";
 }
 
@@ -69,6 +71,7 @@ std::string verdict_line(const VectorRecord& v, bool colour) {
   if (word == "FAIL") line += ": " + v.difference();
   else if (word == "KNOWN") line += ": " + v.difference() + " (known issue: " + v.known_issue + ")";
   else if (word == "SKIP") line += ": " + v.skip_reason;
+  else if (word == "INCONCLUSIVE") line += ": " + v.inconclusive_reason;
   return line;
 }
 
@@ -90,13 +93,21 @@ std::string summary_line(const Summary& s) {
   std::string line = fmt::format("{} passed, {} failed, {} skipped", s.passed, s.failed + s.unexpected, s.skipped);
   if (const std::string causes = skip_causes_text(s); !causes.empty()) line += " (" + causes + ")";
   if (s.known) line += fmt::format(", {} known failures", s.known);
+  if (s.inconclusive) line += fmt::format(", {} inconclusive", s.inconclusive);
   return line;
 }
 
 std::string nothing_ran_reason(const Summary& s) {
-  if (s.skipped == 0) return "no vector was selected";
+  if (s.skipped == 0 && s.inconclusive == 0) return "no vector was selected";
   const std::string causes = skip_causes_text(s);
   const std::string why = causes.empty() ? "" : " (" + causes + ")";
+  // Vectors that ran but reached no test purpose checked nothing either.
+  if (s.inconclusive > 0) {
+    const std::string skipped = s.skipped == 0 ? "" : fmt::format("; {} skipped{}", s.skipped, why);
+    if (s.inconclusive == 1) return "the one vector that ran ended inconclusive (its test purpose was not reached)" + skipped;
+    return fmt::format("all {} vectors that ran ended inconclusive (their test purposes were not reached){}", s.inconclusive,
+                       skipped);
+  }
   if (s.skipped == 1) return "the one vector selected was skipped" + why;
   return fmt::format("all {} vectors selected were skipped{}", s.skipped, why);
 }

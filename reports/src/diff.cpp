@@ -139,7 +139,9 @@ RunDiff diff_runs(const RunDocument& o, const RunDocument& n, const TimingThresh
     }
     if (nv.is_failure() && !ov->is_failure()) {
       d.new_failures.push_back(entry(ov, &nv, nv.difference()));
-    } else if (ov->is_failure() && !nv.is_failure() && ran(nv)) {
+    } else if (ov->is_failure() && !nv.is_failure() && ran(nv) && !nv.is_inconclusive()) {
+      // (A failure that is now inconclusive is not fixed: the purpose was
+      // not reached. It is an other change, as pass -> inconclusive is.)
       d.fixes.push_back(entry(ov, &nv));
     } else if (ov->outcome == "pass" && nv.outcome == "skip" && nv.level == "must") {
       d.must_now_skipped.push_back(entry(ov, &nv, nv.skip_reason));

@@ -23,6 +23,7 @@ using nlohmann::ordered_json;
 std::string VectorRecord::difference() const {
   if (!failures.empty()) return failures.front();
   if (outcome == "unexpected pass") return "passed but is listed as a known issue (" + known_issue + ")";
+  if (is_inconclusive()) return "inconclusive: " + inconclusive_reason;
   return "";
 }
 
@@ -37,6 +38,7 @@ Summary RunDocument::counts() const {
     }
     else if (v.outcome == "known failure") ++s.known;
     else if (v.outcome == "unexpected pass") ++s.unexpected;
+    else if (v.is_inconclusive()) ++s.inconclusive;
   }
   s.exit_code = summary ? summary->exit_code : 1;
   return s;
@@ -131,6 +133,7 @@ VectorRecord vector_record(const harness::VectorResult& r) {
   v.level = std::string(harness::to_string(r.level));
   v.outcome = std::string(harness::to_string(r.verdict));
   v.failures = r.failures;
+  v.inconclusive_reason = r.inconclusive_reason;
   v.skip_reason = r.skip_reason;
   v.skip_cause = std::string(harness::to_string(r.skip_cause));
   v.known_issue = r.known_issue_reason;
@@ -156,7 +159,7 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
   doc.status = run.aborted ? "aborted" : "complete";
   doc.abort_reason = run.abort_reason;
   doc.finished_at = std::move(finished_at);
-  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code(), {}};
+  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code(), {}, run.inconclusive};
   for (const auto& [cause, n] : run.skipped_by_cause) doc.summary->skipped_by_cause[std::string(harness::to_string(cause))] = n;
   doc.liveness.clear();
   for (const auto& l : run.liveness) doc.liveness.push_back({l.when, l.alive, l.detail});
@@ -198,8 +201,8 @@ ordered_json header_json(const RunDocument& d) {
     for (const auto& [cause, n] : d.summary->skipped_by_cause) causes[valid_utf8(cause)] = n;
     j["summary"] = {{"passed", d.summary->passed},   {"failed", d.summary->failed},
                     {"skipped", d.summary->skipped}, {"known", d.summary->known},
-                    {"unexpected", d.summary->unexpected}, {"exit_code", d.summary->exit_code},
-                    {"skipped_by_cause", std::move(causes)}};
+                    {"unexpected", d.summary->unexpected}, {"inconclusive", d.summary->inconclusive},
+                    {"exit_code", d.summary->exit_code}, {"skipped_by_cause", std::move(causes)}};
   }
   ordered_json live = ordered_json::array();
   for (const auto& l : d.liveness) live.push_back({{"when", text(l.when)}, {"alive", l.alive}, {"detail", text(l.detail)}});
@@ -242,6 +245,7 @@ VectorRecord vector_from_json(const json& v) {
   r.level = get<std::string>(v, "level", "");
   r.outcome = v.at("outcome").get<std::string>();
   r.failures = get<std::vector<std::string>>(v, "failures", {});
+  r.inconclusive_reason = get<std::string>(v, "inconclusive_reason", "");
   r.skip_reason = get<std::string>(v, "skip_reason", "");
   r.skip_cause = get<std::string>(v, "skip_cause", "");
   r.known_issue = get<std::string>(v, "known_issue", "");
@@ -314,7 +318,8 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
       d.summary = Summary{get<std::size_t>(*it, "passed", 0), get<std::size_t>(*it, "failed", 0),
                           get<std::size_t>(*it, "skipped", 0), get<std::size_t>(*it, "known", 0),
                           get<std::size_t>(*it, "unexpected", 0), get<int>(*it, "exit_code", 1),
-                          get<std::map<std::string, std::size_t>>(*it, "skipped_by_cause", {})};
+                          get<std::map<std::string, std::size_t>>(*it, "skipped_by_cause", {}),
+                          get<std::size_t>(*it, "inconclusive", 0)};
     }
     for (const auto& l : get<json>(j, "liveness", json::array())) {
       where = "liveness";

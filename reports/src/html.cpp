@@ -21,18 +21,20 @@ namespace {
 std::string e(std::string_view s) { return xml_escape(s); }
 
 // The status the filter and the colours use: pass, fail (a failure or an
-// unexpected pass), known, skip.
+// unexpected pass), known, inconclusive, skip.
 const char* outcome_class(const std::string& outcome) {
   if (outcome == "pass") return "pass";
   if (outcome == "fail" || outcome == "unexpected pass") return "fail";
   if (outcome == "known failure") return "known";
+  if (outcome == "inconclusive") return "inconclusive";
   return "skip";
 }
 
-// A tally's worst outcome: fail, known, pass, skip; "none" when empty.
+// A tally's worst outcome: fail, known, inconclusive (ran, checked nothing),
+// pass, skip; "none" when empty.
 const char* tally_class(const Tally& t) {
   if (t.total() == 0) return "none";
-  return t.failed ? "fail" : t.known ? "known" : t.passed ? "pass" : "skip";
+  return t.failed ? "fail" : t.known ? "known" : t.inconclusive ? "inconclusive" : t.passed ? "pass" : "skip";
 }
 
 std::string tally_text(const Tally& t) {
@@ -43,6 +45,7 @@ std::string tally_text(const Tally& t) {
   part(t.passed, "pass");
   part(t.failed, "fail");
   part(t.known, "known");
+  part(t.inconclusive, "inconclusive");
   part(t.skipped, "skip");
   return text;
 }
@@ -90,6 +93,7 @@ std::string base64_of_hex(std::string_view hex) {
 constexpr const char* kPassColour = "#c8ecc8";
 constexpr const char* kFailColour = "#f6c1c1";
 constexpr const char* kKnownColour = "#f7e3a6";
+constexpr const char* kInconclusiveColour = "#c6dcf2";
 constexpr const char* kSkipColour = "#e4e4e4";
 constexpr const char* kNoneColour = "#ffffff";
 
@@ -97,6 +101,7 @@ const char* class_colour(std::string_view cls) {
   if (cls == "pass") return kPassColour;
   if (cls == "fail") return kFailColour;
   if (cls == "known") return kKnownColour;
+  if (cls == "inconclusive") return kInconclusiveColour;
   if (cls == "skip") return kSkipColour;
   return kNoneColour;
 }
@@ -107,7 +112,7 @@ body{{font-family:system-ui,sans-serif;margin:1.5em;color:#222;max-width:1400px}
 table{{border-collapse:collapse;margin:.5em 0}}
 th,td{{border:1px solid #bbb;padding:2px 6px;text-align:left;vertical-align:top;font-size:13px}}
 th{{background:#eee}}
-.pass{{background:{}}}.fail{{background:{}}}.known{{background:{}}}.skip{{background:{}}}.none{{color:#999}}
+.pass{{background:{}}}.fail{{background:{}}}.known{{background:{}}}.inconclusive{{background:{}}}.skip{{background:{}}}.none{{color:#999}}
 .verdict{{padding:2px 10px;border-radius:4px}}
 .PASS{{background:#2e8b2e;color:#fff}}.FAIL,.STOPPED,.ABORTED,.INCOMPLETE{{background:#b22222;color:#fff}}
 code,.hex,pre{{font-family:ui-monospace,monospace;font-size:12px}}
@@ -122,7 +127,7 @@ nav a{{margin-right:1em}}
 [hidden]{{display:none!important}}
 svg text{{font-family:system-ui,sans-serif;font-size:11px;fill:#222}}
 )",
-                     kPassColour, kFailColour, kKnownColour, kSkipColour);
+                     kPassColour, kFailColour, kKnownColour, kInconclusiveColour, kSkipColour);
 }
 
 // ---- tables ----------------------------------------------------------------------
@@ -243,11 +248,11 @@ std::string turnaround_chart(const std::vector<Turnaround>& rows) {
 std::string legend_svg(int x, int y) {
   std::string out;
   int at = x;
-  for (const char* cls : {"pass", "fail", "known", "skip", "none"}) {
+  for (const char* cls : {"pass", "fail", "known", "inconclusive", "skip", "none"}) {
     out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"12\" height=\"12\" fill=\"{}\" stroke=\"#999\"/><text x=\"{}\" y=\"{}\">{}</text>",
                        at, y, class_colour(cls), at + 16, y + 10,
                        std::string_view(cls) == "none" ? "not exercised" : cls);
-    at += std::string_view(cls) == "none" ? 100 : 64;
+    at += std::string_view(cls) == "none" ? 100 : std::string_view(cls) == "inconclusive" ? 96 : 64;
   }
   return out + "\n";
 }
@@ -257,7 +262,8 @@ std::string legend_svg(int x, int y) {
 std::string coverage_chart(const std::vector<CoverageRow>& rows) {
   constexpr int kLabel = 280, kCell = 72, kRow = 15, kTop = 22;
   const int height = kTop + kRow * static_cast<int>(rows.size()) + 28;
-  const int width = kLabel + kCell * 4 + 10;
+  constexpr int kLegend = 460;  // legend_svg's six entries
+  const int width = kLabel + std::max(kCell * 4 + 10, kLegend);
   std::string out = fmt::format(
       "<svg id=\"chart-coverage\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
       "role=\"img\" aria-label=\"Coverage matrix\">\n<title>Coverage: command × form × path, by outcome</title>\n",
@@ -394,6 +400,7 @@ std::string vector_section(const VectorRecord& v) {
   if (!v.comment.empty()) out += "<p>" + e(v.comment) + "</p>\n";
   if (!v.file.empty()) out += "<p><small>" + e(v.file) + "</small></p>\n";
   for (const auto& f : v.failures) out += "<p class=\"fail\">" + e(f) + "</p>\n";
+  if (!v.inconclusive_reason.empty()) out += "<p class=\"inconclusive\">inconclusive: " + e(v.inconclusive_reason) + "</p>\n";
   if (!v.skip_reason.empty()) out += "<p class=\"skip\">skipped: " + e(v.skip_reason) + "</p>\n";
   if (!v.known_issue.empty()) out += "<p class=\"known\">known issue: " + e(v.known_issue) + "</p>\n";
   if (v.repeats > 0) out += fmt::format("<p>repeated {} times, failed {} of them</p>\n", v.repeats, v.repeat_failures);
@@ -413,7 +420,11 @@ std::string filter_form(const RunDocument& d) {
   for (const auto& [paragraph, levels] : paragraph_levels(d)) paragraphs.push_back({paragraph, "§" + paragraph});
   std::string out = "<form id=\"filter\" hidden>\n";
   out += select("status", "Status",
-                {{"fail", "failed (and unexpected passes)"}, {"known", "known failures"}, {"pass", "passed"}, {"skip", "skipped"}});
+                {{"fail", "failed (and unexpected passes)"},
+                 {"known", "known failures"},
+                 {"inconclusive", "inconclusive"},
+                 {"pass", "passed"},
+                 {"skip", "skipped"}});
   out += select("level", "Level", {{"must", "must"}, {"should", "should"}, {"informative", "informative"}});
   out += select("paragraph", "Paragraph", paragraphs);
   return out + "<output id=\"shown\"></output>\n</form>\n";

@@ -92,6 +92,7 @@ void put_vector(Writer& w, const VectorRecord& v) {
   w.StartArray();
   for (const auto& f : v.failures) put_string(w, f);
   w.EndArray();
+  put_string_member(w, "inconclusive_reason", v.inconclusive_reason);
   put_string_member(w, "skip_reason", v.skip_reason);
   put_string_member(w, "skip_cause", v.skip_cause);
   put_string_member(w, "known_issue", v.known_issue);

@@ -28,13 +28,13 @@ std::string markdown_summary(const RunDocument& d) {
     out += "**Nothing ran**: " + md(nothing_ran_reason(c)) + ". A run that checked nothing is not a success.\n\n";
   if (!d.abort_reason.empty())
     out += (d.stopped() ? "Stopped before its end: " : "Aborted: ") + md(d.abort_reason) + "\n\n";
-  out += "| Level | passed | failed | known | skipped |\n|---|---:|---:|---:|---:|\n";
+  out += "| Level | passed | failed | known | inconclusive | skipped |\n|---|---:|---:|---:|---:|---:|\n";
   std::map<std::string, Tally> levels;
   for (const auto& v : d.vectors) levels[v.level].add(v);
   for (const char* level : {"must", "should", "informative"})
     if (auto it = levels.find(level); it != levels.end())
-      out += fmt::format("| {} | {} | {} | {} | {} |\n", level, it->second.passed, it->second.failed, it->second.known,
-                         it->second.skipped);
+      out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", level, it->second.passed, it->second.failed, it->second.known,
+                         it->second.inconclusive, it->second.skipped);
   std::vector<const VectorRecord*> failures;
   for (const auto& v : d.vectors)
     if (v.is_failure()) failures.push_back(&v);
@@ -46,6 +46,17 @@ std::string markdown_summary(const RunDocument& d) {
     if (failures.size() > kMaxListed) out += fmt::format("- … and {} more\n", failures.size() - kMaxListed);
   }
   if (c.known) out += fmt::format("\n{} known failure(s) listed in the known-issues file.\n", c.known);
+  // Test purposes this device did not reach (TTCN-3 inconc), each with why.
+  std::vector<const VectorRecord*> inconclusive;
+  for (const auto& v : d.vectors)
+    if (v.is_inconclusive()) inconclusive.push_back(&v);
+  if (!inconclusive.empty()) {
+    out += "\n**Inconclusive**\n\n";
+    for (std::size_t i = 0; i < inconclusive.size() && i < kMaxListed; ++i)
+      out += fmt::format("- `{}` §{} {}: {}\n", code(inconclusive[i]->id), md(inconclusive[i]->paragraph),
+                         md(inconclusive[i]->level), md(inconclusive[i]->inconclusive_reason));
+    if (inconclusive.size() > kMaxListed) out += fmt::format("- … and {} more\n", inconclusive.size() - kMaxListed);
+  }
   return out;
 }
 

@@ -13,6 +13,7 @@ void Tally::add(const VectorRecord& v) {
   if (v.outcome == "pass") ++passed;
   else if (v.outcome == "known failure") ++known;
   else if (v.is_failure()) ++failed;
+  else if (v.is_inconclusive()) ++inconclusive;
   else ++skipped;
 }
 

@@ -223,6 +223,131 @@ TEST(MarkdownProblems, FindRawHtmlWrongCountsAndFailuresOtherwiseWritten) {
   EXPECT_TRUE(says(checks::markdown_problems(good, other), "failure item 1 reads"));
 }
 
+// ---- the inconclusive outcome (schema v4) -----------------------------------------
+
+// finished_record with a vector that ended inconclusive (TTCN-3 inconc).
+MemoryRecord inconclusive_record() {
+  MemoryRecord r;
+  r.doc = test_documents::sample_header();
+  r.doc.generator = "sabus 1.2.3";
+  r.doc.planned = 2;
+  r.start();
+  for (const char* outcome : {"pass", "inconclusive"}) {
+    VectorRecord v = vector(std::string("3.2-") + outcome, outcome);
+    r.journal += vector_json(v) + "\n";
+    compact_for_reports(v);
+    r.doc.vectors.push_back(v);
+  }
+  r.doc.status = "complete";
+  r.doc.finished_at = "2024-01-01T00:00:01Z";
+  r.doc.summary = Summary{1, 0, 0, 0, 0, 0, {}, 1};
+  r.doc.traffic = {{"bytes_sent", 10}, {"bytes_received", 10}, {"silence_windows", 0}, {"silence_listened_ms", 0.0},
+                   {"measured_turnaround_ms", 0.0}};
+  r.doc.journal.clear();
+  r.journal += journal_record_json("end", r.doc) + "\n";
+  return r;
+}
+
+// Each reader finds an inconclusive vector recorded wrong: without its
+// reason or with a failure (the schema), miscounted, in JUnit not a skip
+// that says why, its reason not shown in the HTML or the Markdown.
+TEST(InconclusiveProblems, EachReaderFindsAnInconclusiveVectorRecordedWrong) {
+  const MemoryRecord r = inconclusive_record();
+  const std::string json = json_text(r.doc);
+  auto broken = [](std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  const std::string reason = "\"inconclusive_reason\":\"precondition not met";
+  EXPECT_TRUE(says(checks::run_json_problems(broken(json, reason, "\"inconclusive_reason\":\"\",\"x\":\"")), "at /vectors/1"));
+  EXPECT_TRUE(says(checks::run_json_problems(broken(json, "\"outcome\":\"inconclusive\",\"failures\":[]",
+                                                    "\"outcome\":\"inconclusive\",\"failures\":[\"f\"]")),
+                   "at /vectors/1"))
+      << "an inconclusive vector has no failure";
+  EXPECT_TRUE(says(checks::run_json_problems(broken(json, "\"inconclusive\": 1", "\"inconclusive\": 0")),
+                   "summary.inconclusive is 0, the vectors have 1 inconclusive"));
+  EXPECT_TRUE(says(checks::run_json_problems(broken(json, "\"inconclusive\": 1,", "")), "at /summary"))
+      << "a v4 summary counts them";
+  EXPECT_TRUE(says(checks::journal_problems(broken(r.journal, reason, "\"inconclusive_reason\":\"\",\"x\":\"")), "journal line 3"));
+
+  const std::string xml = junit_xml(r.doc);
+  EXPECT_TRUE(says(checks::junit_problems(broken(xml, "message=\"inconclusive: precondition", "message=\"precondition"), r.doc),
+                   "the skipped testcase 3.2-inconclusive says \"precondition not met"));
+  RunDocument failed = r.doc;
+  failed.vectors[1].outcome = "fail";
+  failed.vectors[1].failures = {"f"};
+  EXPECT_TRUE(says(checks::junit_problems(xml, failed), "testcase 3.2-inconclusive is a skip, the vector a fail"));
+
+  RunDocument other = r.doc;
+  other.vectors[1].inconclusive_reason = "another reason";
+  EXPECT_TRUE(says(checks::html_problems(html_report(r.doc), other), "\"inconclusive: another reason\" is not shown as text"));
+  const std::string md = markdown_summary(r.doc);
+  EXPECT_TRUE(says(checks::markdown_problems(md, other), "item 1 reads"));
+  EXPECT_TRUE(says(checks::markdown_problems(broken(md, "| must | 1 | 0 | 0 | 1 | 0 |", "| must | 1 | 0 | 0 | 0 | 0 |"), r.doc),
+                   "per-level table"));
+}
+
+// Then the record of a run with an inconclusive vector reads back in every
+// format, also rebuilt from its JSON and its journal; each names it.
+TEST(InconclusiveProblems, ARunWithAnInconclusiveVectorReadsBackInEveryFormat) {
+  const MemoryRecord r = inconclusive_record();
+  EXPECT_EQ(joined(checks::run_record_problems(r.doc, r.journal)), "");
+  const std::string why = "precondition not met (the search is still running when the stop goes out): byte 45 current mode: "
+                          "expected 0x26, got 0x20 (MANUAL_MODE)";
+  std::string error;
+  const auto back = from_json(json::parse(json_text(r.doc)), error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->schema_version, 4);
+  EXPECT_EQ(back->vectors[1].outcome, "inconclusive");
+  EXPECT_EQ(back->vectors[1].inconclusive_reason, why);
+  EXPECT_EQ(back->summary->inconclusive, 1u);
+  EXPECT_EQ(back->counts().inconclusive, 1u);
+  EXPECT_NE(junit_xml(r.doc).find("<skipped message=\"inconclusive: " + why + "\"/>"), std::string::npos);
+  EXPECT_NE(html_report(r.doc).find("<p class=\"inconclusive\">inconclusive: " + why + "</p>"), std::string::npos);
+  EXPECT_NE(html_report(r.doc).find("1 passed, 0 failed, 0 skipped, 1 inconclusive"), std::string::npos);
+  EXPECT_NE(markdown_summary(r.doc).find("1 passed, 0 failed, 0 skipped, 1 inconclusive"), std::string::npos);
+  EXPECT_EQ(r.doc.verdict(), "PASS") << "an inconclusive vector fails nothing";
+}
+
+// The record of a real run on the reference controller: a vector whose
+// precondition does not hold there, and one that passes.
+TEST(InconclusiveProblems, ARunnersInconclusiveVectorReadsBack) {
+  harness::Step mode;
+  mode.command = harness::StructuredCommand{"extended_status", "", {}, std::nullopt, {}, {}};
+  harness::FieldMatcher search;
+  search.field = "current mode";
+  search.kind = harness::FieldMatcher::Kind::kEq;
+  search.values = {"0x26"};
+  mode.expect.fields = {search};
+  mode.precondition = "the search is still running when the stop goes out";
+  harness::Vector inconclusive, pass;
+  inconclusive.id = "3.7-stop";
+  inconclusive.paragraph = "3.7";
+  inconclusive.steps = {mode};
+  pass.id = "3.17-mode";
+  pass.paragraph = "3.17";
+  mode.precondition.clear();
+  mode.expect.fields.clear();
+  pass.steps = {mode};
+  const auto profile = harness::load_profile_file(harness::default_profile_path());
+  ASSERT_TRUE(profile) << profile.error->text();
+  auto transport = harness::make_in_process_transport(harness::bus_of(*profile.profile), {});
+  MemoryRecord r;
+  r.doc = test_documents::sample_header();
+  r.doc.generator = "sabus test";
+  r.doc.planned = 2;
+  r.start();
+  harness::RunOptions o;
+  o.on_result = r.on_result(1.0);
+  r.end(harness::Runner(*transport, *profile.profile, o).run({inconclusive, pass}), "2024-01-01T00:00:01Z");
+  ASSERT_EQ(r.doc.vectors.size(), 2u);
+  EXPECT_EQ(r.doc.vectors[0].outcome, "inconclusive");
+  EXPECT_EQ(r.doc.summary->inconclusive, 1u);
+  EXPECT_EQ(r.doc.summary->exit_code, 0);
+  EXPECT_EQ(joined(checks::run_record_problems(r.doc, r.journal)), "");
+}
+
 // ---- the schema's two files --------------------------------------------------------
 
 std::string read_source(const std::string& relative) {

@@ -106,6 +106,33 @@ TEST(Console, SkipsByCauseInTheSummaryAndWhyNothingRan) {
   EXPECT_EQ(nothing_ran_reason({0, 0, 0, 0, 0, harness::kNothingRanExitCode}), "no vector was selected");
 }
 
+// An inconclusive vector (TTCN-3 inconc): its own word and reason, a count
+// in the summary when there is one, and a run of nothing else checked nothing.
+TEST(Console, AnInconclusiveVectorIsNamedWithWhyAndCounted) {
+  VectorRecord v = vector("3.7-stop", "inconclusive", "3.7");
+  v.inconclusive_reason = "precondition not met (the search runs): byte 45 current mode: expected 0x26, got 0x20 (MANUAL_MODE)";
+  EXPECT_EQ(verdict_word(v), "INCONCLUSIVE");
+  EXPECT_EQ(verdict_line(v),
+            "INCONCLUSIVE 3.7-stop §3.7 must: precondition not met (the search runs): byte 45 current mode: expected 0x26, got 0x20 "
+            "(MANUAL_MODE)");
+  EXPECT_EQ(verdict_line(v, true).rfind("\033[36mINCONCLUSIVE\033[0m 3.7-stop", 0), 0u);
+  EXPECT_EQ(v.difference(), "inconclusive: " + v.inconclusive_reason);
+  EXPECT_FALSE(v.is_failure());
+  EXPECT_FALSE(v.is_skip());
+  Summary s{5, 0, 3, 0, 0, 0};
+  s.inconclusive = 2;
+  EXPECT_EQ(summary_line(s), "5 passed, 0 failed, 3 skipped, 2 inconclusive");
+  EXPECT_EQ(summary_line({5, 0, 3, 0, 0, 0}), "5 passed, 0 failed, 3 skipped") << "not named when there is none";
+  Summary only{0, 0, 0, 0, 0, harness::kNothingRanExitCode};
+  only.inconclusive = 1;
+  EXPECT_EQ(nothing_ran_reason(only), "the one vector that ran ended inconclusive (its test purpose was not reached)");
+  Summary with_skips{0, 0, 2, 0, 0, harness::kNothingRanExitCode};
+  with_skips.inconclusive = 3;
+  with_skips.skipped_by_cause = {{"motion", 2}};
+  EXPECT_EQ(nothing_ran_reason(with_skips),
+            "all 3 vectors that ran ended inconclusive (their test purposes were not reached); 2 skipped (2 need --allow-motion)");
+}
+
 TEST(Json, RoundTripsEveryField) {
   RunDocument d = sample();
   d.vectors[0].quote = "the reply is 52 bytes";
@@ -140,6 +167,39 @@ TEST(Json, ReadsVersion1AndRejectsOtherDocuments) {
 
 // A count that is not a whole number of its type is an error naming the key,
 // not a cast (1e300) or a wrapped count (-1).
+// Version 4 adds the inconclusive outcome; a version 3 document (none of
+// its fields) still reads, and a version above 4 does not.
+TEST(Json, Version4CarriesInconclusiveAndVersion3StillReads) {
+  RunDocument d = sample();
+  d.vectors.push_back(vector("e-inconc", "inconclusive"));
+  d.vectors.back().inconclusive_reason = "precondition not met (x): y";
+  d.summary->inconclusive = 1;
+  const nlohmann::json j = nlohmann::json::parse(json_text(d));
+  EXPECT_EQ(j["schema_version"], 4);
+  EXPECT_EQ(j["summary"]["inconclusive"], 1);
+  EXPECT_EQ(j["vectors"][4]["inconclusive_reason"], "precondition not met (x): y");
+  EXPECT_EQ(j["vectors"][0]["inconclusive_reason"], "");
+  std::string error;
+  const auto back = from_json(j, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->vectors[4].inconclusive_reason, "precondition not met (x): y");
+  EXPECT_EQ(back->summary->inconclusive, 1u);
+  EXPECT_EQ(back->counts().inconclusive, 1u);
+  EXPECT_EQ(nlohmann::json::parse(json_text(*back)), j);
+
+  const auto v3 = nlohmann::json::parse(R"({"schema":"sabus-run","schema_version":3,"status":"complete",
+    "summary":{"passed":1,"failed":0,"skipped":0,"known":0,"unexpected":0,"exit_code":0,"skipped_by_cause":{}},
+    "vectors":[{"id":"x","paragraph":"1","level":"must","outcome":"pass","failures":[],"transcript":[]}]})");
+  const auto old = from_json(v3, error);
+  ASSERT_TRUE(old) << error;
+  EXPECT_EQ(old->summary->inconclusive, 0u);
+  EXPECT_EQ(old->vectors[0].inconclusive_reason, "");
+  nlohmann::json v5 = v3;
+  v5["schema_version"] = 5;
+  EXPECT_FALSE(from_json(v5, error));
+  EXPECT_NE(error.find("schema_version: 5 is not 1 to 4"), std::string::npos) << error;
+}
+
 TEST(Json, CountsAreWholeNumbersOfTheirType) {
   const std::string head = R"({"schema":"sabus-run","schema_version":1,"status":"complete","vectors":[{"id":"x","paragraph":"1","level":"must","outcome":"pass",)";
   for (const auto& [field, error_part] : std::vector<std::pair<std::string, std::string>>{
@@ -391,6 +451,40 @@ TEST(Diff, MustPassToSkipAndAnAbortedRunRegress) {
   RunDocument c = sample();
   c.status = "aborted";
   EXPECT_TRUE(diff_runs(a, c, {}).regressed());
+}
+
+// An inconclusive vector neither passes nor fails: pass -> inconclusive
+// and fail -> inconclusive are changes (not a regression, not a fix), with
+// the reason; inconclusive -> fail is a new failure.
+TEST(Diff, MovesToAndFromInconclusiveAreShown) {
+  const RunDocument a = sample();
+  RunDocument b = sample();
+  b.vectors[0] = vector("a-pass", "inconclusive");
+  b.vectors[0].inconclusive_reason = "precondition not met (the search runs): byte 45 current mode: expected 0x26, got 0x20";
+  b.vectors[1] = vector("b-fail", "inconclusive");
+  b.vectors[1].inconclusive_reason = "precondition not met (the search runs): z";
+  const RunDiff d = diff_runs(a, b, {});
+  EXPECT_FALSE(d.regressed());
+  EXPECT_TRUE(d.fixes.empty()) << "a failure now inconclusive is not fixed";
+  ASSERT_EQ(d.other_changes.size(), 2u);
+  EXPECT_EQ(d.other_changes[0].id, "a-pass");
+  EXPECT_EQ(d.other_changes[0].old_outcome, "pass");
+  EXPECT_EQ(d.other_changes[0].new_outcome, "inconclusive");
+  EXPECT_EQ(d.other_changes[0].detail, "inconclusive: " + b.vectors[0].inconclusive_reason);
+  EXPECT_EQ(d.other_changes[1].id, "b-fail");
+  EXPECT_NE(diff_text(d).find("Other outcome changes (2):\n  a-pass §3.2 must: pass → inconclusive  inconclusive: precondition not met"),
+            std::string::npos)
+      << diff_text(d);
+  EXPECT_NE(diff_markdown(d).find("| `a-pass` | 3.2 | must | pass → inconclusive | inconclusive: precondition not met"),
+            std::string::npos)
+      << diff_markdown(d);
+  const RunDiff worse = diff_runs(b, a, {});
+  ASSERT_EQ(worse.new_failures.size(), 1u);
+  EXPECT_EQ(worse.new_failures[0].id, "b-fail");
+  EXPECT_EQ(worse.new_failures[0].old_outcome, "inconclusive");
+  EXPECT_TRUE(worse.regressed());
+  ASSERT_EQ(worse.other_changes.size(), 1u);
+  EXPECT_EQ(worse.other_changes[0].id, "a-pass") << "inconclusive -> pass";
 }
 
 TEST(Diff, WarnsWhenOptionsProfileOrSelectionDiffer) {

@@ -19,8 +19,8 @@ inline RunDocument sample_header() {
 }
 
 // A §3.2 status poll vector of `outcome`, with what that outcome carries (a
-// failure its reason, a known issue its listing, a skip its cause and no
-// frames): a status poll sent, and its reply with one field described.
+// failure its reason, a known issue its listing, an inconclusive vector why,
+// a skip its cause and no frames): a status poll sent, and its reply with one field described.
 inline VectorRecord sample_vector(std::string id, std::string outcome) {
   VectorRecord v;
   v.id = std::move(id);
@@ -45,6 +45,9 @@ inline VectorRecord sample_vector(std::string id, std::string outcome) {
   v.transcript = {tx, rx};
   if (v.outcome == "fail" || v.outcome == "known failure") v.failures = {"byte 3: expected 0x57, got 0x44"};
   if (v.outcome == "known failure" || v.outcome == "unexpected pass") v.known_issue = "listed";
+  if (v.outcome == "inconclusive")
+    v.inconclusive_reason = "precondition not met (the search is still running when the stop goes out): byte 45 current "
+                            "mode: expected 0x26, got 0x20 (MANUAL_MODE)";
   if (v.outcome == "skip") {
     v.skip_reason = "needs --allow-motion";
     v.skip_cause = "motion";

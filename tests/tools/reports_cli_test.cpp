@@ -54,7 +54,7 @@ TEST_F(ReportsCli, EveryReportFromOneRunAndFromItsJson) {
 
   EXPECT_FALSE(fs::exists(dir_ / "run" / "run.journal.jsonl")) << "the JSON holds every vector: the journal is gone";
   const auto doc = nlohmann::json::parse(slurp(dir_ / "run/run.json"));
-  EXPECT_EQ(doc["schema_version"], 3);
+  EXPECT_EQ(doc["schema_version"], 4);
   EXPECT_EQ(doc["status"], "complete");
   EXPECT_FALSE(doc.contains("journal"));
   EXPECT_EQ(doc["identity"]["controller_type"], "3K");
@@ -129,6 +129,73 @@ TEST_F(ReportsCli, DiffNamesAnInjectedFaultAsARegression) {
   const Output filtered = shell(kSabus + " diff " + path("good.json") + " " + path("filtered.json"));
   EXPECT_EQ(filtered.out.rfind("WARNING option filters: [] -> [\"3.2-*\"]\nWARNING selection: OLD ran ", 0), 0u) << filtered.out;
   EXPECT_EQ(shell(kSabus + " diff --timing-threshold soon " + path("good.json") + " " + path("good.json") + " 2>/dev/null").status, 2);
+}
+
+// A §3.17 vector file: a 40h whose current mode is a precondition, then a
+// status poll that expects `reply`.
+std::string precondition_vector(const std::string& mode, const std::string& reply = "ack") {
+  return "paragraph: \"3.17\"\ntitle: t\nvectors:\n  - id: 3.17-search-stop\n    comment: c\n"
+         "    spec: {paragraph: \"3.17\", quote: \"31-127 (20h - 7Fh) current mode value as defined by the mode_name "
+         "enumeration list at the end of this definition\"}\n    level: must\n    steps:\n"
+         "      - send: {command: extended_status}\n        expect: {reply: ack, fields: {current mode: " + mode + "}}\n"
+         "        precondition: \"the search is still running when the stop goes out\"\n"
+         "      - send: {command: status}\n        expect: " + reply + "\n";
+}
+
+// A precondition the reference controller at rest does not meet (no search
+// runs): the vector is inconclusive on the console, in every report (each
+// read back by its parser) and exits 5, having checked nothing; `sabus
+// diff` shows pass -> inconclusive as a change, not a regression, and
+// inconclusive -> fail as a new failure.
+TEST_F(ReportsCli, AnInconclusiveVectorInEveryReportAndInADiff) {
+  std::ofstream(path("holds.yaml")) << precondition_vector("{regex: \"^0x(?!26$)[0-9a-f]{2}$\"}");
+  std::ofstream(path("unmet.yaml")) << precondition_vector("0x26");
+  std::ofstream(path("fails.yaml")) << precondition_vector("{regex: \"^0x(?!26$)[0-9a-f]{2}$\"}", "nak");
+  const Output pass = shell(kSabus + " run --sim --vectors " + path("holds.yaml") + " --json " + path("pass.json") + " 2>&1");
+  ASSERT_EQ(pass.status, 0) << pass.out;
+  const Output unmet = shell(kSabus + " run --sim --vectors " + path("unmet.yaml") + " --report-dir " + path("inc") + " 2>&1");
+  EXPECT_EQ(unmet.status, 5) << unmet.out;
+  const std::string why = "precondition not met (the search is still running when the stop goes out): byte ";
+  EXPECT_NE(unmet.out.find("INCONCLUSIVE 3.17-search-stop §3.17 must: " + why), std::string::npos) << unmet.out;
+  EXPECT_NE(unmet.out.find("0 passed, 0 failed, 0 skipped, 1 inconclusive\n"), std::string::npos) << unmet.out;
+  EXPECT_NE(unmet.out.find("NOTHING RAN: the one vector that ran ended inconclusive"), std::string::npos) << unmet.out;
+
+  const std::string json = slurp(dir_ / "inc/run.json");
+  EXPECT_EQ(checks::run_json_problems(json), checks::Problems{});
+  const auto j = nlohmann::json::parse(json);
+  EXPECT_EQ(j["schema_version"], 4);
+  EXPECT_EQ(j["summary"]["inconclusive"], 1);
+  EXPECT_EQ(j["summary"]["exit_code"], harness::kNothingRanExitCode);
+  EXPECT_EQ(j["vectors"][0]["outcome"], "inconclusive");
+  EXPECT_EQ(j["vectors"][0]["inconclusive_reason"].get<std::string>().rfind(why, 0), 0u) << j["vectors"][0];
+  std::string error;
+  const auto doc = read_run_file(path("inc/run.json"), error);
+  ASSERT_TRUE(doc) << error;
+  ASSERT_EQ(doc->vectors.size(), 1u);
+  EXPECT_EQ(doc->counts().inconclusive, 1u);
+  const std::string xml = slurp(dir_ / "inc/junit.xml"), html = slurp(dir_ / "inc/report.html"), md = slurp(dir_ / "inc/summary.md");
+  EXPECT_EQ(checks::junit_problems(xml, *doc), checks::Problems{});
+  EXPECT_NE(xml.find("<skipped message=\"inconclusive: " + why), std::string::npos) << xml;
+  EXPECT_EQ(checks::html_problems(html, *doc), checks::Problems{});
+  EXPECT_NE(html.find("<p class=\"inconclusive\">inconclusive: " + why), std::string::npos);
+  EXPECT_EQ(checks::markdown_problems(md, *doc), checks::Problems{});
+  EXPECT_NE(md.find("| must | 0 | 0 | 0 | 1 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("**Inconclusive**\n\n- `3.17-search-stop` §3.17 must: " + why), std::string::npos) << md;
+
+  const Output diff = shell(kSabus + " diff " + path("pass.json") + " " + path("inc/run.json"));
+  EXPECT_EQ(diff.status, 0) << diff.out;
+  EXPECT_NE(diff.out.find("Other outcome changes (1):\n  3.17-search-stop §3.17 must: pass → inconclusive  inconclusive: " + why),
+            std::string::npos)
+      << diff.out;
+  const Output fails = shell(kSabus + " run --sim --vectors " + path("fails.yaml") + " --json " + path("fail.json") + " 2>&1");
+  ASSERT_EQ(fails.status, 1) << fails.out;
+  const Output worse = shell(kSabus + " diff " + path("inc/run.json") + " " + path("fail.json"));
+  EXPECT_EQ(worse.status, 1) << worse.out;
+  EXPECT_NE(worse.out.find("REGRESSION New failures (1):\n  3.17-search-stop §3.17 must: inconclusive → fail"), std::string::npos)
+      << worse.out;
+  const Output back = shell(kSabus + " diff " + path("fail.json") + " " + path("inc/run.json"));
+  EXPECT_EQ(back.out.find("Fixed"), std::string::npos) << "a failure now inconclusive is not fixed:\n" << back.out;
+  EXPECT_NE(back.out.find("3.17-search-stop §3.17 must: fail → inconclusive"), std::string::npos) << back.out;
 }
 
 // The vector records in a run's journal so far.

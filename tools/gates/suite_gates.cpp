@@ -140,13 +140,19 @@ int main(int argc, char** argv) {
   std::cout << fmt::format("== profiles: {} vectors on each shipped profile\n", vectors.size());
   for (const Profile& p : profiles) {
     const RunResult r = run_suite(p, vectors, {}, p.name);
-    const bool pass = r.failed == 0 && r.unexpected == 0 && !r.aborted && r.exit_code() == 0;
+    // The reference controller reaches every test purpose (its search lasts
+    // 20 s, ERRATA E-90): an inconclusive vector there is a precondition
+    // that cannot hold, a vector that checks nothing.
+    const bool pass = r.failed == 0 && r.unexpected == 0 && r.inconclusive == 0 && !r.aborted && r.exit_code() == 0;
     ok = ok && pass;
-    std::cout << fmt::format("{:<28} {:>4} passed, {} failed, {:>4} skipped{}{}\n", p.name, r.passed, r.failed, r.skipped,
+    std::cout << fmt::format("{:<28} {:>4} passed, {} failed, {:>4} skipped{}{}{}\n", p.name, r.passed, r.failed, r.skipped,
+                             r.inconclusive ? fmt::format(", {} inconclusive", r.inconclusive) : "",
                              r.aborted ? ", ABORTED: " + r.abort_reason : "", pass ? "" : "  FAIL");
     for (const auto& v : r.vectors)
       if (v.verdict == Verdict::kFail)
         std::cout << fmt::format("    {} ({}): {}\n", v.id, to_string(v.level), v.failures.empty() ? "" : v.failures[0]);
+      else if (v.verdict == Verdict::kInconclusive)
+        std::cout << fmt::format("    {} ({}): inconclusive: {}\n", v.id, to_string(v.level), v.inconclusive_reason);
   }
 
   // The controller on the other side of every open point of the spec

@@ -173,7 +173,9 @@ class Console {
     progress_.current = v.id;
     progress_.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0_);
     const bool every = verbose() || (!tty_ && !quiet());
-    if (v.is_failure() || every) line(reports::verdict_line(v, colour_));
+    // An inconclusive vector's reason is shown as a failure's is: the bench
+    // learns which test purposes this device did not reach.
+    if (v.is_failure() || v.is_inconclusive() || every) line(reports::verdict_line(v, colour_));
     if (tty_ && !quiet()) {
       out_ << "\r\033[K" << reports::progress_line(progress_) << std::flush;
       drawn_ = true;
@@ -419,7 +421,9 @@ constexpr const char* kRunExitStatus = R"(Exit status:
      the reports hold every vector finished before it, the JSON is marked aborted and the JUnit has an error
      naming why; failures before the stop do not change the code: the run has no verdict
   5  nothing ran: no vector matches the selection, or every selected vector was skipped (the summary says
-     why, by cause); a run that checked nothing is not a success, and 5 is pytest's code for it too
+     why, by cause) or ended inconclusive (a precondition step did not hold, so its test purpose was not
+     reached); a run that checked nothing is not a success, and 5 is pytest's code for it too.
+     An inconclusive vector never makes the code 1
 )";
 
 }  // namespace

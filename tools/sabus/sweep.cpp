@@ -110,7 +110,11 @@ ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed,
       continue;
     }
     ++o.ran;
+    // An inconclusive vector is no failure (its purpose was not reached); on
+    // the reference controller it is a precondition that cannot hold, named
+    // as a failure of the vector would be.
     if (v.verdict == Verdict::kPass) ++o.passed;
+    else if (v.verdict == Verdict::kInconclusive) o.failures.push_back(v.id + ": inconclusive: " + v.inconclusive_reason);
     else o.failures.push_back(v.id + ": " + (v.failures.empty() ? std::string(to_string(v.verdict)) : v.failures.front()));
   }
   return o;

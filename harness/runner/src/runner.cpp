@@ -25,6 +25,7 @@ std::string_view to_string(Verdict v) {
     case Verdict::kSkip: return "skip";
     case Verdict::kKnownFailure: return "known failure";
     case Verdict::kUnexpectedPass: return "unexpected pass";
+    case Verdict::kInconclusive: return "inconclusive";
   }
   return "?";
 }
@@ -162,55 +163,79 @@ std::optional<Skip> skip_reason(const Vector& v, const RunOptions& o, const Prof
   return std::nullopt;
 }
 
+// What one attempt of a vector found: its failures, one line each, and why
+// its test purpose was not reached ("" when it was).
+struct Attempt {
+  std::vector<std::string> failures;
+  std::string inconclusive;
+  // Whether the setup and the steps are over: a step failed or a
+  // precondition did not hold (the teardown still runs).
+  bool ended() const { return !failures.empty() || !inconclusive.empty(); }
+};
+
+// A step's failure, recorded as what it is: a precondition step's
+// (Step::precondition) ends the vector inconclusive, TTCN-3's `inconc`: the
+// device never got into the state the test purpose needs; any other step's
+// is a failure. `where` says which phase or slot ("setup: ", "preset
+// satellite 2: ").
+void record(Attempt& a, const Step& step, const std::string& where, const std::string& error) {
+  if (step.precondition.empty()) a.failures.push_back(where + error);
+  else a.inconclusive = where + "precondition not met (" + step.precondition + "): " + error;
+}
+
 // The steps, once, or once for each slot of the list `each_slot` names that
 // the profile fills, its index captured as $slot: a failing step ends its
 // slot's pass and the next slot is read, so one run names every slot that
-// differs.
-void run_steps(Session& s, const Vector& v, std::vector<std::string>& failures) {
+// differs. A precondition not met ends every slot's pass: the purpose is
+// not reached.
+void run_steps(Session& s, const Vector& v, Attempt& a) {
   const auto slots = v.each_slot.empty() ? std::optional<std::vector<int>>(std::vector<int>{0})
                                          : filled_slots(s.profile, v.each_slot);
   for (const int slot : slots.value_or(std::vector<int>{})) {
     if (!v.each_slot.empty()) s.captures["$slot"] = std::to_string(slot);
+    // Where the failure was: "preset satellite 2: ...", "STORE entry 2: ...".
+    const std::string where =
+        v.each_slot.empty() ? "" : std::string(slot_what(v.each_slot).value_or(v.each_slot)) + " " + std::to_string(slot) + ": ";
     for (const Step& step : v.steps)
       if (auto e = s.run_step(step)) {
-        // Where the failure was: "preset satellite 2: ...", "STORE entry 2: ...".
-        failures.push_back(v.each_slot.empty() ? *e
-                                               : std::string(slot_what(v.each_slot).value_or(v.each_slot)) + " " +
-                                                     std::to_string(slot) + ": " + *e);
+        record(a, step, where, *e);
         break;
       }
+    if (!a.inconclusive.empty()) return;
   }
 }
 
-// Setup, steps and teardown of one attempt; the failures, one line each. A
-// failing setup or step ends its phase; the teardown always runs, and an
-// 'X' stop follows every vector that can move the antenna.
-std::vector<std::string> attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& transcript) {
-  std::vector<std::string> failures;
+// Setup, steps and teardown of one attempt. A failing setup or step ends
+// its phase, and a precondition not met ends the setup and the steps; the
+// teardown always runs, and an 'X' stop follows every vector that can move
+// the antenna.
+Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& transcript) {
+  Attempt a;
   s.transcript = &transcript;
   s.captures.clear();
   s.vector_moves = v.has_tag("motion");
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
-      failures.push_back("setup: " + *e);
+      record(a, step, "setup: ", *e);
       break;
     }
-  if (failures.empty()) run_steps(s, v, failures);
+  if (!a.ended()) run_steps(s, v, a);
   for (const Step& step : v.teardown) {
     if (is_stop(step) && s.track_governs()) continue;  // as the runner's own stop (Session::stop_motion)
-    if (auto e = s.run_step(step)) failures.push_back("teardown: " + *e);
+    if (auto e = s.run_step(step)) a.failures.push_back("teardown: " + *e);
   }
   if (v.has_tag("motion")) s.stop_motion();  // not while TRACK governs (Session::stop_motion)
   s.transcript = nullptr;
-  return failures;
+  return a;
 }
 
-// --repeat: re-runs a failing vector and says whether it fails every time.
+// --repeat: re-runs a failing vector and says whether it fails every time
+// (an attempt that ends inconclusive does not fail).
 void repeat_failing(Session& s, const Vector& v, int times, VectorResult& r) {
   for (int i = 0; i < times; ++i) {
     std::vector<TranscriptEntry> again;
     ++r.repeats;
-    if (!attempt(s, v, again).empty()) ++r.repeat_failures;
+    if (!attempt(s, v, again).failures.empty()) ++r.repeat_failures;
   }
   const std::string runs = std::to_string(r.repeats + 1);
   r.failures.push_back(r.repeat_failures == r.repeats
@@ -218,10 +243,14 @@ void repeat_failing(Session& s, const Vector& v, int times, VectorResult& r) {
                            : "intermittent: failed " + std::to_string(r.repeat_failures + 1) + " of " + runs + " runs");
 }
 
-// Verdict: pass or fail, turned into a known failure or an unexpected pass
-// for a vector listed as a known issue.
+// Verdict: fail, inconclusive or pass, in that order (a verdict only gets
+// worse: a failure recorded stays one, TTCN-3's rule); a pass or a failure
+// turned into an unexpected pass or a known failure for a vector listed as
+// a known issue. An inconclusive vector checked nothing: the known issue
+// says nothing of it, so it stays inconclusive.
 void set_verdict(VectorResult& r, const RunOptions& o) {
-  r.verdict = r.failures.empty() ? Verdict::kPass : Verdict::kFail;
+  r.verdict = !r.failures.empty() ? Verdict::kFail : !r.inconclusive_reason.empty() ? Verdict::kInconclusive : Verdict::kPass;
+  if (r.verdict == Verdict::kInconclusive) return;
   if (auto it = o.known_issues.find(r.id); it != o.known_issues.end()) {
     r.known_issue_reason = it->second;
     r.verdict = r.verdict == Verdict::kFail ? Verdict::kKnownFailure : Verdict::kUnexpectedPass;
@@ -233,7 +262,10 @@ void set_verdict(VectorResult& r, const RunOptions& o) {
 void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
   const TimePoint t0 = s.transport.now();
   try {
-    r.failures = attempt(s, v, r.transcript);
+    Attempt a = attempt(s, v, r.transcript);
+    r.failures = std::move(a.failures);
+    r.inconclusive_reason = std::move(a.inconclusive);
+    // --repeat re-runs failures only: an inconclusive vector is not one.
     if (!r.failures.empty() && s.options.repeat > 0) repeat_failing(s, v, s.options.repeat, r);
   } catch (const TransportLost& e) {
     r.failures.push_back(std::string(kDeviceLostFailure) + e.what());
@@ -256,6 +288,7 @@ void journal(RunResult& result, VectorResult r, const RunOptions& o) {
       break;
     case Verdict::kKnownFailure: ++result.known; break;
     case Verdict::kUnexpectedPass: ++result.unexpected; break;
+    case Verdict::kInconclusive: ++result.inconclusive; break;
   }
   result.vectors.push_back(std::move(r));
   if (o.on_result) o.on_result(result.vectors.back());

@@ -156,6 +156,7 @@ Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, cons
   if (vec.steps.empty()) fail(r.at("steps"), "a vector needs at least one step");
   cx.captures = steps_cx.captures;  // the teardown reads what the steps captured (the last slot's)
   if (!vec.each_slot.empty()) cx.captures.erase("$slot");
+  cx.teardown = true;
   r.read("teardown", vec.teardown, [&](const YAML::Node& n, const At& a) { return read_steps(n, a, cx); });
   vec.teardown.insert(vec.teardown.end(), g.teardown.begin(), g.teardown.end());
   return vec;
@@ -196,6 +197,7 @@ void read_group(const YAML::Node& v, const At& at, const FileInfo& file, std::ve
   g.captures = cx.captures;
   // A group's teardown runs after each vector's steps but may only use what
   // the group's own setup captured: it cannot know any one vector's.
+  cx.teardown = true;
   r.read("teardown", g.teardown, [&](const YAML::Node& n, const At& a) { return read_steps(n, a, cx); });
   r.with("vectors", [&](const YAML::Node& n, const At& a) { read_vector_list(n, a, file, g, out, errors); });
 }

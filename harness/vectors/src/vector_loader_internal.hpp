@@ -170,6 +170,9 @@ using Captures = std::set<std::string>;
 struct StepContext {
   const FileInfo& file;
   Captures captures;
+  // Reading a teardown: its steps carry no precondition (the vector's test
+  // purpose is decided before the teardown runs).
+  bool teardown = false;
 };
 
 [[noreturn]] inline void fail_missing(const At& map_at, std::string_view key, const std::string& message) {

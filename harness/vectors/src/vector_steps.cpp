@@ -633,9 +633,27 @@ Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
   return step;
 }
 
+// `precondition`: the words of what the step establishes for the vector's
+// test purpose (vectors/README.md "Preconditions"; TTCN-3's `inconc`). Only a
+// send or a poll checks something, and a teardown runs after the purpose is
+// decided.
+std::string read_precondition(const MapReader& r, const StepContext& cx) {
+  std::string text;
+  r.with("precondition", [&](const YAML::Node& n, const At& a) {
+    if (!r.has("send") && !r.has("poll")) fail(a, "a precondition belongs to a send or a poll step: a wait checks nothing");
+    if (cx.teardown)
+      fail(a, "a teardown step has no precondition: the teardown runs after the vector's test purpose is decided; "
+              "move the step into setup or steps");
+    text = scalar(n, a, "text: what must hold for the test purpose");
+    if (text.empty()) fail(a, "say in words what must hold for the test purpose");
+    if (text.size() > kMaxText) fail(a, "has " + std::to_string(text.size()) + " characters, at most " + std::to_string(kMaxText));
+  });
+  return text;
+}
+
 Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
   cx.file.spend(at);
-  MapReader r(v, at, {"send", "modify", "expect", "length_mismatch", "poll", "wait", "wait_ms"});
+  MapReader r(v, at, {"send", "modify", "expect", "length_mismatch", "poll", "wait", "wait_ms", "precondition"});
   const int kinds = r.has("send") + r.has("poll") + r.has("wait") + r.has("wait_ms");
   if (kinds != 1) fail(at, "a step is one of send, poll, wait or wait_ms");
   if (!r.has("send"))
@@ -655,6 +673,7 @@ Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
       w.with("ms", [&](const YAML::Node& wn, const At& wa) { read_ms(wn, wa, cx, step); });
     });
   }
+  step.precondition = read_precondition(r, cx);
   step.where = cx.file.loc(at.mark);
   return step;
 }

@@ -95,12 +95,14 @@ std::string in_dom(std::string_view s) {
   return out;
 }
 
-// The strings the page must show: every vector's id; for a failing vector
-// its failures, its frames' notes and its replies' fields.
+// The strings the page must show: every vector's id; for an inconclusive
+// one why; for a failing vector its failures, its frames' notes and its
+// replies' fields.
 std::vector<std::string> strings_shown(const RunDocument& doc) {
   std::vector<std::string> out;
   for (const auto& v : doc.vectors) {
     out.push_back(v.id);
+    if (v.is_inconclusive()) out.push_back("inconclusive: " + v.inconclusive_reason);
     if (!v.has_failed_steps()) continue;
     for (const auto& f : v.failures) out.push_back(f);
     for (const auto& f : v.transcript) {

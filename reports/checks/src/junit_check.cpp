@@ -74,6 +74,8 @@ std::string as_attribute(std::string_view text) {
 struct Testcases {
   // What each vector's testcase says of it: "fail", "error", "skip" or "pass".
   std::map<std::string, std::string> vectors;
+  // The message of each skipped testcase's <skipped>.
+  std::map<std::string, std::string> skip_messages;
   // The error messages of the run's own testcase (kJunitRunClassname): one
   // for a run that did not reach its end, none otherwise.
   std::vector<std::string> run_errors;
@@ -88,9 +90,13 @@ Testcases testcases(xmlNode* root, Problems& problems) {
       if (!named(test, "testcase")) continue;
       std::string verdict = "pass";
       std::vector<std::string> errors;
+      std::string skip_message;
       for (xmlNode* c = test->children; c; c = c->next) {
         if (named(c, "failure")) verdict = "fail";
-        if (named(c, "skipped")) verdict = "skip";
+        if (named(c, "skipped")) {
+          verdict = "skip";
+          skip_message = attribute(c, "message");
+        }
         if (named(c, "error")) {
           verdict = "error";
           errors.push_back(attribute(c, "message"));
@@ -103,6 +109,7 @@ Testcases testcases(xmlNode* root, Problems& problems) {
       }
       const std::string name = attribute(test, "name");
       if (!out.vectors.emplace(name, verdict).second) problems.push_back("JUnit: testcase \"" + name + "\" twice");
+      if (verdict == "skip") out.skip_messages[name] = skip_message;
     }
   }
   return out;
@@ -145,10 +152,15 @@ Problems junit_problems(std::string_view xml, const RunDocument& doc) {
     problems.push_back("JUnit: the run's error says \"" + all.run_errors.front() + "\", not why the run ended: \"" +
                        as_attribute(shown(unfinished)) + "\"");
   for (const auto& v : doc.vectors) {
-    const std::string want = v.lost_device() ? "error" : v.is_failure() ? "fail" : v.is_skip() ? "skip" : "pass";
+    const std::string want =
+        v.lost_device() ? "error" : v.is_failure() ? "fail" : v.is_skip() || v.is_inconclusive() ? "skip" : "pass";
     const auto it = cases.find(shown(v.id));
     if (it == cases.end()) problems.push_back("JUnit: no testcase for " + v.id);
     else if (it->second != want) problems.push_back("JUnit: testcase " + v.id + " is a " + it->second + ", the vector a " + want);
+    // An inconclusive vector is a skip that says so, and why.
+    else if (v.is_inconclusive() && all.skip_messages.at(shown(v.id)) != as_attribute(shown("inconclusive: " + v.inconclusive_reason)))
+      problems.push_back("JUnit: the skipped testcase " + v.id + " says \"" + all.skip_messages.at(shown(v.id)) +
+                         "\", not \"inconclusive: " + v.inconclusive_reason + "\"");
   }
   return problems;
 }

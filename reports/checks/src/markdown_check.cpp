@@ -96,37 +96,43 @@ Problems markdown_problems(std::string_view md, const RunDocument& doc) {
   for (const auto& m : p.markup) problems.push_back("Markdown: markup the summary does not write: " + m);
   // The summary's own emphasis: the verdict, and two labels.
   for (const auto& s : p.strong)
-    if (s != doc.verdict() && s != "Failures" && s != "Nothing ran") problems.push_back("Markdown: strong emphasis the summary does not write: " + s);
+    if (s != doc.verdict() && s != "Failures" && s != "Inconclusive" && s != "Nothing ran") problems.push_back("Markdown: strong emphasis the summary does not write: " + s);
   if (p.headings.empty() || p.headings.front() != "SAbus conformance: " + doc.verdict())
     problems.push_back("Markdown: the heading is not \"SAbus conformance: " + doc.verdict() + "\"");
 
   // The per-level table: a header and a row per level that has vectors.
   std::map<std::string, Tally> levels;
   for (const auto& v : doc.vectors) levels[v.level].add(v);
-  std::vector<std::vector<std::string>> want = {{"Level", "passed", "failed", "known", "skipped"}};
+  std::vector<std::vector<std::string>> want = {{"Level", "passed", "failed", "known", "inconclusive", "skipped"}};
   for (const char* level : {"must", "should", "informative"})
     if (auto t = levels.find(level); t != levels.end())
       want.push_back({level, std::to_string(t->second.passed), std::to_string(t->second.failed),
-                      std::to_string(t->second.known), std::to_string(t->second.skipped)});
+                      std::to_string(t->second.known), std::to_string(t->second.inconclusive),
+                      std::to_string(t->second.skipped)});
   if (p.rows != want) problems.push_back("Markdown: the per-level table is not the vectors' counts");
 
-  // The failures, each as one item with the document's text.
+  // The failures, then the inconclusive vectors, each as one item with the
+  // document's text.
   std::vector<std::string> items;
   constexpr std::size_t kListed = 25;
-  std::size_t failures = 0;
-  for (const auto& v : doc.vectors) {
-    if (!v.is_failure()) continue;
-    if (++failures > kListed) continue;
-    std::string id = one_line(v.id);
-    std::replace(id.begin(), id.end(), '`', '\'');
-    items.push_back(rstrip(id + " §" + one_line(v.paragraph) + " " + one_line(v.level) + ": " + one_line(v.difference())));
-  }
-  if (failures > kListed) items.push_back("… and " + std::to_string(failures - kListed) + " more");
+  const auto list = [&](bool (VectorRecord::*listed)() const, std::string (*why)(const VectorRecord&)) {
+    std::size_t n = 0;
+    for (const auto& v : doc.vectors) {
+      if (!(v.*listed)()) continue;
+      if (++n > kListed) continue;
+      std::string id = one_line(v.id);
+      std::replace(id.begin(), id.end(), '`', '\'');
+      items.push_back(rstrip(id + " §" + one_line(v.paragraph) + " " + one_line(v.level) + ": " + one_line(why(v))));
+    }
+    if (n > kListed) items.push_back("… and " + std::to_string(n - kListed) + " more");
+  };
+  list(&VectorRecord::is_failure, [](const VectorRecord& v) { return v.difference(); });
+  list(&VectorRecord::is_inconclusive, [](const VectorRecord& v) { return v.inconclusive_reason; });
   std::vector<std::string> got;
   for (const auto& item : p.items) got.push_back(rstrip(item));
   if (got.size() != items.size()) {
     problems.push_back("Markdown: " + std::to_string(got.size()) + " list items for " + std::to_string(items.size()) +
-                       " failures listed");
+                       " failures and inconclusive vectors listed");
   } else {
     for (std::size_t i = 0; i < items.size(); ++i)
       if (got[i] != items[i]) problems.push_back("Markdown: failure item " + std::to_string(i + 1) + " reads \"" + got[i] +

@@ -140,7 +140,9 @@ void check_run(const json& run, const std::vector<const json*>& vectors, Problem
   if (!run.contains("summary")) return;
   const auto& s = run["summary"];
   const std::pair<const char*, const char*> counts[] = {
-      {"passed", "pass"}, {"failed", "fail"}, {"skipped", "skip"}, {"known", "known failure"}, {"unexpected", "unexpected pass"}};
+      {"passed", "pass"},         {"failed", "fail"},
+      {"skipped", "skip"},        {"known", "known failure"},
+      {"unexpected", "unexpected pass"}, {"inconclusive", "inconclusive"}};
   for (const auto& [key, outcome] : counts)
     if (s[key].get<std::uint64_t>() != outcomes[outcome])
       problems.push_back(what + ": summary." + key + " is " + s[key].dump() + ", the vectors have " +

@@ -862,6 +862,159 @@ TEST(Runner, SkipsAreCountedByCauseAndARunThatRanNothingExits5) {
   EXPECT_EQ(to_string(SkipCause::kParity), "parity");
 }
 
+// ---- preconditions and the inconclusive verdict (TTCN-3 inconc) ------------------
+
+const std::string kSearchRuns = "the search is still running when the stop goes out";
+
+// 40h whose current mode must be SPIRAL_REMOTE_MODE (26h), a precondition:
+// the reference controller at rest is in no search, so it does not hold.
+Step search_running() {
+  Step s = send_command("extended_status", "", {}, Expectation::Kind::kAck);
+  s.expect.fields.push_back(matcher("current mode", FieldMatcher::Kind::kEq, {"0x26"}));
+  s.precondition = kSearchRuns;
+  return s;
+}
+
+// The command bytes of the frames a vector sent, in order.
+std::vector<std::uint8_t> commands_sent(const VectorResult& v) {
+  std::vector<std::uint8_t> out;
+  for (const auto& t : v.transcript)
+    if (t.sent && t.bytes.size() > 2) out.push_back(t.bytes[2]);
+  return out;
+}
+
+// A precondition that does not hold: the vector ends inconclusive with why,
+// the steps after it do not run, the teardown does; it fails nothing, and a
+// run in which it is all that ran checked nothing (exit 5).
+TEST(Runner, APreconditionNotMetEndsTheVectorInconclusiveAndTheTeardownRuns) {
+  const Step status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  const Step device_type = send_raw("02 {addr} 30 03 {lrc}", Expectation::Kind::kAck);
+  Vector v = vector_with("3.7-stop", {status, search_running(), device_type});
+  v.teardown = {send_raw("02 {addr} 35 30 30 03 {lrc}", Expectation::Kind::kAny)};
+  RunResult r = run_in_process({v});
+  ASSERT_EQ(r.vectors.size(), 1u);
+  const VectorResult& got = r.vectors[0];
+  EXPECT_EQ(got.verdict, Verdict::kInconclusive);
+  EXPECT_EQ(to_string(got.verdict), "inconclusive");
+  EXPECT_TRUE(got.failures.empty()) << got.failures[0];
+  EXPECT_EQ(got.inconclusive_reason.rfind("precondition not met (" + kSearchRuns + "): byte ", 0), 0u) << got.inconclusive_reason;
+  EXPECT_NE(got.inconclusive_reason.find("current mode: expected 0x26, got 0x"), std::string::npos) << got.inconclusive_reason;
+  EXPECT_EQ(commands_sent(got), (std::vector<std::uint8_t>{0x31, 0x40, 0x35}))
+      << "the status, the precondition's 40h, then the teardown's 35h; never the 30h after the precondition";
+  EXPECT_EQ(r.inconclusive, 1u);
+  EXPECT_EQ(r.passed + r.failed + r.known + r.unexpected + r.skipped, 0u);
+  EXPECT_EQ(r.ran(), 0u) << "an inconclusive vector checked nothing";
+  EXPECT_EQ(r.exit_code(), kNothingRanExitCode) << "every vector that ran ended inconclusive";
+
+  RunResult with_a_pass = run_in_process({v, vector_with("3.2-status", {status})});
+  EXPECT_EQ(with_a_pass.vectors[0].verdict, Verdict::kInconclusive);
+  EXPECT_EQ(with_a_pass.vectors[1].verdict, Verdict::kPass);
+  EXPECT_EQ(with_a_pass.exit_code(), 0) << "an inconclusive vector never fails the run";
+  RunOptions strict;
+  strict.strict = true;
+  EXPECT_EQ(run_in_process({v, vector_with("3.2-status", {status})}, {}, strict).exit_code(), 0) << "nor under --strict";
+}
+
+// A precondition that holds is an ordinary step: the vector goes on and
+// passes; in setup it ends the vector inconclusive the same way, named so.
+TEST(Runner, APreconditionThatHoldsGoesOnAndOneInSetupIsNamedSo) {
+  Step at_rest = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  at_rest.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {"0x06"}));
+  at_rest.precondition = "the controller answers a status poll";
+  const Step device_type = send_raw("02 {addr} 30 03 {lrc}", Expectation::Kind::kAck);
+  RunResult r = run_in_process({vector_with("3.2-holds", {at_rest, device_type})});
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kPass) << r.vectors[0].inconclusive_reason;
+  EXPECT_TRUE(r.vectors[0].inconclusive_reason.empty());
+  EXPECT_EQ(commands_sent(r.vectors[0]), (std::vector<std::uint8_t>{0x31, 0x30}));
+
+  Vector in_setup = vector_with("3.7-setup", {device_type});
+  in_setup.setup = {search_running()};
+  RunResult s = run_in_process({in_setup});
+  EXPECT_EQ(s.vectors[0].verdict, Verdict::kInconclusive);
+  EXPECT_EQ(s.vectors[0].inconclusive_reason.rfind("setup: precondition not met (" + kSearchRuns + "): ", 0), 0u)
+      << s.vectors[0].inconclusive_reason;
+  EXPECT_EQ(commands_sent(s.vectors[0]), (std::vector<std::uint8_t>{0x40})) << "the steps did not run";
+}
+
+// A verdict only gets worse: a step that fails before the precondition makes
+// the vector a failure (the precondition step never runs), and so does a
+// teardown that fails after a precondition not met.
+TEST(Runner, AFailureBeforeOrAfterAPreconditionStaysAFailure) {
+  const Step wrong = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);
+  RunResult before = run_in_process({vector_with("3.7-fails-first", {wrong, search_running()})});
+  ASSERT_EQ(before.vectors.size(), 1u);
+  EXPECT_EQ(before.vectors[0].verdict, Verdict::kFail);
+  EXPECT_TRUE(before.vectors[0].inconclusive_reason.empty()) << before.vectors[0].inconclusive_reason;
+  EXPECT_EQ(commands_sent(before.vectors[0]), (std::vector<std::uint8_t>{0x31}));
+  EXPECT_EQ(before.failed, 1u);
+  EXPECT_EQ(before.inconclusive, 0u);
+  EXPECT_EQ(before.exit_code(), 1);
+
+  Vector teardown_fails = vector_with("3.7-teardown-fails", {search_running()});
+  teardown_fails.teardown = {wrong};
+  RunResult after = run_in_process({teardown_fails});
+  EXPECT_EQ(after.vectors[0].verdict, Verdict::kFail);
+  ASSERT_EQ(after.vectors[0].failures.size(), 1u);
+  EXPECT_EQ(after.vectors[0].failures[0].rfind("teardown: expected a NAK reply", 0), 0u) << after.vectors[0].failures[0];
+  EXPECT_FALSE(after.vectors[0].inconclusive_reason.empty()) << "why the steps ended is kept";
+  EXPECT_EQ(after.exit_code(), 1);
+}
+
+// A known issue says nothing of a vector that checked nothing: an
+// inconclusive vector stays inconclusive (not a known failure, not an
+// unexpected pass that would fail the run), and --repeat does not repeat it.
+TEST(Runner, KnownIssuesAndRepeatsLeaveAnInconclusiveVectorAsItIs) {
+  RunOptions o;
+  o.known_issues = {{"3.7-stop", "vendor ticket 12"}};
+  o.repeat = 2;
+  RunResult r = run_in_process({vector_with("3.7-stop", {search_running()})}, {}, o);
+  ASSERT_EQ(r.vectors.size(), 1u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kInconclusive);
+  EXPECT_TRUE(r.vectors[0].known_issue_reason.empty()) << r.vectors[0].known_issue_reason;
+  EXPECT_EQ(r.vectors[0].repeats, 0);
+  EXPECT_TRUE(r.vectors[0].failures.empty()) << "no \"reproducible\" line: nothing failed";
+  EXPECT_EQ(r.known + r.unexpected, 0u);
+  EXPECT_EQ(r.exit_code(), kNothingRanExitCode);
+  EXPECT_EQ(commands_sent(r.vectors[0]), (std::vector<std::uint8_t>{0x40})) << "run once";
+}
+
+// ERRATA E-90, §3.7: how long a search lasts is the controller's
+// configuration. The reference controller's lasts 20 s, then drives back
+// to where it began: stopped 1 s after it began (as shipped) each
+// search-stop vector passes; stopped 10 minutes after, the search is over,
+// the precondition right before the stop does not hold, and each vector
+// ends inconclusive, not failed.
+TEST(Runner, TheSearchStopVectorsAreInconclusiveWhenTheSearchHasEnded) {
+  const std::set<std::string> ids = {"3.7-misc-x-stops-search", "3.7-misc-stop-key-stops-search",
+                                     "3.7-misc-keypress-48h-stops-search"};
+  std::vector<Vector> shipped;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors)
+      if (ids.count(v.id)) shipped.push_back(v);
+  ASSERT_EQ(shipped.size(), 3u);
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult as_shipped = run_in_process(shipped, {}, o);
+  for (const auto& v : as_shipped.vectors)
+    EXPECT_EQ(v.verdict, Verdict::kPass) << v.id << ": " << (v.failures.empty() ? v.inconclusive_reason : v.failures[0]);
+
+  std::vector<Vector> late = shipped;
+  for (auto& v : late) {
+    const auto wait = std::find_if(v.steps.begin(), v.steps.end(), [](const Step& s) { return s.kind == Step::Kind::kWait; });
+    ASSERT_NE(wait, v.steps.end()) << v.id;
+    wait->timeout = std::chrono::milliseconds(600000);
+  }
+  const RunResult r = run_in_process(late, {}, o);
+  ASSERT_EQ(r.vectors.size(), 3u);
+  for (const auto& v : r.vectors) {
+    EXPECT_EQ(v.verdict, Verdict::kInconclusive) << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+    EXPECT_EQ(v.inconclusive_reason.rfind("precondition not met (the search is still running when the stop goes out): byte ", 0), 0u)
+        << v.id << ": " << v.inconclusive_reason;
+    EXPECT_NE(v.inconclusive_reason.find("current mode: expected 0x26, got 0x"), std::string::npos) << v.inconclusive_reason;
+  }
+  EXPECT_EQ(r.exit_code(), kNothingRanExitCode);
+}
+
 // Against a controller that is gone when the run ends (the in-process one),
 // nothing is backed up or restored.
 TEST(Runner, NoBackupWhenTheDeviceDoesNotOutliveTheRun) {

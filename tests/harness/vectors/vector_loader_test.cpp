@@ -641,6 +641,47 @@ TEST(vectors, StepsPollsAndWaits) {
                {"steps", 1, "3.2-x", "steps", "at least one step"});
 }
 
+// precondition (vectors/README.md): words on a send or a poll of setup or
+// steps; a load error on a wait, when empty, and on any step of a teardown
+// (a vector's or a group's), at the key, with file:line:column.
+TEST(vectors, PreconditionsAreForSendsAndPollsBeforeTheTeardown) {
+  const VectorFile f = load_ok(one_vector("      - send: {command: extended_status}\n"
+                                          "        expect: {reply: ack, fields: {current mode: 0x26}}\n"
+                                          "        precondition: \"the search is still running when the stop goes out\"\n"
+                                          "      - poll: {send: {command: status}, until: {agc: any}, timeout_ms: 5000}\n"
+                                          "        precondition: the status answers\n"
+                                          "      - send: {command: status}\n"
+                                          "        expect: ack\n",
+                                          "    setup:\n      - send: {command: status}\n        expect: ack\n"
+                                          "        precondition: set up\n"));
+  ASSERT_EQ(f.vectors.size(), 1u);
+  const Vector& v = f.vectors[0];
+  ASSERT_EQ(v.steps.size(), 3u);
+  EXPECT_EQ(v.steps[0].precondition, "the search is still running when the stop goes out");
+  EXPECT_EQ(v.steps[1].precondition, "the status answers");
+  EXPECT_EQ(v.steps[2].precondition, "");
+  ASSERT_EQ(v.setup.size(), 1u);
+  EXPECT_EQ(v.setup[0].precondition, "set up");
+
+  const std::string step = "      - send: {command: status}\n        expect: ack\n";
+  const std::string teardown = "    teardown:\n" + step + "        precondition: the search runs\n";
+  expect_error(one_vector(step, teardown), {"precondition", 1, "3.2-x", "teardown[0].precondition",
+                                            "a teardown step has no precondition"});
+  LoadResult r = load_vector_text(one_vector(step, teardown), "p.yaml");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].text().rfind("p.yaml:11:9: [3.2-x] teardown[0].precondition: a teardown step has no precondition", 0), 0u)
+      << r.errors[0].text();
+  const std::string group = kHead.substr(0, kHead.size() - 9) +
+                            "groups:\n  - level: must\n    teardown:\n      - send: {command: status}\n        expect: ack\n"
+                            "        precondition: the search runs\n    vectors:\n      - id: 3.2-x\n        comment: c\n"
+                            "        spec: {paragraph: \"3.2\", quote: q}\n        steps: [{wait_ms: 1}]\n";
+  expect_error(group, {"precondition", 1, "", "groups[0].teardown[0].precondition", "a teardown step has no precondition"});
+  expect_error(one_vector("      - wait_ms: 1000\n        precondition: time passes\n"),
+               {"precondition", 1, "3.2-x", "steps[0].precondition", "a precondition belongs to a send or a poll step"});
+  expect_error(one_vector(step + "        precondition: \"\"\n"),
+               {"precondition", 1, "3.2-x", "steps[0].precondition", "say in words what must hold"});
+}
+
 // each_slot: the steps read $slot, the setup and teardown may not; the list
 // is one of the stored lists.
 TEST(vectors, EachSlotBindsSlotInTheStepsOnly) {

@@ -36,9 +36,11 @@ struct RunDiff {
   std::vector<DiffEntry> new_failures;     // not failing before, failing now (regression)
   std::vector<DiffEntry> now_missing;      // passed before, absent now (regression)
   std::vector<DiffEntry> must_now_skipped; // a must vector passed before and is skipped now (regression)
-  std::vector<DiffEntry> fixes;            // failing before, passing now
+  std::vector<DiffEntry> fixes;            // failing before, passing now (not inconclusive)
   std::vector<DiffEntry> added;            // not in OLD
-  std::vector<DiffEntry> other_changes;    // any other change of outcome
+  // Any other change of outcome: pass -> inconclusive, fail -> inconclusive
+  // and back (an inconclusive vector neither passes nor fails), skips.
+  std::vector<DiffEntry> other_changes;
   std::vector<DiffEntry> replies_changed;  // passes in both, but a reply differs
   std::vector<DiffEntry> timing_shifts;    // ran in both, duration moved beyond the threshold
   bool regressed() const {

@@ -3,7 +3,7 @@
 // appended to the run's journal, journal.hpp) and writes the run JSON once at
 // the end; `sabus report` and `sabus diff` read the JSON (or a journal) back
 // into it. The JSON is the source of truth; its schema is reports/SCHEMA.md
-// ("sabus-run", version 3).
+// ("sabus-run", version 4).
 #pragma once
 
 #include <cstddef>
@@ -17,7 +17,7 @@
 
 namespace sabus::reports {
 
-inline constexpr int kSchemaVersion = 3;
+inline constexpr int kSchemaVersion = 4;
 inline constexpr const char* kSchemaName = "sabus-run";
 
 // One named field of a frame with its byte range (protocol describe_frame).
@@ -44,6 +44,10 @@ struct FrameRecord {
 struct VectorRecord {
   std::string id, paragraph, file, level, outcome;  // outcome: harness to_string(Verdict)
   std::vector<std::string> failures;
+  // Why the test purpose was not reached (v4; harness
+  // VectorResult::inconclusive_reason): "precondition not met (...): ...".
+  // "" when it was, and in documents of versions 1 to 3.
+  std::string inconclusive_reason;
   std::string skip_reason, known_issue, quote, comment;
   std::string skip_cause;                // harness to_string(SkipCause): "motion", "profile", ...; "" when not skipped
   double duration_ms = 0;                // transport clock: virtual in-process, real on a line
@@ -53,13 +57,17 @@ struct VectorRecord {
 
   bool is_failure() const { return outcome == "fail" || outcome == "unexpected pass"; }
   bool is_skip() const { return outcome == "skip" || outcome == "known failure"; }
+  // Ran, but its test purpose was not reached (TTCN-3 `inconc`): neither a
+  // pass nor a failure.
+  bool is_inconclusive() const { return outcome == "inconclusive"; }
   // A failure that is the bench's: the device was lost while the vector ran
   // (harness::kDeviceLostFailure). JUnit shows it as an error.
   bool lost_device() const;
   // A step failed (fail, known failure): the reports show its frames field by field.
   bool has_failed_steps() const { return outcome == "fail" || outcome == "known failure"; }
-  // The decoded difference in one line: the first failure, or why an
-  // unexpected pass fails the run.
+  // The decoded difference in one line: the first failure, why an
+  // unexpected pass fails the run, or for an inconclusive vector
+  // "inconclusive: " and why its purpose was not reached.
   std::string difference() const;
 };
 
@@ -83,6 +91,9 @@ struct Summary {
   // Skipped vectors by cause ("level", "profile", "motion", "destructive",
   // "parity"; "" for a vector of a document that did not record it).
   std::map<std::string, std::size_t> skipped_by_cause = {};
+  // Vectors that ended inconclusive (v4; 0 in documents of versions 1 to 3).
+  // Last, so that the counts above keep their places.
+  std::size_t inconclusive = 0;
 };
 
 struct RunDocument {
@@ -113,8 +124,9 @@ struct RunDocument {
   // Why the run did not reach its end, as the reports say it: the abort
   // reason, or that a run with no end record was killed; "" for a complete run.
   std::string unfinished_reason() const;
-  // "PASS", "FAIL", "NOTHING RAN" (exit code 5: every vector skipped, or
-  // none selected), or "STOPPED" (exit code 4) / "ABORTED" / "INCOMPLETE".
+  // "PASS", "FAIL", "NOTHING RAN" (exit code 5: every vector skipped or
+  // inconclusive, or none selected), or "STOPPED" (exit code 4) / "ABORTED"
+  // / "INCOMPLETE".
   std::string verdict() const;
 };
 
@@ -146,7 +158,7 @@ nlohmann::ordered_json json_string(std::string_view s);
 nlohmann::ordered_json json_value(const nlohmann::json& j);
 
 // Reads a run document; on a bad document sets `error` (what and where) and
-// returns nullopt. Accepts schema versions 1 to 3 (each lacks the fields the
+// returns nullopt. Accepts schema versions 1 to 4 (each lacks the fields the
 // next one added).
 std::optional<RunDocument> from_json(const nlohmann::json& j, std::string& error);
 // Reads one member of "vectors" (or of a journal's vector record); throws

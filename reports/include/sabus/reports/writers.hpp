@@ -33,21 +33,24 @@ struct Progress {
 std::string progress_line(const Progress& p, std::size_t width = 100);
 // "FAIL 3.2-status-length §3.2 must: expected 52 bytes, got 51"
 std::string failure_line(const VectorRecord& v);
-// "PASS", "FAIL" (a failure or an unexpected pass), "SKIP" or "KNOWN" (a known failure).
+// "PASS", "FAIL" (a failure or an unexpected pass), "SKIP", "KNOWN" (a known
+// failure) or "INCONCLUSIVE" (its test purpose was not reached).
 std::string_view verdict_word(const VectorRecord& v);
 // One line a vector as it finishes: "PASS 3.1-x §3.1 must", the failure line
 // for a failure, "SKIP 3.4-x §3.4 must: <skip reason>", "KNOWN 3.2-x §3.2
-// must: <difference> (known issue: <reason>)". With `colour`, the first word
-// in ANSI colour.
+// must: <difference> (known issue: <reason>)", "INCONCLUSIVE 3.7-x §3.7
+// must: precondition not met (...): ...". With `colour`, the first word in
+// ANSI colour.
 std::string verdict_line(const VectorRecord& v, bool colour = false);
 // The skipped vectors by cause: "98 need another profile, 113 need
 // --allow-motion, 68 need --allow-destructive"; "" when none is recorded.
 std::string skip_causes_text(const Summary& s);
 // "N passed, N failed, N skipped (the skips by cause)" (and ", N known
-// failures" when there are any).
+// failures", ", N inconclusive" when there are any).
 std::string summary_line(const Summary& s);
 // Why a run checked nothing (exit code 5): "all 34 vectors selected were
-// skipped (34 need --allow-motion)", "no vector was selected".
+// skipped (34 need --allow-motion)", "no vector was selected", "the one
+// vector that ran ended inconclusive (its test purpose was not reached)".
 std::string nothing_ran_reason(const Summary& s);
 // "m:ss" or "h:mm:ss".
 std::string clock_text(std::chrono::milliseconds d);
@@ -125,8 +128,9 @@ namespace sabus::reports {
 
 struct Tally {
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0;  // failed counts unexpected passes
+  std::size_t inconclusive = 0;
   void add(const VectorRecord& v);
-  std::size_t total() const { return passed + failed + skipped + known; }
+  std::size_t total() const { return passed + failed + skipped + known + inconclusive; }
 };
 
 // Per spec paragraph (in paragraph order: "3.2" before "3.10"), per level.

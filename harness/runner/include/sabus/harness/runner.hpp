@@ -48,7 +48,13 @@ Bytes apply_modifiers(Bytes frame, const Modifiers& m);
 
 // ---- running --------------------------------------------------------------------
 
-enum class Verdict : std::uint8_t { kPass, kFail, kSkip, kKnownFailure, kUnexpectedPass };
+// kInconclusive: TTCN-3's `inconc` (ETSI ES 201 873-1; ISO/IEC 9646): a
+// precondition step's expectation did not hold (Step::precondition), so the
+// device never reached the state the vector's test purpose needs and the
+// vector says nothing of its conformance. Neither a pass nor a failure: it
+// never fails the run and is never a known failure or an unexpected pass.
+enum class Verdict : std::uint8_t { kPass, kFail, kSkip, kKnownFailure, kUnexpectedPass, kInconclusive };
+// "pass", "fail", "skip", "known failure", "unexpected pass", "inconclusive".
 std::string_view to_string(Verdict v);
 
 // Why the gate passed a selected vector over (Verdict::kSkip): its level is
@@ -81,6 +87,12 @@ struct VectorResult {
   Level level = Level::kMust;
   Verdict verdict = Verdict::kPass;
   std::vector<std::string> failures;   // one line each
+  // Why the test purpose was not reached: "precondition not met (<the
+  // step's precondition>): <what its expectation found>". Set when a
+  // precondition step's expectation did not hold; the verdict is then
+  // inconclusive, unless a failure was recorded too (a verdict only gets
+  // worse: a teardown that fails after it makes the vector a failure).
+  std::string inconclusive_reason;
   std::string skip_reason;
   SkipCause skip_cause = SkipCause::kNone;
   std::string known_issue_reason;
@@ -169,15 +181,19 @@ struct RunResult {
   StoredDataBackup backup;
   std::vector<std::string> restore_notes;  // what was restored, and what could not be
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
+  std::size_t inconclusive = 0;  // Verdict::kInconclusive: ran, checked nothing
   std::map<SkipCause, std::size_t> skipped_by_cause;
   // 0: every must-level vector that ran passed; 1: otherwise (a liveness
   // check failed on a device that sends bytes, too); 3: the device could not
   // be reached (nothing came back to the first liveness check); 4: stopped
   // by a signal or a lost device (stopped_by), whatever ran before; 5: no vector
-  // ran (every one was skipped, or none was given): a run that checked
-  // nothing is not a success (pytest's "no tests ran" is 5 too).
+  // ran (every one was skipped, or none was given), or every one that ran
+  // ended inconclusive: a run that checked nothing is not a success (pytest's
+  // "no tests ran" is 5 too). An inconclusive vector never makes it 1.
   bool strict = false;  // RunOptions::strict: should-level failures fail the run too
   int exit_code() const;
+  // The vectors that ran and checked something: inconclusive ones ran but
+  // checked nothing (their test purpose was not reached), so they are not counted.
   std::size_t ran() const { return passed + failed + known + unexpected; }
 };
 

@@ -160,6 +160,12 @@ struct Step {
   std::chrono::milliseconds timeout{0};       // poll: give up after (0: derived, see the runner); wait: how long
   std::string timeout_text;                   // wait / poll timeout as a profile expression, when written so
   std::chrono::milliseconds interval{1000};   // poll: between polls (§4 pacing)
+  // send / poll in setup or steps: what must hold for the vector's test
+  // purpose, in words ("the search is still running when the stop goes
+  // out"). When the step's expectation does not hold, the device never got
+  // into the state the purpose needs: the vector ends inconclusive (TTCN-3
+  // `inconc`), not failed. "" for an ordinary step. Never in a teardown.
+  std::string precondition;
   SourceLocation where;
 };
 
