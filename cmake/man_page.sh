@@ -18,12 +18,17 @@ subcommands() {
 roff() {
   sed -e 's/\\/\\e/g' -e 's/-/\\-/g' -e "s/^\([.']\)/\\\\\&\1/"
 }
+# `sabus ... --help`, run as "sabus" (CLI11 prints argv[0] in the usage
+# line; the build path would make the page depend on where it was built).
+help() {
+  (NO_COLOR=1 COLUMNS=100 exec -a sabus "$sabus" "$@" --help)
+}
 section() {  # TITLE CHAIN...
   local title=$1
   shift
   echo ".SS \"$title\""
   echo ".nf"
-  NO_COLOR=1 COLUMNS=100 "$sabus" "$@" --help | roff
+  help "$@" | roff
   echo ".fi"
 }
 
@@ -44,12 +49,12 @@ trap 'rm -f "$tmp"' EXIT
   echo "and writes JSON, JUnit, HTML and Markdown reports."
   echo ".PP"
   echo ".nf"
-  NO_COLOR=1 COLUMNS=100 "$sabus" --help | roff
+  help | roff
   echo ".fi"
   echo ".SH COMMANDS"
-  for sub in $("$sabus" --help | subcommands); do
+  for sub in $(help | subcommands); do
     section "sabus $sub" "$sub"
-    for subsub in $("$sabus" "$sub" --help | subcommands); do
+    for subsub in $(help "$sub" | subcommands); do
       section "sabus $sub $subsub" "$sub" "$subsub"
     done
   done

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Configures and builds one flavour of sabus: `tools/build.sh [main|release|sanitize|fuzz]`.
 # Build trees: build/ (main, release), build-sanitize/ (ASan+UBSan), build-fuzz/ (clang, libFuzzer).
-# main: sabus and its man page, no tests, no benchmarks, nothing from the
-# test packages (tools/install-deps.sh main); a build/ the tests were
-# configured in keeps them. release: the same tree with everything.
+# main: sabus and its man page only, configured without tests and
+# benchmarks so nothing from the test packages is needed (tools/install-deps.sh
+# main); a build/ the tests were configured in keeps them configured.
+# release: the same tree with everything.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flavour=${1:-release}
@@ -24,4 +25,7 @@ if command -v ccache >/dev/null; then
   args+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
 cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
-cmake --build "$dir" -j "$(nproc)"
+targets=()
+# The main job needs sabus and its man page only, whatever else build/ holds.
+if [[ $flavour == main ]]; then targets=(--target sabus sabus_man); fi
+cmake --build "$dir" -j "$(nproc)" "${targets[@]}"

@@ -18,6 +18,10 @@ Running a block (docs/ci.md, "The documentation is tested"):
   - "/tmp/" in a command is the block's own temporary directory, and each
     127.0.0.1:PORT a free port, so runs never collide; the output reads them
     back as written;
+  - a `sabus` command runs on a pseudo-terminal (script(1)), as a reader
+    would type it; what the terminal shows is compared (a progress line
+    rewritten in place leaves its last text); other commands run in the
+    block's shell;
   - a command ending in "&" runs in the background; the test waits (up to
     10 s) until it has printed as many lines as the block shows under it;
   - every job still running at the end of the block is stopped.
@@ -33,7 +37,8 @@ anchor, a heading of it (so the README's two-click paths hold).
 Expected and actual lines are compared after the same normalisation (RULES
 below: times, durations, paths, temporary names, versions and the counts that
 move with the suite; "0 failed" stays exact). An expected line "…" matches
-any number of lines; an expected line ending in "…" matches a line that
+any number of lines (indented or not); an expected line ending in "…"
+matches a line that
 starts with the rest. Exit 1 on any difference, with a diff per command.
 """
 
@@ -66,9 +71,9 @@ RULES = [
     (r"(client 127\.0\.0\.1:)\d+", r"\1PORT"),
     # counts that move with the suite: vectors, files, entries, cells, fields
     (r"\b[1-9]\d* failed\b", "N failed"),
-    (r"\b\d+ (passed|skipped|known failures?|need|vectors?|files|entries|cells|fields|vector\(s\)|must vector\(s\)|step\(s\)|frame\(s\)|writes|replies|liveness probes)\b", r"N \1"),
+    (r"\b\d+ (passed|skipped|known failures?|need|above|vectors?|files|entries|cells|fields|vector\(s\)|must vector\(s\)|step\(s\)|frame\(s\)|writes|replies|liveness probes)\b", r"N \1"),
     (r"\b\d+ of \d+\b", "N of N"),
-    (r"\(\d+\)", "(N)"),
+    (r"\(\d+\):$", "(N):"),
     (r"\b\d+ new failure\(s\)", "N new failure(s)"),
     (r"\b\d+ (ack|nak|offline|silence|garbage|refused)\b", r"N \1"),
     (r"(bytes_sent|bytes_received|wall_s)=[\d.]+", r"\1=N"),
@@ -98,7 +103,7 @@ def match(expected, actual):
             return memo[key]
         if i == len(expected):
             ok = j == len(actual)
-        elif expected[i] == ELLIPSIS:
+        elif expected[i].strip() == ELLIPSIS:
             ok = any(go(i + 1, k) for k in range(j, len(actual) + 1))
         elif j == len(actual):
             ok = False
@@ -218,7 +223,8 @@ def check_options(block, help_):
                     if a in subs:
                         chain.append(a)
                         texts.append(help_.text(chain))
-                    elif not chain:
+                    elif not chain and not (k > 0 and args[k - 1].startswith("-")):
+                        # (a word after an option is taken as its value)
                         errors.append(f"{command}: no subcommand {a} (sabus --help lists {', '.join(subs)})")
                         break
                 k += 1
@@ -254,6 +260,20 @@ def check_links(path, source):
         elif anchor and full.endswith(".md") and anchor not in anchors_of(full):
             errors.append(f"{rel}: link to {target}: no such heading")
     return errors
+
+
+def on_terminal(command):
+    """A `sabus` command in the foreground runs on a pseudo-terminal (script(1)),
+    as a reader types it: what it prints is what they see."""
+    words = command.split()
+    return bool(words) and os.path.basename(words[0]) == "sabus"
+
+
+def terminal_text(text):
+    """What a terminal shows of a pty's output: CR LF as LF, a line rewritten
+    after CR as its last text, control sequences (clear line) gone."""
+    text = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", text.replace("\r\n", "\n"))
+    return "\n".join(line.rsplit("\r", 1)[-1] for line in text.split("\n"))
 
 
 def free_port():
@@ -297,13 +317,15 @@ def run_block(block, index, args, work):
         if c.rstrip().endswith("&") and not c.rstrip().endswith("&&"):
             c = c.rstrip()[:-1]
             script.append(f"{c} >.t/out.{n} 2>&1 &")
-            script.append(f"__wait .t/out.{n} {len([e for e in expected if e != ELLIPSIS])}")
+            script.append(f"__wait .t/out.{n} {len([e for e in expected if e.strip() != ELLIPSIS])}")
+        elif on_terminal(c):
+            script.append(f"script -qec {shlex.quote(c)} /dev/null >.t/out.{n} 2>&1; __rc=$?; echo $__rc >.t/rc.{n}; (exit $__rc)")
         else:
             script.append(f"{{ {c}\n}} >.t/out.{n} 2>&1; __rc=$?; echo $__rc >.t/rc.{n}; (exit $__rc)")
     script.append("for j in $(jobs -p); do kill -TERM $j 2>/dev/null; done; wait")
     with open(os.path.join(work, f"script{index}.sh"), "w") as f:
         f.write("\n".join(script) + "\n")
-    env = dict(os.environ, NO_COLOR="1", PATH=os.path.join(work, "bin") + ":" + os.environ["PATH"],
+    env = dict(os.environ, NO_COLOR="1", SHELL="/bin/bash", PATH=os.path.join(work, "bin") + ":" + os.environ["PATH"],
                TMPDIR=os.path.join(work, "tmp"))
     env.pop("SABUS_DATA_DIR", None)
     started = time.monotonic()
@@ -316,15 +338,15 @@ def run_block(block, index, args, work):
     back = {v: k for k, v in ports.items()}
     for n, (command, expected) in enumerate(block.steps):
         try:
-            actual = open(os.path.join(work, ".t", f"out.{n}"), encoding="utf-8", errors="replace").read()
+            actual = open(os.path.join(work, ".t", f"out.{n}"), encoding="utf-8", errors="replace", newline="").read()
         except FileNotFoundError:
             actual = ""
-        actual = actual.replace(tmp, "/tmp/").replace(work + "/", "")
+        actual = terminal_text(actual).replace(tmp, "/tmp/").replace(work + "/", "")
         actual = re.sub(r"127\.0\.0\.1:(\d+)", lambda m: "127.0.0.1:" + back.get(m.group(1), m.group(1)), actual)
         actual_lines = actual.split("\n")
         if actual_lines and actual_lines[-1] == "":
             actual_lines.pop()
-        e = [normalise(x) if x != ELLIPSIS else x for x in expected]
+        e = [normalise(x) if x.strip() != ELLIPSIS else ELLIPSIS for x in expected]
         a = [normalise(x) for x in actual_lines]
         if not match(e, a):
             diff = "\n".join(difflib.unified_diff(e, a, "shown", "printed", lineterm=""))
