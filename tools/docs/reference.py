@@ -143,7 +143,7 @@ def schema_type(node):
         t = " or ".join(t)
     if t == "array" and "items" in node:
         return f"array of {schema_type(node['items'])}"
-    bounds = [f"{k} {node[k]}" for k in ("minimum", "maximum", "minLength", "pattern") if k in node]
+    bounds = [f"{k} `{node[k]}`" if k == "pattern" else f"{k} {node[k]}" for k in ("minimum", "maximum", "minLength", "pattern") if k in node]
     return t + (f" ({', '.join(bounds)})" if bounds else "")
 
 
