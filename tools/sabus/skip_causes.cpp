@@ -26,7 +26,7 @@ std::string cause_wording(const std::string& cause) {
     if (hex) {
       i += 2;
       while (i < cause.size() && std::isxdigit(static_cast<unsigned char>(cause[i]))) ++i;
-    } else if (sign || (digit(cause[i]) && (starts_word || !std::isalpha(static_cast<unsigned char>(cause[i - 1]))))) {
+    } else if (sign || (digit(cause[i]) && starts_word)) {
       if (sign) ++i;
       while (i < cause.size() && digit(cause[i])) ++i;
       if (i + 1 < cause.size() && cause[i] == '.' && digit(cause[i + 1])) {
