@@ -36,7 +36,7 @@ test socat                                 # pty pairs for integration tests
 test libxml2-utils                         # xmllint: the JUnit report validates against reports/junit.xsd
 test dpkg-dev file                         # cpack -G DEB: dpkg-shlibdeps computes the package Depends
 test man-db                                # man -l: the installed and packaged man page (tests/install)
-test python3                               # the documentation tests: transcripts, generated reference (tools/docs/)
+test python3 python3-yaml                   # the documentation tests: transcripts, generated reference (tools/docs/)
 test chromium                              # headless: the HTML report test renders it (tests/reports)
 test time                                  # /usr/bin/time: peak memory in tools/journal-bench.sh
 test bc                                    # arithmetic of tools/journal-bench.sh and tools/perf-run.sh
