@@ -1,4 +1,4 @@
-# What an installation holds (`cmake --install`, README.md "Install") and the
+# What an installation holds (`cmake --install`, docs/install.md) and the
 # Debian package made of it (`cpack -G DEB`):
 #   bin/sabus
 #   share/sabus/        the data directory (harness/data, data_dir.hpp), in the
