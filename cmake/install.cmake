@@ -1,4 +1,4 @@
-# What an installation holds (`cmake --install`, README.md "Install") and the
+# What an installation holds (`cmake --install`, docs/install.md) and the
 # Debian package made of it (`cpack -G DEB`):
 #   bin/sabus
 #   share/sabus/        the data directory (harness/data, data_dir.hpp), in the
@@ -7,7 +7,9 @@
 #                       and profile schemas), protocol/ERRATA.md (read by the
 #                       linter), reports/junit.xsd, reports/SCHEMA.md and
 #                       reports/run.schema.json
-#   share/doc/sabus/    README.md, PROXY-LOG.md
+#   share/man/man1/sabus.1.gz   sabus(1), from sabus --help (cmake/man_page.sh)
+#   share/doc/sabus/    README.md, PROXY-LOG.md, docs/ (the guides and the
+#                       generated reference)
 #   lib/libsabus_protocol.a, include/sabus/protocol/, lib/cmake/sabus/
 #                       the protocol library for find_package(sabus),
 #                       target sabus::protocol
@@ -15,6 +17,9 @@ include(CMakePackageConfigHelpers)
 
 if(SABUS_BUILD_TOOLS)
   install(TARGETS sabus RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  if(SABUS_MAN_PAGE)
+    install(FILES ${SABUS_MAN_PAGE} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  endif()
 endif()
 
 set(SABUS_INSTALL_DATADIR ${CMAKE_INSTALL_DATADIR}/sabus)
@@ -22,6 +27,7 @@ install(DIRECTORY vectors DESTINATION ${SABUS_INSTALL_DATADIR})
 install(FILES protocol/ERRATA.md DESTINATION ${SABUS_INSTALL_DATADIR}/protocol)
 install(FILES reports/junit.xsd reports/SCHEMA.md reports/run.schema.json DESTINATION ${SABUS_INSTALL_DATADIR}/reports)
 install(FILES README.md tools/PROXY-LOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
 
 # The protocol library as a CMake package.
 set(SABUS_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/sabus)

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: installs what is missing, builds the release and the sanitizer
+# Every test: installs what is missing (tools/install-deps.sh test: the main
+# packages and the test-only ones), builds the release and the sanitizer
 # (ASan+UBSan) flavours, and runs the whole ctest suite in both (the release
 # suite builds the Debian package and runs it from a fresh prefix); with clang
 # present it also builds the libFuzzer targets, runs each for FUZZ_SECONDS
@@ -9,7 +10,7 @@
 # non-zero when any test failed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash tools/install-deps.sh
+bash tools/install-deps.sh test
 bash tools/build.sh release
 bash tools/build.sh sanitize
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Rewrites the generated parts of the suite's documents after vectors change:
+# Rewrites the generated parts of the documents after vectors or the CLI change:
 # the table by paragraph in vectors/README.md (sabus vectors list --summary)
 # and, in protocol/ERRATA.md, the Vectors line of every entry and the index
-# table at the top (id, title, class, level, switch). Tests check all three.
+# table at the top (id, title, class, level, switch); and docs/reference/.
+# Tests check each.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sabus=${SABUS:-build/tools/sabus}
@@ -16,3 +17,6 @@ awk -v table="$table" '
 ' vectors/README.md >vectors/README.md.new
 mv vectors/README.md.new vectors/README.md
 "$sabus" vectors errata --update protocol/ERRATA.md
+# The reference pages generated from the code (docs/reference/): the CLI's
+# --help, the faults, the profile keys, the run JSON schema, the errata index.
+/usr/bin/python3 tools/docs/reference.py --sabus "$sabus" --source .

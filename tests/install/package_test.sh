@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The Debian package: built with CPack from the build tree, unpacked into a
 # fresh prefix (dpkg-deb -x, as dpkg would lay it out under /), and run from
-# there: `sabus --version` finds the data of that prefix, `sabus vectors lint`
+# there: `man sabus` shows its man page (man_test.sh), `sabus --version` finds the data of that prefix, `sabus vectors lint`
 # passes, `sabus run --sim` runs the suite and passes, and its reports carry
 # the version. Prints the package's name, size, file count and Depends
 # ("package:" lines, which tools/run-tests.sh shows).
@@ -41,6 +41,10 @@ echo "package: $(basename "$deb"), $(stat -c %s "$deb") bytes, $files files, ins
 echo "package: Depends: $depends"
 echo "package: files by folder:"
 (cd "$work/root" && find . -type f | awk -F/ '{d = $2 "/" $3 "/" $4; if ($4 == "sabus" && NF > 5) d = d "/" $5; n[d]++} END {for (d in n) printf "package:   %4d %s\n", n[d], d}' | sort -k3)
+
+# The man page, sabus(1), as `man` finds it in the unpacked package.
+bash "$(dirname "$0")/man_test.sh" "$prefix" package || fail "man sabus from the package"
+[[ -f $prefix/share/doc/sabus/docs/bench-acceptance.md ]] || fail "the package lacks the guides (share/doc/sabus/docs/)"
 
 # Run from a directory outside the source tree, with no data directory
 # given: the data must be the prefix's own.

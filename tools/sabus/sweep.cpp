@@ -26,6 +26,7 @@
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "new_file.hpp"
+#include "skip_causes.hpp"
 #include "sweep.hpp"
 
 namespace sabus::cli {
@@ -225,7 +226,9 @@ int run_sweep(const SweepOptions& opts) {
       "{} vectors; {:.1f} s\n",
       outcomes.size(), failed_profiles, percentile(ran, 0), percentile(ran, 0.5), percentile(ran, 1),
       percentile(skipped, 0), percentile(skipped, 0.5), percentile(skipped, 1), vectors.size(), seconds);
-  std::cout << "sweep skips by cause (vector runs): " << (all.skips.empty() ? "none" : skip_line(all)) << "\n";
+  // Grouped by wording: each profile's numbers make causes of their own.
+  std::cout << "sweep skips by cause (vector runs): " << (all.skips.empty() ? "none" : skip_causes_line(all.skips))
+            << "\n";
   return failed_profiles == 0 ? kExitOk : kExitFailed;
 }
 

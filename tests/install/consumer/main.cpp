@@ -1,6 +1,6 @@
 // Encodes a Device Status Poll with the installed protocol library and reads
 // it back; prints the frame and exits 0 when both directions agree with the
-// manual's own example (02 32 31 03 02, README "sabus decode").
+// manual's own example (02 32 31 03 02, docs/bench-regression.md, "Decoding captures").
 #include <cstdio>
 #include <string>
 
