@@ -67,6 +67,7 @@ OpenedDevice open_device(const std::string& tool, DeviceOptions o) {
     if (!o.sim) return usage("--reading needs --sim");
     if (auto why = apply_reading_spec(o.reading, controller_profile.readings)) return usage("--reading: " + *why);
   }
+  d.controller_profile = controller_profile;
   std::optional<HostPort> tcp;
   if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) return usage("--tcp HOST:PORT, with a port 0-65535");
   try {

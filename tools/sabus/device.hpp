@@ -47,6 +47,9 @@ harness::TelnetNote telnet_note(const std::string& tool);
 struct OpenedDevice {
   int exit_code = 0;
   harness::Profile profile;
+  // With --sim: the reference controller's profile, the device's with the
+  // sides --reading pins (a fresh copy of the device for minimizing).
+  harness::Profile controller_profile;
   harness::FaultSet faults;
   std::unique_ptr<harness::Transport> transport;
 };

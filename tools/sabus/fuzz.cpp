@@ -141,6 +141,16 @@ void print_totals(const Session& session, const Transport& transport, double wal
                              cov.rules_fired.size(), all_nak_rules().size(), rules.empty() ? "" : " (" + rules + ")",
                              cov.fields_compared.size(), comparable_reply_fields(), cov.resyncs);
   }
+  if (const Lockstep* l = session.lockstep()) {
+    // Differences the other side of an open point of the spec explains
+    // (readings.hpp): a legal controller's, noted with the ERRATA entry and
+    // what the model would have said, never a finding.
+    std::size_t count = 0;
+    for (const auto& n : l->notes()) count += n.count;
+    std::cout << fmt::format("{} note(s) on the spec's open points{}\n", count, count ? ":" : "");
+    for (const auto& n : l->notes())
+      std::cout << fmt::format("  {} {} x{}, e.g. {}\n", n.errata, to_string(n.side), n.count, n.example);
+  }
   if (!aborted.empty()) std::cout << "ABORTED: " << aborted << "\n";
   std::cout << fmt::format("{} finding(s)\n", findings.size());
   for (std::size_t i = 0; i < findings.size(); ++i)
@@ -173,7 +183,9 @@ int run_fuzz(const FuzzCliOptions& o) {
   DeviceFactory fresh;
   if (transport.in_process()) {
     const FaultSet faults = device.faults;
-    fresh = [profile, faults]() -> std::unique_ptr<Transport> { return make_in_process_transport({profile}, faults); };
+    fresh = [controller = device.controller_profile, faults]() -> std::unique_ptr<Transport> {
+      return make_in_process_transport({controller}, faults);
+    };
   }
 
   const auto t0 = std::chrono::steady_clock::now();

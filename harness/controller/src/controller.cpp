@@ -195,6 +195,76 @@ bool Controller::reads_other(std::string_view errata_id) const {
   return side_taken(profile_.readings, errata_id) == ReadingSide::kOther;
 }
 
+void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
+  update();
+  profile_.readings[errata_id] = side;
+  const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
+  const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
+  // E-93: still in the mode a completed LOCATE went to (its exit is the
+  // last one): the mode the side taken goes to.
+  const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
+  const auto exit = exits ? exits->name_of(state_.mode.exit_status) : std::nullopt;
+  if (errata_id == "E-93" && state_.mode.last_mode == mode_value("LOCATE_MODE") && exit == "LOCATE_FUNCTION_COMPLETED" &&
+      (state == "MANUAL_IDLE" || state == "WAITING_FOR_USER_INPUT")) {
+    const ModeState kept = state_.mode;
+    if (side == ReadingSide::kOther) enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT");
+    else enter_mode("MANUAL_MODE", "MANUAL_IDLE");
+    state_.mode.last_mode = kept.last_mode;
+    state_.mode.exit_status = kept.exit_status;
+  }
+  // E-90: a search still running: again from where and when it began (the
+  // other side's is over within a second).
+  if (errata_id == "E-90" && in_mode("SPIRAL_REMOTE_MODE")) {
+    for (AxisId a : {AxisId::kAz, AxisId::kEl}) {
+      axis(a).motion = AxisState::Motion::kIdle;
+      axis(a).velocity = 0;
+    }
+    state_.az.position = search_.az0;
+    state_.el.position = search_.el0;
+    state_.az.fast = search_.az_fast;
+    state_.el.fast = search_.el_fast;
+    last_update_ = tick_origin_ = search_.began;
+    chain_pending_ = false;
+    search_.legs = 0;
+    search_.returning = false;
+    set_state("BEGINNING_SPIRAL_SEARCH");
+    next_search_leg();
+    update();
+  }
+  // E-94: a LOCATE still moving: its movements again from where they began.
+  const bool locate_moving = in_mode("LOCATE_MODE") && state && state->starts_with("LOCATE_") &&
+                             state->ends_with("_MOVEMENT");
+  if (errata_id == "E-94" && locate_moving) {
+    for (AxisId a : {AxisId::kAz, AxisId::kEl}) {
+      axis(a).motion = AxisState::Motion::kIdle;
+      axis(a).velocity = 0;
+    }
+    state_.az.position = locate_.az_from;
+    state_.el.position = locate_.el_from;
+    state_.az.fast = locate_.az_fast;
+    state_.el.fast = locate_.el_fast;
+    last_update_ = locate_.began;
+    start_locate_movements();
+    update();  // to the clock's time again, the side's way
+  }
+}
+
+void Controller::start_locate_movements() {
+  if (reads_other("E-94")) {
+    // ERRATA E-94's other side: the movements of §3.17 locate_states one
+    // after the other, elevation first (on_motion_done chains them).
+    tick_origin_ = last_update_;
+    chain_pending_ = false;
+    set_state("LOCATE_FIRST_ELEV_MOVEMENT");
+    start_move(AxisId::kEl, locate_.el_to, false);
+  } else {
+    set_state("LOCATE_AZIM_MOVEMENT");
+    start_move(AxisId::kAz, locate_.az_to, false);
+    start_move(AxisId::kEl, locate_.el_to, false);
+  }
+  if (!moving()) on_motion_done();
+}
+
 const AxisProfile& Controller::axis_profile(AxisId a) const {
   return a == AxisId::kAz ? profile_.az : a == AxisId::kEl ? profile_.el : profile_.pol;
 }
@@ -448,7 +518,8 @@ void Controller::update() {
 void Controller::start_search(char pattern) {
   tick_origin_ = last_update_;
   chain_pending_ = false;
-  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now(), false};
+  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now(), false,
+                   axis(AxisId::kAz).fast, axis(AxisId::kEl).fast};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
   next_search_leg();
 }
@@ -523,7 +594,7 @@ void Controller::on_motion_done() {
     }
     if (state == "LOCATE_POL_MOVEMENT") {
       set_state("LOCATE_AZIM_MOVEMENT");
-      start_move(AxisId::kAz, locate_az_target_, false);
+      start_move(AxisId::kAz, locate_.az_to, false);
       if (moving()) return;
       return on_motion_done();
     }

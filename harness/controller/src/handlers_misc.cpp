@@ -127,7 +127,11 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
     break;
   }
   if (key == '0')
-    for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) c.axis(a).fast = c.axis(a).configured_fast = !c.axis(a).fast;
+    for (AxisId a : {AxisId::kAz, AxisId::kEl, AxisId::kPol}) {
+      // The speed each side of E-98 shows, toggled: both are kept whichever is taken.
+      c.axis(a).fast = !c.axis(a).fast;
+      c.axis(a).configured_fast = !c.axis(a).configured_fast;
+    }
   // Fault stop-key-ignored-in-remote: the Stop key leaves a remote auto move running.
   const bool ignored =
       (c.faults_.has(Fault::kStopKeyIgnoredInRemote) && c.in_mode("REMOTE_MODE")) || stop_ignored_by_fault(c);

@@ -237,21 +237,10 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
     c.state_.last_located.reset();  // no LOCATE performed for 42h 'C' (E-83)
     return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": " + std::string(error));
   }
-  if (c.reads_other("E-94")) {
-    // ERRATA E-94's other side: the movements of §3.17 locate_states one
-    // after the other, elevation first (on_motion_done chains them).
-    c.tick_origin_ = c.last_update_;
-    c.chain_pending_ = false;
-    c.locate_az_target_ = az.value_or(to.azimuth_deg);
-    c.set_state("LOCATE_FIRST_ELEV_MOVEMENT");
-    c.start_move(AxisId::kEl, to.elevation_deg, false);
-    if (!c.moving()) c.on_motion_done();
-    return ack(c, 0x41, AckReply{}, "locate " + sat.name);
-  }
-  c.set_state("LOCATE_AZIM_MOVEMENT");
-  c.start_move(AxisId::kAz, az.value_or(to.azimuth_deg), false);  // clamped at the limits under the fault
-  c.start_move(AxisId::kEl, to.elevation_deg, false);
-  if (!c.moving()) c.on_motion_done();
+  // Clamped at the limits under the fault locate-moves-out-of-range.
+  c.locate_ = {c.last_update_, c.state_.az.position, c.state_.el.position, az.value_or(to.azimuth_deg), to.elevation_deg,
+               c.state_.az.fast, c.state_.el.fast};
+  c.start_locate_movements();
   return ack(c, 0x41, AckReply{}, "locate " + sat.name);
 }
 

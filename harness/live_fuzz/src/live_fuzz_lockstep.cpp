@@ -578,8 +578,14 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       note_reading({id}, *finding);
       return std::nullopt;
     }
-  if (open.size() > 1 && try_sides(open)) {
-    note_reading(open, *finding);
+  // Together: the points whose side the device has not shown yet (a side
+  // taken earlier stays).
+  std::vector<std::string> unshown;
+  for (const auto& id : open)
+    if (side_taken(before.bus->controller(0).profile().readings, id) == side_taken(profile_.readings, id))
+      unshown.push_back(id);
+  if (unshown.size() > 1 && try_sides(unshown)) {
+    note_reading(unshown, *finding);
     return std::nullopt;
   }
   recall(before);
@@ -1087,8 +1093,14 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
     if (const auto x = extended_status(dev)) {
       m.mutable_state().mode = mode_state(*x);
       ++coverage_.resyncs;
-      // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10).
-      for (std::size_t a = 0; a < 3; ++a) by_axis(m.mutable_state(), a).fast = (axis_status(x->status, a) & 0x10) != 0;
+      // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10), or
+      // on E-98's other side the speed it is configured for: what the bit
+      // shows on the side the model takes.
+      const bool configured = side_taken(m.profile().readings, "E-98") == ReadingSide::kOther;
+      for (std::size_t a = 0; a < 3; ++a) {
+        AxisState& ax = by_axis(m.mutable_state(), a);
+        (configured ? ax.configured_fast : ax.fast) = (axis_status(x->status, a) & 0x10) != 0;
+      }
     }
 }
 

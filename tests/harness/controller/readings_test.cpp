@@ -302,3 +302,57 @@ TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
 
 }  // namespace
 }  // namespace sabus::harness
+
+namespace sabus::harness {
+namespace {
+
+// A side taken mid-session (the live fuzzer's model, once a device has
+// shown it) redoes what it decides and has already happened.
+TEST(Readings, ASideTakenLateRedoesALocatesMovementsAndItsMode) {
+  Rig late(site_profile()), early(reading(site_profile(), "E-94"));
+  for (Rig* r : {&late, &early}) {
+    ASSERT_FALSE(is_nak(r->send(locate_on_meridian())));
+    r->wait(700ms);
+  }
+  late.c.set_reading("E-94", ReadingSide::kOther);
+  EXPECT_EQ(late.state(), early.state());
+  EXPECT_EQ(late.c.state().az.position, early.c.state().az.position);
+  EXPECT_EQ(late.c.state().el.position, early.c.state().el.position);
+  late.wait(600s);
+  early.wait(600s);
+  EXPECT_EQ(late.mode(), "MANUAL_MODE");
+  late.c.set_reading("E-93", ReadingSide::kOther);
+  EXPECT_EQ(late.mode(), "REMOTE_MODE");
+  const auto x = late.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FUNCTION_COMPLETED") << "still the LOCATE's exit";
+  late.c.set_reading("E-93", ReadingSide::kReference);
+  EXPECT_EQ(late.mode(), "MANUAL_MODE");
+}
+
+// E-90 and E-66 decide when they are used: a side taken late applies to a
+// search already running and a LOCATE already made.
+TEST(Readings, ASideTakenLateAppliesToASearchAndAClaimAlreadyBegun) {
+  Rig r(site_profile()), early(reading(site_profile(), "E-90"));
+  for (Rig* x : {&r, &early}) {
+    ASSERT_FALSE(is_nak(x->send(Misc{'A', 'E'})));
+    x->wait(700ms);
+  }
+  EXPECT_EQ(r.mode(), "SPIRAL_REMOTE_MODE");
+  r.c.set_reading("E-90", ReadingSide::kOther);
+  EXPECT_EQ(r.mode(), "MANUAL_MODE") << "over within a second, as if it had been so from the start";
+  EXPECT_EQ(r.c.state().az.position, early.c.state().az.position);
+  EXPECT_EQ(r.c.state().el.position, early.c.state().el.position);
+  RemoteLocate l;
+  l.preset = {true, 1};
+  RemoteStore s;
+  s.preset = {true, 1};
+  s.pol_selection = 'C';
+  ASSERT_FALSE(is_nak(r.send(l)));
+  r.wait(300s);
+  ASSERT_FALSE(is_nak(r.send(Jog{{'W', 'S', 50}})));
+  r.c.set_reading("E-66", ReadingSide::kOther);
+  EXPECT_EQ(r.send(s).nak, NakRule::kStoreNeedsLocate);
+}
+
+}  // namespace
+}  // namespace sabus::harness

@@ -98,7 +98,9 @@ class Controller {
   const Profile& profile() const { return profile_; }
   // Takes a side of an open point of the spec from now on (readings.hpp):
   // the live fuzzer's model, once a device has shown its side.
-  void set_reading(const std::string& errata_id, ReadingSide side) { profile_.readings[errata_id] = side; }
+  // What the side decides and has already happened is redone its way: a
+  // completed LOCATE's mode (E-93), a LOCATE's movements so far (E-94).
+  void set_reading(const std::string& errata_id, ReadingSide side);
   const FaultSet& faults() const { return faults_; }
 
   // Replies as the codecs build them from the state (also used by tests).
@@ -193,10 +195,18 @@ class Controller {
     int legs = 0;              // legs begun
     TimePoint began{};         // how long it lasts is E-90's (search_end())
     bool returning = false;    // moving back to az0, el0
+    bool az_fast = true, el_fast = true;  // §3.2 'S' before it began
   } search_;
-  // §3.18 under ERRATA E-94's other side: the azimuth a LOCATE moves to
-  // after its first elevation movement.
-  double locate_az_target_ = 0;
+  // §3.18: the movements of the LOCATE in progress, from where and when
+  // they began (E-94 decides their order; set_reading redoes them).
+  struct LocatePlan {
+    TimePoint began{};
+    double az_from = 0, el_from = 0, az_to = 0, el_to = 0;
+    bool az_fast = true, el_fast = true;  // §3.2 'S' before it began
+  } locate_;
+  // Begins the LOCATE's movements to `locate_` as the side of E-94 taken
+  // orders them (ERRATA E-94, §3.17 locate_states).
+  void start_locate_movements();
   int signal_strength_ = 0;  // §3.9, when a profile implements 38h
   std::array<std::optional<std::string>, 10> iess_;  // §3.14, when a profile implements 3Dh/3Eh
 };

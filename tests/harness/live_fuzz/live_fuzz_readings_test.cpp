@@ -1,0 +1,51 @@
+// The live fuzzer on the spec's open points (readings.hpp, ERRATA class
+// reading; issue 31): a device on the other side of one is a legal
+// controller, so the lockstep model notes the difference with its ERRATA
+// entry and takes that side, and never makes a finding of it.
+#include <gtest/gtest.h>
+
+#include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/transports.hpp"
+#include "sabus/protocol/codec.hpp"
+
+namespace sabus::harness::live_fuzz {
+namespace {
+
+using namespace std::chrono_literals;
+
+Profile default_profile() { return load_profile_file(default_profile_path()).profile.value(); }
+
+FuzzFrame raw(std::string_view hex) {
+  auto bytes = parse_hex(hex);
+  EXPECT_TRUE(bytes.ok()) << hex;
+  return {bytes.value(), {}, "test"};
+}
+
+std::string noted(const Session& s) {
+  std::string out;
+  for (const auto& n : s.lockstep()->notes()) out += (out.empty() ? "" : " ") + n.errata + ":" + std::string(to_string(n.side));
+  return out;
+}
+
+// A LOCATE whose first movement is the elevation's (E-94's other side),
+// asked for its extended status at once: a note, not an effect finding.
+TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsANote) {
+  const Profile model = default_profile();
+  Profile device = model;
+  device.readings["E-94"] = ReadingSide::kOther;
+  auto t = make_in_process_transport({device}, {});
+  SessionOptions o;
+  o.allow_motion = o.allow_destructive = true;
+  Session s(*t, model, o);
+  for (std::string_view hex : {"02 32 47 44 53 30 30 30 30 03 63", "02 32 33 58 53 30 30 30 30 03 0b",
+                               "02 32 41 40 30 46 55 5a 5a 20 4c 4f 43 20 20 2d 39 33 2e 35 20 30 20 31 30 2e 30 20 20 4e 41 20 20 20 20 03 6d",
+                               "02 32 40 03 73"}) {
+    const auto v = s.step(raw(hex));
+    EXPECT_FALSE(v) << hex << ": " << v->message;
+  }
+  EXPECT_EQ(noted(s), "E-94:other");
+}
+
+}  // namespace
+}  // namespace sabus::harness::live_fuzz
