@@ -573,8 +573,25 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     for (const auto& id : ids) model().set_reading(id, flipped(id));
     return !judge_write(frame, sent_at, uncertainty, device);
   };
+  // E-90 decides only when a search ends: its other side (over within a
+  // second) can explain a device whose search has ended where the model's
+  // runs (at rest, or out of the search mode), not one that goes on moving
+  // (a stop it ignored), which the episode rules would otherwise leave to it.
+  auto plausible = [&](const std::string& id) {
+    if (id != "E-90") return true;
+    const Controller& m = before.bus->controller(0);
+    auto search = [](std::uint8_t mode) { return meanings::mode_name(mode) == "SPIRAL_REMOTE_MODE"; };
+    const bool searching = search(m.state().mode.mode);
+    bool ended = false, going_on = false;
+    for (const Frame& dev : device) {
+      if (shows_moving(dev) == false) ended = true;
+      if (shows_moving(dev) == true) going_on = true;
+      if (const auto mode = device_mode(dev)) (search(*mode) ? going_on : ended) = true;
+    }
+    return flipped(id) == ReadingSide::kOther ? searching && ended && !going_on : going_on;
+  };
   for (const auto& id : open)
-    if (try_sides({id})) {
+    if (plausible(id) && try_sides({id})) {
       note_reading({id}, *finding);
       return std::nullopt;
     }
@@ -582,7 +599,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // taken earlier stays).
   std::vector<std::string> unshown;
   for (const auto& id : open)
-    if (side_taken(before.bus->controller(0).profile().readings, id) == side_taken(profile_.readings, id))
+    if (side_taken(before.bus->controller(0).profile().readings, id) == side_taken(profile_.readings, id) && plausible(id))
       unshown.push_back(id);
   if (unshown.size() > 1 && try_sides(unshown)) {
     note_reading(unshown, *finding);

@@ -231,6 +231,7 @@ TEST(LiveFuzzLockstep, ASearchOtherThanTheModelsIsNoFindingButItsStopIs) {
       if (!v) v = step(status, 7500);
       EXPECT_EQ(v, std::nullopt) << v->message;
     } else {
+      for (const auto& n : model.notes()) ADD_FAILURE() << "noted " << n.errata << ": " << n.example;
       ASSERT_TRUE(v);
       EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
     }
