@@ -215,14 +215,8 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   // E-90: a search still running: again from where and when it began (the
   // other side's is over within a second).
   if (errata_id == "E-90" && in_mode("SPIRAL_REMOTE_MODE")) {
-    for (AxisId a : {AxisId::kAz, AxisId::kEl}) {
-      axis(a).motion = AxisState::Motion::kIdle;
-      axis(a).velocity = 0;
-    }
-    state_.az.position = search_.az0;
-    state_.el.position = search_.el0;
-    state_.az.fast = search_.az_fast;
-    state_.el.fast = search_.el_fast;
+    state_.az = search_.az_from;
+    state_.el = search_.el_from;
     last_update_ = tick_origin_ = search_.began;
     chain_pending_ = false;
     search_.legs = 0;
@@ -235,14 +229,8 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   const bool locate_moving = in_mode("LOCATE_MODE") && state && state->starts_with("LOCATE_") &&
                              state->ends_with("_MOVEMENT");
   if (errata_id == "E-94" && locate_moving) {
-    for (AxisId a : {AxisId::kAz, AxisId::kEl}) {
-      axis(a).motion = AxisState::Motion::kIdle;
-      axis(a).velocity = 0;
-    }
-    state_.az.position = locate_.az_from;
-    state_.el.position = locate_.el_from;
-    state_.az.fast = locate_.az_fast;
-    state_.el.fast = locate_.el_fast;
+    state_.az = locate_.az_from;
+    state_.el = locate_.el_from;
     last_update_ = locate_.began;
     start_locate_movements();
     update();  // to the clock's time again, the side's way
@@ -253,9 +241,11 @@ void Controller::start_locate_movements() {
   if (reads_other("E-94")) {
     // ERRATA E-94's other side: the movements of §3.17 locate_states one
     // after the other, elevation first (on_motion_done chains them).
+    // The LOCATE has the antenna: what moved the azimuth before stops.
     tick_origin_ = last_update_;
     chain_pending_ = false;
     set_state("LOCATE_FIRST_ELEV_MOVEMENT");
+    if (state_.az.motion != AxisState::Motion::kIdle) stop_axis(AxisId::kAz);
     start_move(AxisId::kEl, locate_.el_to, false);
   } else {
     set_state("LOCATE_AZIM_MOVEMENT");
@@ -519,7 +509,7 @@ void Controller::start_search(char pattern) {
   tick_origin_ = last_update_;
   chain_pending_ = false;
   search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now(), false,
-                   axis(AxisId::kAz).fast, axis(AxisId::kEl).fast};
+                   state_.az, state_.el};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
   next_search_leg();
 }

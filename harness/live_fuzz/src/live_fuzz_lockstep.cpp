@@ -314,6 +314,7 @@ void Lockstep::rebuild(TimePoint now) {
   auto_moving_ = {};
   arrived_at_ = {};
   settle_mode_ = {};
+  position_unknown_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
 
@@ -409,6 +410,19 @@ void Lockstep::take_positions(const std::vector<Frame>& device, const std::funct
   for (const Frame& dev : device) {
     if (form_of_reply(dev) != ReplyForm::kAck) continue;
     for (const Field& f : value_fields(dev)) {
+      // An axis whose reading is '*' (an A/D error, §3.2 bytes 14-31,
+      // E-42) shows where it is only in its pulse count (§3.16).
+      const auto axis_of_count = f.name.ends_with(" count") ? axis_of(f.name, dev) : std::nullopt;
+      if (axis_of_count && position_unknown_[*axis_of_count] &&
+          motion_of(m, *axis_of_count) == AxisState::Motion::kIdle) {
+        if (const auto dc = count_degrees(f.raw)) {
+          by_axis(m.mutable_state(), *axis_of_count).position = *dc;
+          position_unknown_[*axis_of_count] = false;
+          drifted_[*axis_of_count] = true;
+          ++coverage_.resyncs;
+        }
+        continue;
+      }
       if (!is_position(f.name)) continue;
       const auto axis = axis_of(f.name, dev);
       if (!axis || motion_of(m, *axis) != AxisState::Motion::kIdle) continue;
@@ -501,13 +515,14 @@ struct Lockstep::Memory {
   ModeState settle_mode;
   bool device_led, stopped_out, handed_over, model_was_led, moving_when_stopped, device_seen_moving, half_turn;
   LockstepCoverage coverage;
+  std::array<bool, 3> position_unknown;
 };
 
 Lockstep::Memory Lockstep::remember() const {
   return Memory{std::make_unique<Bus>(*bus_), last_, drifted_, moved_on_line_, at_limit_agreed_, auto_moving_,
                 uncertainty_since_rest_, arrived_at_, arrived_position_, settle_until_, settle_mode_, device_led_,
                 stopped_out_, handed_over_, model_was_led_, moving_when_stopped_, device_seen_moving_, half_turn_,
-                coverage_};
+                coverage_, position_unknown_};
 }
 
 void Lockstep::recall(const Memory& m) {
@@ -531,6 +546,7 @@ void Lockstep::recall(const Memory& m) {
   device_seen_moving_ = m.device_seen_moving;
   half_turn_ = m.half_turn;
   coverage_ = m.coverage;
+  position_unknown_ = m.position_unknown;
 }
 
 std::vector<std::string> Lockstep::open_readings() const {
@@ -882,6 +898,27 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
     return report(FindingKind::kEffect, *judged);
   }
   if (std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; })) return true;
+  // §3.17 locate_exit_conditions pair a STOP_KEY and a MODE_CHANGED entry
+  // with each movement of a LOCATE, whose order is the device's (ERRATA
+  // E-94): a LOCATE left by the same cause in another movement than the
+  // model's is a note while E-94 is open, and the model takes its exit.
+  if (f.name == "exit status" && !side_pinned(profile_.readings, "E-94"))
+    if (const auto x = extended_status(r.dev); x && x->last_mode == r.nominal().mode.last_mode) {
+      const std::string got = meanings::exit_name(x->last_mode, x->exit_status);
+      const std::string want = meanings::exit_name(x->last_mode, r.nominal().mode.exit_status);
+      auto cause = [](const std::string& e) {
+        for (std::string_view c : {"_STOP_KEY", "_MODE_CHANGED", "_MODE_CHANGE"})
+          if (e.starts_with("LOCATE_") && e.ends_with(c)) return std::string(c);
+        return std::string();
+      };
+      if (!cause(got).empty() && cause(got) == cause(want)) {
+        note_reading({"E-94"}, Verdict{FindingKind::kValue, "field 'exit status' (§3.17) is " + f.raw + " (" + got +
+                                                              "); the model left the LOCATE in another movement (" +
+                                                              want + ")"});
+        j.take_modes = true;
+        return true;
+      }
+    }
   // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
   // reports an optional's value as maybe unset through this loop).
   const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
@@ -933,6 +970,7 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
   // position (§3.16: count_offset + deg x counts_per_degree), judged in the
   // axis's window as its reading is (one count more); a hundredths digit is
   // not (but after an arrival: judge_arrival_hundredths).
+  if (has_axis && is_fine_position(f.name) && position_unknown_[axis]) return true;  // taken (keep_in_step)
   if (has_axis && is_fine_position(f.name) &&
       (moving || drifted_[axis] || moved_on_line_[axis] || !r.position_exact[axis])) {
     const auto dc = f.name.ends_with(" count") ? count_degrees(f.raw) : std::nullopt;
@@ -1105,6 +1143,7 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   });
   if (!all_at_rest(m) || !device_at_rest) return;
   device_led_ = false;
+  for (std::size_t a = 0; a < 3; ++a) position_unknown_[a] = !reading_of(m, a);
   stopped_out_ = handed_over_ = moving_when_stopped_ = false;
   for (const Frame& dev : device)  // how the device says it ended (judged above)
     if (const auto x = extended_status(dev)) {

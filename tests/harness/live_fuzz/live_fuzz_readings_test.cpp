@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sabus/harness/live_fuzz.hpp"
+#include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/protocol/codec.hpp"
@@ -45,6 +46,35 @@ TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsANote) {
     EXPECT_FALSE(v) << hex << ": " << v->message;
   }
   EXPECT_EQ(noted(s), "E-94:other");
+}
+
+// A search over within a second (E-90's other side) on a mount whose
+// elevation reads '*' (an A/D error, E-42): where the device's search left
+// the axis shows first in its pulse count, which the model takes after the
+// episode instead of judging it (random profile 0x202924717a94d6aa gave an
+// 'elevation count' effect finding). The search's own end is the device's
+// (an episode the lockstep does not judge), so it needs no note.
+TEST(LiveFuzzReadings, AnAxisWithoutAReadingIsTakenFromItsCountAfterASearch) {
+  Profile model = random_profile(0x202924717a94d6aaull);
+  model.readings.clear();
+  ASSERT_TRUE(model.el.ad_error);
+  Profile device = model;
+  ASSERT_FALSE(apply_reading_spec("other", device.readings));
+  auto t = make_in_process_transport({device}, {});
+  SessionOptions o;
+  o.allow_motion = o.allow_destructive = true;
+  Session s(*t, model, o);
+  auto frame = [&](std::uint8_t code, std::string data) {
+    return FuzzFrame{encode_frame({FrameKind::kCommand, model.address, code, Bytes(data.begin(), data.end())}), {}, "t"};
+  };
+  std::vector<FuzzFrame> writes = {frame(0x36, "AF"), frame(0x31, ""), frame(0x48, "A"),
+                                   frame(0x31, ""),   frame(0x40, ""), frame(0x3f, "")};
+  writes[1].pause = 710ms;
+  for (const FuzzFrame& f : writes) {
+    const auto v = s.step(f);
+    EXPECT_FALSE(v) << v->message;
+  }
+  EXPECT_NEAR(s.lockstep()->model().state().el.position, t->bus().controller(0).state().el.position, 0.02);
 }
 
 }  // namespace

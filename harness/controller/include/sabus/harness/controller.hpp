@@ -195,14 +195,14 @@ class Controller {
     int legs = 0;              // legs begun
     TimePoint began{};         // how long it lasts is E-90's (search_end())
     bool returning = false;    // moving back to az0, el0
-    bool az_fast = true, el_fast = true;  // §3.2 'S' before it began
+    AxisState az_from, el_from;  // as they were when it began
   } search_;
   // §3.18: the movements of the LOCATE in progress, from where and when
   // they began (E-94 decides their order; set_reading redoes them).
   struct LocatePlan {
     TimePoint began{};
-    double az_from = 0, el_from = 0, az_to = 0, el_to = 0;
-    bool az_fast = true, el_fast = true;  // §3.2 'S' before it began
+    AxisState az_from, el_from;  // as they were when it began
+    double az_to = 0, el_to = 0;
   } locate_;
   // Begins the LOCATE's movements to `locate_` as the side of E-94 taken
   // orders them (ERRATA E-94, §3.17 locate_states).

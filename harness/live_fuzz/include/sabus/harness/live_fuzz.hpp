@@ -480,6 +480,10 @@ class Lockstep {
   bool moving_when_stopped_ = false;  // the device's last status before that stop showed it moving
   bool device_seen_moving_ = false;   // the device's last status block showed an axis moving
   bool half_turn_ = false;               // an azimuth move to +-180 on a line: azimuth not compared
+  // Out of a STOW, DEPLOY or search where the axis's reading is '*' (an
+  // A/D error, E-42): where the device left it shows first in a pulse count
+  // (§3.16), which is taken, not judged.
+  std::array<bool, 3> position_unknown_{};
   LockstepCoverage coverage_;
 };
 

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# gate.fuzz_readings (issue 31): the live fuzzer against the reference
+# controller on the other side of every open point of the spec (`--reading
+# other`, readings.hpp) must find nothing: a difference there is a note,
+# never a finding. 4,000 writes with motion and stored writes on, on every
+# shipped profile and on 20 fresh random legal profiles (open points left
+# open), in-process; then the default profile over a pseudo-terminal.
+# Prints each run's findings and notes; a run with a finding fails the gate
+# and its reproducer stays in WORKDIR.
+#   fuzz_readings_gate.sh SABUS PROFILES_DIR WORKDIR
+set -u
+sabus="$1" profiles="$2" work="$3"
+rm -rf "$work"
+mkdir -p "$work/random"
+status=0 runs=0 notes=0
+seed=$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')
+echo "fuzz seed $seed (reproduce one run: sabus fuzz --sim --reading other --seed $seed --profile P --max-frames 4000 --allow-motion --allow-destructive)"
+
+# fuzz_one NAME ARGS...: one fuzz run; its findings fail the gate.
+fuzz_one() {
+  local name=$1 log
+  shift
+  log="$work/$name.log"
+  runs=$((runs + 1))
+  "$sabus" fuzz "$@" --seed "$seed" --max-frames 4000 --allow-motion --allow-destructive \
+    --findings "$work/findings-$name" -q >"$log" 2>&1
+  local found noted
+  found=$(sed -n 's/^\([0-9]*\) finding(s)$/\1/p' "$log" | tail -1)
+  noted=$(sed -n "s/^\([0-9]*\) note(s) on the spec's open points.*/\1/p" "$log" | tail -1)
+  notes=$((notes + ${noted:-0}))
+  echo "$name: ${found:-?} finding(s), ${noted:-?} note(s)"
+  if [[ "${found:-x}" != 0 ]]; then
+    status=1
+    sed 's/^/    /' "$log"
+  fi
+}
+
+for p in "$profiles"/*.yaml; do
+  fuzz_one "$(basename "$p" .yaml)" --sim --reading other --profile "$p"
+done
+"$sabus" vectors sweep --profiles 20 --seed fresh --reading other --write-profiles "$work/random" \
+  --out "$work/sweep-failures" >"$work/sweep.log" 2>&1 || { status=1; echo "the sweep that wrote the random profiles failed:"; tail -5 "$work/sweep.log"; }
+head -1 "$work/sweep.log"
+for p in "$work"/random/sweep-*.yaml; do
+  fuzz_one "$(basename "$p" .yaml)" --sim --reading other --profile "$p"
+done
+
+# Over a pseudo-terminal: the controller behind a line, the fuzzer's timing
+# rules (the lockstep's runs earlier and later) at work.
+link="$work/pty"
+"$sabus" sim --pty --link "$link" --reading other >"$work/sim.log" 2>&1 &
+sim=$!
+for _ in $(seq 100); do grep -q READY "$work/sim.log" 2>/dev/null && break; sleep 0.1; done
+fuzz_one pty-rc3000-1.59 --port "$link" --pace 0 --fresh-device
+kill "$sim" 2>/dev/null
+wait "$sim" 2>/dev/null
+
+echo "fuzz on the other readings: $runs runs, $notes note(s), $([[ $status == 0 ]] && echo "no finding" || echo "FINDINGS")"
+exit "$status"
