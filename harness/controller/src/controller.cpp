@@ -212,9 +212,16 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
     state_.mode.last_mode = kept.last_mode;
     state_.mode.exit_status = kept.exit_status;
   }
-  // E-90: a search still running: again from where and when it began (the
-  // other side's is over within a second).
-  if (errata_id == "E-90" && in_mode("SPIRAL_REMOTE_MODE")) {
+  // A search or LOCATE that ended by itself, nothing taken over since: in
+  // the mode it went to, with its own exit as the last one.
+  auto ended_by_itself = [&](std::string_view mode, std::string_view normal_exit) {
+    return meanings::mode_name(state_.mode.last_mode) == mode && exit == normal_exit &&
+           (state == "MANUAL_IDLE" || state == "WAITING_FOR_USER_INPUT");
+  };
+  // E-90: a search still running, or over by itself: again from where and
+  // when it began (the other side's is over within a second).
+  if (errata_id == "E-90" && (in_mode("SPIRAL_REMOTE_MODE") || ended_by_itself("SPIRAL_REMOTE_MODE", "SPIRAL_NO_PEAK_FOUND"))) {
+    state_.mode = search_.mode;
     state_.az = search_.az_from;
     state_.el = search_.el_from;
     last_update_ = tick_origin_ = search_.began;
@@ -225,10 +232,12 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
     next_search_leg();
     update();
   }
-  // E-94: a LOCATE still moving: its movements again from where they began.
+  // E-94: a LOCATE still moving, or completed: its movements again from
+  // where they began.
   const bool locate_moving = in_mode("LOCATE_MODE") && state && state->starts_with("LOCATE_") &&
                              state->ends_with("_MOVEMENT");
-  if (errata_id == "E-94" && locate_moving) {
+  if (errata_id == "E-94" && (locate_moving || ended_by_itself("LOCATE_MODE", "LOCATE_FUNCTION_COMPLETED"))) {
+    state_.mode = locate_.mode;
     state_.az = locate_.az_from;
     state_.el = locate_.el_from;
     last_update_ = locate_.began;
@@ -511,6 +520,7 @@ void Controller::start_search(char pattern) {
   search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now(), false,
                    state_.az, state_.el};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
+  search_.mode = state_.mode;
   next_search_leg();
 }
 

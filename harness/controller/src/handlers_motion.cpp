@@ -238,7 +238,7 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
     return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": " + std::string(error));
   }
   // Clamped at the limits under the fault locate-moves-out-of-range.
-  c.locate_ = {c.last_update_, c.state_.az, c.state_.el, az.value_or(to.azimuth_deg), to.elevation_deg};
+  c.locate_ = {c.last_update_, c.state_.az, c.state_.el, az.value_or(to.azimuth_deg), to.elevation_deg, c.state_.mode};
   c.start_locate_movements();
   return ack(c, 0x41, AckReply{}, "locate " + sat.name);
 }

@@ -595,16 +595,14 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // (a stop it ignored), which the episode rules would otherwise leave to it.
   auto plausible = [&](const std::string& id) {
     if (id != "E-90") return true;
-    const Controller& m = before.bus->controller(0);
     auto search = [](std::uint8_t mode) { return meanings::mode_name(mode) == "SPIRAL_REMOTE_MODE"; };
-    const bool searching = search(m.state().mode.mode);
     bool ended = false, going_on = false;
     for (const Frame& dev : device) {
       if (shows_moving(dev) == false) ended = true;
       if (shows_moving(dev) == true) going_on = true;
       if (const auto mode = device_mode(dev)) (search(*mode) ? going_on : ended) = true;
     }
-    return flipped(id) == ReadingSide::kOther ? searching && ended && !going_on : going_on;
+    return flipped(id) == ReadingSide::kOther ? ended && !going_on : going_on;
   };
   for (const auto& id : open)
     if (plausible(id) && try_sides({id})) {

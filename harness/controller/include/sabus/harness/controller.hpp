@@ -196,6 +196,7 @@ class Controller {
     TimePoint began{};         // how long it lasts is E-90's (search_end())
     bool returning = false;    // moving back to az0, el0
     AxisState az_from, el_from;  // as they were when it began
+    ModeState mode;              // as it began (SPIRAL_REMOTE_MODE)
   } search_;
   // §3.18: the movements of the LOCATE in progress, from where and when
   // they began (E-94 decides their order; set_reading redoes them).
@@ -203,6 +204,7 @@ class Controller {
     TimePoint began{};
     AxisState az_from, el_from;  // as they were when it began
     double az_to = 0, el_to = 0;
+    ModeState mode;              // as it began (LOCATE_MODE)
   } locate_;
   // Begins the LOCATE's movements to `locate_` as the side of E-94 taken
   // orders them (ERRATA E-94, §3.17 locate_states).
