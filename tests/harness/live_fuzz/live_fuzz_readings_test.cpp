@@ -4,6 +4,8 @@
 // entry and takes that side, and never makes a finding of it.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "sabus/harness/live_fuzz.hpp"
 #include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/profile_loader.hpp"
@@ -76,6 +78,58 @@ TEST(LiveFuzzReadings, AnAxisWithoutAReadingIsTakenFromItsCountAfterASearch) {
   }
   EXPECT_NEAR(s.lockstep()->model().state().el.position, t->bus().controller(0).state().el.position, 0.02);
 }
+
+// Each switchable reading on its own (sabus sim --reading E-NN=other), on a
+// profile where it shows (a circular feed for E-91, remote control disabled
+// for E-97): 3,000 writes with motion and stored writes give no finding,
+// and the entries the generator reaches within them are noted.
+struct OneReading {
+  const char* id;
+  const char* profile;  // a shipped profile's file name
+  bool noted;           // reached and noted within the writes (seed 1)
+};
+class LiveFuzzOneReading : public ::testing::TestWithParam<OneReading> {};
+
+TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
+  const OneReading c = GetParam();
+  const auto dir = std::filesystem::path(default_profile_path()).parent_path();
+  const Profile model = load_profile_file((dir / c.profile).string()).profile.value();
+  Profile device = model;
+  device.readings[c.id] = ReadingSide::kOther;
+  auto t = make_in_process_transport({device}, {});
+  SessionOptions o;
+  o.allow_motion = o.allow_destructive = true;
+  Session session(*t, model, o);
+  GeneratorOptions go{model.address, true, true, true, {}, {}, &model};
+  for (const StoredSatellite& st : model.store) go.names.push_back(st.name);
+  Generator generator(go, 1);
+  const Lockstep* l = session.lockstep();
+  generator.set_rules_fired(&l->coverage().rules_fired);
+  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  for (int i = 0; i < 3000; ++i) {
+    FuzzFrame f = generator.next();
+    for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
+      const Bytes poll = encode_frame({FrameKind::kCommand, model.address, 0x31, {}});
+      f.chars.insert(f.chars.end(), poll.begin(), poll.end());
+    }
+    const auto v = session.step(f);
+    ASSERT_FALSE(v) << "write " << i << " (" << f.what << "): " << to_string(v->kind) << ": " << v->message;
+  }
+  if (c.noted) EXPECT_NE(noted(session).find(std::string(c.id) + ":other"), std::string::npos) << noted(session);
+}
+
+INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
+                         ::testing::Values(OneReading{"E-66", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-90", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-91", "circular-no-stow.yaml", false},
+                                           OneReading{"E-92", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-93", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-94", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-95", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-96", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-97", "remote-disabled.yaml", false},
+                                           OneReading{"E-98", "rc3000-1.59.yaml", true}),
+                         [](const auto& info) { return std::string(info.param.id).replace(1, 1, ""); });
 
 }  // namespace
 }  // namespace sabus::harness::live_fuzz
