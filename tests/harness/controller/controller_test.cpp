@@ -6,7 +6,8 @@
 #include <set>
 
 #include "sabus/harness/controller.hpp"
-#include "controller_internal.hpp"  // the submode table, checked row by row
+#include "controller_internal.hpp"
+#include "controller_rig.hpp"  // the submode table, checked row by row
 
 namespace sabus::harness {
 namespace {
@@ -39,36 +40,9 @@ RemoteLocate locate_satellite(std::string name, std::int32_t longitude_tenths) {
   return l;
 }
 
-struct Rig {
-  explicit Rig(Profile p = test_profile(), FaultSet f = {}) : profile(std::move(p)), c(profile, clock, f) {}
-  VirtualClock clock;
-  Profile profile;
-  Controller c;
-
-  Outcome send(const Request& r) { return c.execute(request_frame(r, profile.address)); }
-  Outcome send_raw(std::uint8_t code, std::string_view data) {
-    return c.execute(Frame{FrameKind::kCommand, profile.address, code, Bytes(data.begin(), data.end())});
-  }
-  template <class T>
-  T reply(const Request& r) {
-    Outcome o = send(r);
-    EXPECT_TRUE(o.reply.has_value()) << o.note;
-    auto f = decode_frame(*o.reply);
-    EXPECT_TRUE(f.ok()) << f.error().message();
-    auto d = decode_reply(f.value());
-    EXPECT_TRUE(d.ok()) << d.error().message() << " in " << to_hex(*o.reply);
-    EXPECT_TRUE(std::holds_alternative<T>(d.value())) << o.note;
-    return std::get<T>(d.value());
-  }
-  void wait(Duration d) {
-    clock.advance(d);
-    c.update();
-  }
-  StatusBlock status() { return reply<StatusReply>(StatusPoll{}).status; }
-  ExtendedStatusReply extended() { return reply<ExtendedStatusReply>(ExtendedStatusPoll{}); }
+struct Rig : ControllerRig {
+  explicit Rig(Profile p = test_profile(), FaultSet f = {}) : ControllerRig(std::move(p), f) {}
 };
-
-bool is_nak(const Outcome& o) { return o.reply && !o.reply->empty() && (*o.reply)[0] == NAK; }
 
 // ---- §3.1 / §3.2 ------------------------------------------------------------------
 

@@ -4,6 +4,7 @@
 // `readings:` pins load, write back and parse from --reading.
 #include <gtest/gtest.h>
 
+#include "controller_rig.hpp"
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/readings.hpp"
@@ -33,30 +34,8 @@ Profile reading(Profile p, std::string_view id, ReadingSide side = ReadingSide::
   return p;
 }
 
-struct Rig {
-  explicit Rig(Profile p) : profile(std::move(p)), c(profile, clock) {}
-  VirtualClock clock;
-  Profile profile;
-  Controller c;
-
-  Outcome send(const Request& r) { return c.execute(request_frame(r, profile.address)); }
-  Outcome send_raw(std::uint8_t code, std::string_view data) {
-    return c.execute(Frame{FrameKind::kCommand, profile.address, code, Bytes(data.begin(), data.end())});
-  }
-  template <class T>
-  T reply(const Request& r) {
-    Outcome o = send(r);
-    EXPECT_TRUE(o.reply.has_value()) << o.note;
-    auto d = decode_reply(decode_frame(*o.reply).value());
-    EXPECT_TRUE(d.ok() && std::holds_alternative<T>(d.value())) << o.note;
-    return std::get<T>(d.value());
-  }
-  void wait(Duration d) {
-    clock.advance(d);
-    c.update();
-  }
-  StatusBlock status() { return reply<StatusReply>(StatusPoll{}).status; }
-  ExtendedStatusReply extended() { return reply<ExtendedStatusReply>(ExtendedStatusPoll{}); }
+struct Rig : ControllerRig {
+  using ControllerRig::ControllerRig;
   std::string mode() { return std::string(meanings::mode_name(extended().mode)); }
   std::string state() {
     const auto x = extended();
@@ -64,7 +43,6 @@ struct Rig {
   }
 };
 
-bool is_nak(const Outcome& o) { return o.reply && !o.reply->empty() && (*o.reply)[0] == NAK; }
 bool is_offline(const Outcome& o) {
   return o.reply && is_offline_reply(decode_frame(*o.reply).value());
 }
