@@ -376,6 +376,12 @@ Text expectation_text(const Expectation& e) {
   if (!e.fields.empty()) put(t, "fields", matchers_text(e.fields));
   if (!e.nak_rule.empty()) put(t, "rule", quoted(e.nak_rule));
   if (!e.from_profile.empty()) put(t, "from_profile", number_or_expression(e.from_profile));
+  // Each other side whole, with its reply: read back as written, not merged.
+  if (!e.readings.empty()) {
+    Container r = new_map();
+    for (const auto& alt : e.readings) r.force_insert(plain(alt.errata), expectation_text(alt.expect));
+    put(t, "readings", r);
+  }
   return t;
 }
 
