@@ -200,24 +200,23 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   profile_.readings[errata_id] = side;
   const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
   const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
-  // E-93: still in the mode a completed LOCATE went to (its exit is the
-  // last one): the mode the side taken goes to.
   const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
   const auto exit = exits ? exits->name_of(state_.mode.exit_status) : std::nullopt;
-  if (errata_id == "E-93" && state_.mode.last_mode == mode_value("LOCATE_MODE") && exit == "LOCATE_FUNCTION_COMPLETED" &&
-      (state == "MANUAL_IDLE" || state == "WAITING_FOR_USER_INPUT")) {
-    const ModeState kept = state_.mode;
-    if (side == ReadingSide::kOther) enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT");
-    else enter_mode("MANUAL_MODE", "MANUAL_IDLE");
-    state_.mode.last_mode = kept.last_mode;
-    state_.mode.exit_status = kept.exit_status;
-  }
   // A search or LOCATE that ended by itself, nothing taken over since: in
   // the mode it went to, with its own exit as the last one.
   auto ended_by_itself = [&](std::string_view mode, std::string_view normal_exit) {
     return meanings::mode_name(state_.mode.last_mode) == mode && exit == normal_exit &&
            (state == "MANUAL_IDLE" || state == "WAITING_FOR_USER_INPUT");
   };
+  // E-93: still in the mode a completed LOCATE went to: the mode the side
+  // taken goes to, the LOCATE's exit kept as the last one.
+  if (errata_id == "E-93" && ended_by_itself("LOCATE_MODE", "LOCATE_FUNCTION_COMPLETED")) {
+    const ModeState kept = state_.mode;
+    if (side == ReadingSide::kOther) enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT");
+    else enter_mode("MANUAL_MODE", "MANUAL_IDLE");
+    state_.mode.last_mode = kept.last_mode;
+    state_.mode.exit_status = kept.exit_status;
+  }
   // E-90: a search still running, or over by itself: again from where and
   // when it began (the other side's is over within a second).
   if (errata_id == "E-90" && (in_mode("SPIRAL_REMOTE_MODE") || ended_by_itself("SPIRAL_REMOTE_MODE", "SPIRAL_NO_PEAK_FOUND"))) {
@@ -517,8 +516,7 @@ void Controller::update() {
 void Controller::start_search(char pattern) {
   tick_origin_ = last_update_;
   chain_pending_ = false;
-  search_ = Search{pattern, axis(AxisId::kAz).position, axis(AxisId::kEl).position, 0, clock_.now(), false,
-                   state_.az, state_.el};
+  search_ = Search{pattern, 0, clock_.now(), false, state_.az, state_.el};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
   search_.mode = state_.mode;
   next_search_leg();
@@ -565,8 +563,8 @@ void Controller::next_search_leg() {
   }
   search_.returning = true;
   set_state("SPIRAL_SEARCH_NO_PEAK_MOVING_TO_AZIMUTH");
-  start_move(AxisId::kAz, search_.az0, false);
-  start_move(AxisId::kEl, search_.el0, false);
+  start_move(AxisId::kAz, search_.az_from.position, false);
+  start_move(AxisId::kEl, search_.el_from.position, false);
   if (!moving()) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "SPIRAL_NO_PEAK_FOUND");
 }
 

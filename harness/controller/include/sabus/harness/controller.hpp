@@ -191,11 +191,10 @@ class Controller {
   // §3.7 'A' (ERRATA E-90): the spiral search in progress.
   struct Search {
     char pattern = 'E';        // 'E' expanding, 'F' flat
-    double az0 = 0, el0 = 0;   // where it began: the nominal position it returns to
     int legs = 0;              // legs begun
     TimePoint began{};         // how long it lasts is E-90's (search_end())
-    bool returning = false;    // moving back to az0, el0
-    AxisState az_from, el_from;  // as they were when it began
+    bool returning = false;    // moving back to where it began (az_from, el_from)
+    AxisState az_from, el_from;  // as they were when it began: the nominal position it returns to
     ModeState mode;              // as it began (SPIRAL_REMOTE_MODE)
   } search_;
   // §3.18: the movements of the LOCATE in progress, from where and when
