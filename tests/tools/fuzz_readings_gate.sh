@@ -7,7 +7,8 @@
 # legal profiles of a fixed sweep seed and fuzz seed (open points left
 # open; in-process runs repeat exactly), then the
 # default profile over a pseudo-terminal. A run with a finding fails the
-# gate; its reproducer stays in WORKDIR.
+# gate; its reproducer stays in WORKDIR. Then the profiles of
+# tests/tools/fuzz-regressions, each with the fuzz seed that once found.
 # Then, as a measurement printed and not asserted: 20 profiles of a fresh
 # sweep seed (a long tail of limit and LOCATE timings remains there, see
 # protocol/ERRATA.md E-90 and E-94).
@@ -55,6 +56,15 @@ for p in "$work"/random/sweep-*.yaml; do
   fuzz_one "$(basename "$p" .yaml)" --sim --reading other --profile "$p"
 done
 seed=$fuzz_seed
+
+# Profiles that once gave a finding on a legal controller
+# (tests/tools/fuzz-regressions/README.md), with the fuzz seed that did.
+regressions="$(dirname "$0")/fuzz-regressions"
+for p in "$regressions"/sweep-*.yaml; do
+  fuzz_seed=$seed seed=7
+  fuzz_one "regression-$(basename "$p" .yaml)" --sim --reading other --profile "$p"
+  seed=$fuzz_seed
+done
 
 # Over a pseudo-terminal: the controller behind a line, the fuzzer's timing
 # rules (the lockstep's runs earlier and later) at work.

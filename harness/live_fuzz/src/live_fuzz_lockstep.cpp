@@ -315,6 +315,7 @@ void Lockstep::rebuild(TimePoint now) {
   arrived_at_ = {};
   settle_mode_ = {};
   position_unknown_ = {};
+  locate_outran_ = false;
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
 }
 
@@ -336,16 +337,29 @@ bool Lockstep::kept_as_before(const FuzzFrame& frame, std::size_t reply, std::st
   return v && *v != model_value && *v == device_value;
 }
 
-std::optional<double> Lockstep::count_degrees(std::string_view raw) const {
-  // The field as describe_frame shows it: the digits in double quotes.
+// A count's five digits as describe_frame shows them (in double quotes).
+static std::optional<std::uint32_t> count_value(std::string_view raw) {
   if (raw.size() >= 2 && raw.front() == '"' && raw.back() == '"') raw = raw.substr(1, raw.size() - 2);
+  if (raw.empty()) return std::nullopt;
   std::uint32_t count = 0;
   for (const char c : raw) {
     if (c < '0' || c > '9') return std::nullopt;
     count = count * 10 + static_cast<std::uint32_t>(c - '0');
   }
-  if (raw.empty() || profile_.counts_per_degree <= 0) return std::nullopt;
-  return (static_cast<double>(count) - profile_.count_offset) / profile_.counts_per_degree;
+  return count;
+}
+
+// A count at either end of its five digits stands for no one position: held
+// there past it, or wrapped (§3.16 gives no rule; ERRATA E-85).
+static bool count_at_an_end(std::string_view raw) {
+  const auto count = count_value(raw);
+  return count && (*count == 0 || *count == 99999);
+}
+
+std::optional<double> Lockstep::count_degrees(std::string_view raw) const {
+  const auto count = count_value(raw);
+  if (!count || count_at_an_end(raw) || profile_.counts_per_degree <= 0) return std::nullopt;
+  return (static_cast<double>(*count) - profile_.count_offset) / profile_.counts_per_degree;
 }
 
 double Lockstep::drift_window(const AxisProfile& axis, Duration uncertainty) {
@@ -516,13 +530,14 @@ struct Lockstep::Memory {
   bool device_led, stopped_out, handed_over, model_was_led, moving_when_stopped, device_seen_moving, half_turn;
   LockstepCoverage coverage;
   std::array<bool, 3> position_unknown;
+  bool locate_outran;
 };
 
 Lockstep::Memory Lockstep::remember() const {
   return Memory{std::make_unique<Bus>(*bus_), last_, drifted_, moved_on_line_, at_limit_agreed_, auto_moving_,
                 uncertainty_since_rest_, arrived_at_, arrived_position_, settle_until_, settle_mode_, device_led_,
                 stopped_out_, handed_over_, model_was_led_, moving_when_stopped_, device_seen_moving_, half_turn_,
-                coverage_, position_unknown_};
+                coverage_, position_unknown_, locate_outran_};
 }
 
 void Lockstep::recall(const Memory& m) {
@@ -545,6 +560,7 @@ void Lockstep::recall(const Memory& m) {
   moving_when_stopped_ = m.moving_when_stopped;
   device_seen_moving_ = m.device_seen_moving;
   half_turn_ = m.half_turn;
+  locate_outran_ = m.locate_outran;
   coverage_ = m.coverage;
   position_unknown_ = m.position_unknown;
 }
@@ -688,6 +704,7 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
     }
   }
   note_arrivals();
+  note_locate_outran(device);
   if (j.take_modes && !j.finding)
     for (const Frame& dev : device)
       if (const auto x = extended_status(dev)) {
@@ -721,23 +738,34 @@ std::vector<Lockstep::Run> Lockstep::runs_of(const FuzzFrame& frame, TimePoint a
     // jog there (its frames run microseconds apart in a device, 1 ms apart
     // in the model) takes a device's axis a hair off where the model's
     // stays (random profiles over a pty gave JogIntoLimit findings).
-    const bool one_frame = cuts_.empty();
-    if (moved_on_line_[0] || moved_on_line_[1] || moved_on_line_[2])
-      for (const double nudge : kNudgesDeg) {
-        Bus nudged(*bus_);
-        // At the frame's time first: a jog that has run out by then (a 0 ms
-        // one still pending after the write before) is at rest, and nudged.
-        clock_->set(at);
-        nudged.tick();
-        ControllerState& st = nudged.controller(0).mutable_state();
-        for (std::size_t a = 0; a < 3; ++a) {
-          AxisState& ax = by_axis(st, a);
-          if (moved_on_line_[a] && ax.motion == AxisState::Motion::kIdle && !(one_frame && at_limit_agreed_[a]))
-            ax.position += nudge;
-        }
-        runs.push_back(run(nudged, at, frame));
-      }
   }
+  // An axis taken over from the device's readings (to their tenths, after a
+  // STOW, DEPLOY or search) that the model has at rest at a limit may stand a
+  // hair short of it in the device, or the reverse (§3.2 bytes 32-34, §3.4):
+  // nudged too, in-process as on a line, unless the device has said it is at
+  // that limit.
+  const bool one_frame = cuts_.empty();
+  std::array<bool, 3> nudge_axis{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const AxisState& ax = by_axis(model().state(), a);
+    nudge_axis[a] = (uncertainty > Duration{0} && moved_on_line_[a]) ||
+                    (drifted_[a] && ax.motion == AxisState::Motion::kIdle && !at_limit_agreed_[a] &&
+                     near_a_limit(axis_profile(a), ax.position, 0.1));
+  }
+  if (nudge_axis[0] || nudge_axis[1] || nudge_axis[2])
+    for (const double nudge : kNudgesDeg) {
+      Bus nudged(*bus_);
+      // At the frame's time first: a jog that has run out by then (a 0 ms
+      // one still pending after the write before) is at rest, and nudged.
+      clock_->set(at);
+      nudged.tick();
+      ControllerState& st = nudged.controller(0).mutable_state();
+      for (std::size_t a = 0; a < 3; ++a) {
+        AxisState& ax = by_axis(st, a);
+        if (nudge_axis[a] && ax.motion == AxisState::Motion::kIdle && !(one_frame && at_limit_agreed_[a])) ax.position += nudge;
+      }
+      runs.push_back(run(nudged, at, frame));
+    }
   runs.insert(runs.begin(), run(*bus_, at, frame, true));
   return runs;
 }
@@ -896,6 +924,7 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
     return report(FindingKind::kEffect, *judged);
   }
   if (std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; })) return true;
+  if (const auto outran = judge_outran_locate(j, r, f)) return *outran;
   // §3.17 locate_exit_conditions pair a STOP_KEY and a MODE_CHANGED entry
   // with each movement of a LOCATE, whose order is the device's (ERRATA
   // E-94): a LOCATE left by the same cause in another movement than the
@@ -969,6 +998,11 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
   // axis's window as its reading is (one count more); a hundredths digit is
   // not (but after an arrival: judge_arrival_hundredths).
   if (has_axis && is_fine_position(f.name) && position_unknown_[axis]) return true;  // taken (keep_in_step)
+  // A count past its five digits is the device's (ERRATA E-85): where the
+  // device's or a run's count is at an end, not judged.
+  if (has_axis && f.name.ends_with(" count") &&
+      (count_at_an_end(f.raw) || std::any_of(values.begin(), values.end(), [](const std::string* v) { return v && count_at_an_end(*v); })))
+    return true;
   if (has_axis && is_fine_position(f.name) &&
       (moving || drifted_[axis] || moved_on_line_[axis] || !r.position_exact[axis])) {
     const auto dc = f.name.ends_with(" count") ? count_degrees(f.raw) : std::nullopt;
@@ -1186,6 +1220,43 @@ void Lockstep::note_arrivals() {
       arrived_at_[a].reset();
     }
   }
+}
+
+// ERRATA E-94: the order and pace of a LOCATE's movements are the device's.
+// Whether the model's LOCATE has completed while the device's status still
+// shows an axis moving after it; cleared by a new LOCATE in the model, or
+// once an extended status has shown the device's mode bytes.
+void Lockstep::note_locate_outran(const std::vector<Frame>& device) {
+  const ModeState& ms = model().state().mode;
+  if (meanings::mode_name(ms.mode) == "LOCATE_MODE") {
+    locate_outran_ = false;
+    return;
+  }
+  for (const Frame& dev : device)
+    if (extended_status(dev)) locate_outran_ = false;
+  const bool completed = meanings::mode_name(ms.last_mode) == "LOCATE_MODE" &&
+                         meanings::exit_name(ms.last_mode, ms.exit_status) == "LOCATE_FUNCTION_COMPLETED";
+  if (completed && std::any_of(device.begin(), device.end(), [](const Frame& dev) { return shows_moving(dev) == true; }))
+    locate_outran_ = true;
+}
+
+std::optional<bool> Lockstep::judge_outran_locate(Judging& j, const AckJudging& r, const Field& f) {
+  // The device's LOCATE still moved where the model's had completed, and a
+  // stop or another command has left it since: its last mode is the LOCATE,
+  // left by a STOP_KEY or MODE_CHANGED entry (§3.17 locate_exit_conditions),
+  // where the model's last mode is the one its completed LOCATE went to. A
+  // note while E-94 is open; the model takes the device's mode bytes.
+  if (!locate_outran_ || side_pinned(profile_.readings, "E-94")) return std::nullopt;
+  if (f.name != "last exited mode" && f.name != "exit status") return std::nullopt;
+  const auto x = extended_status(r.dev);
+  if (!x || meanings::mode_name(x->last_mode) != "LOCATE_MODE" || x->mode != r.nominal().mode.mode) return std::nullopt;
+  const std::string exit = meanings::exit_name(x->last_mode, x->exit_status);
+  if (!(exit.ends_with("_STOP_KEY") || exit.ends_with("_MODE_CHANGED") || exit.ends_with("_MODE_CHANGE"))) return std::nullopt;
+  if (f.name == "last exited mode")
+    note_reading({"E-94"}, Verdict{FindingKind::kValue, "field 'last exited mode' (§3.17) is " + f.raw + " with exit " + exit +
+                                                          ": the device's LOCATE still moved when the model's had completed, and was left"});
+  j.take_modes = true;
+  return true;
 }
 
 }  // namespace sabus::harness::live_fuzz

@@ -267,14 +267,18 @@ constexpr double kMaxCount = 99999;
 // count_low / count_high (axis, deg): the counts a controller at a position
 // read as `deg` can report (§3.16; ERRATA E-85): count_offset + position x
 // counts_per_degree for every position the reading stands for, one count
-// either way for the sensor's own rounding, held to 0-99999.
+// either way for the sensor's own rounding. A position whose count lies past
+// five digits (below 0 or above 99999) may show any count: held at the end or
+// wrapped, §3.16 gives no rule (ERRATA E-85), so its bounds are 0 and 99999.
 Result count_bound(const Call& c, int side) {
   // An axis without a reading ('*', E-42) gives no capture to count from.
   return with_read_axis(c, [&](motion::Axis, const AxisProfile&) {
     if (auto e = c.numbers({1})) return error(*e);
     const Profile& p = c.cx.profile;
-    const double at = p.count_offset + (c.args[1].number + side * kReadingSpan) * p.counts_per_degree;
-    const double bound = side < 0 ? std::floor(at) - 1 : std::ceil(at) + 1;
+    const double low = p.count_offset + (c.args[1].number - kReadingSpan) * p.counts_per_degree;
+    const double high = p.count_offset + (c.args[1].number + kReadingSpan) * p.counts_per_degree;
+    if (low < 0 || high > kMaxCount) return number(side < 0 ? 0.0 : kMaxCount);
+    const double bound = side < 0 ? std::floor(low) - 1 : std::ceil(high) + 1;
     return number(std::clamp(bound, 0.0, kMaxCount));
   });
 }
@@ -638,10 +642,10 @@ const Function kFunctions[] = {
     {{"positive", "axis", "a positive position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
      [](const Call& c) { return position_of_sign(c, 1); }},
     {{"count_low", "axis, deg",
-      "the lowest pulse count a position read as deg can give: the reading's 0.1 deg and one count below (§3.16, E-85)"},
+      "the lowest pulse count a position read as deg can give: the reading's 0.1 deg and one count below; 0 where the count lies past five digits (§3.16, E-85)"},
      2, [](const Call& c) { return count_bound(c, -1); }},
     {{"count_high", "axis, deg",
-      "the highest pulse count a position read as deg can give: the reading's 0.1 deg and one count above (§3.16, E-85)"},
+      "the highest pulse count a position read as deg can give: the reading's 0.1 deg and one count above; 99999 where the count lies past five digits (§3.16, E-85)"},
      2, [](const Call& c) { return count_bound(c, +1); }},
     {{"hundredths_min", "axis, reading, target",
       "the lowest hundredths digit (§3.17 bytes 49-50) that puts the tenths reading within the arrival window of a "

@@ -205,6 +205,21 @@ TEST(Expressions, HugeNumbersAreErrorsNotConversions) {
   EXPECT_EQ(format_number(999999999999999.0), "999999999999999");
 }
 
+// §3.16, ERRATA E-85: a reading's counts, one count either way; a position
+// whose count lies past five digits may show any count (held at an end or
+// wrapped), so its bounds widen to 0 and 99999.
+TEST(Expressions, CountBoundsAreTheReadingsCountsOrAnyPastFiveDigits) {
+  Profile p = profile_with_el(-10, 80, 2, 1);
+  p.count_offset = 10000;
+  p.counts_per_degree = 1000;
+  EXPECT_EQ(expand("{count_low(el, 20)}", p).text, "29899");
+  EXPECT_EQ(expand("{count_high(el, 20)}", p).text, "30101");
+  EXPECT_EQ(expand("{count_low(el, 89.95)}", p).text, "0");  // 99850 to 100050
+  EXPECT_EQ(expand("{count_high(el, 89.95)}", p).text, "99999");
+  EXPECT_EQ(expand("{count_low(el, -9.95)}", p).text, "0");  // -50 to 150
+  EXPECT_EQ(expand("{count_high(el, -9.95)}", p).text, "99999");
+}
+
 TEST(Expressions, ACountIsWholeAndInRange) {
   EXPECT_EQ(count_in(12.9, 1, 20).value, 12);
   EXPECT_EQ(count_in(12.9, 1, 20).error, std::nullopt);

@@ -484,6 +484,12 @@ class Lockstep {
   // A/D error, E-42): where the device left it shows first in a pulse count
   // (§3.16), which is taken, not judged.
   std::array<bool, 3> position_unknown_{};
+  void note_locate_outran(const std::vector<Frame>& device);
+  std::optional<bool> judge_outran_locate(Judging& j, const AckJudging& r, const ReplyField& f);
+  // The model's LOCATE completed while the device's still moved (its legs
+  // in another order or at another pace, E-94): a stop that follows may
+  // leave the device's LOCATE, where the model's has none to leave.
+  bool locate_outran_ = false;
   LockstepCoverage coverage_;
 };
 
