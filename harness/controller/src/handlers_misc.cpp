@@ -123,7 +123,9 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
   for (const auto& j : kJogKeys) {
     if (j.key != key) continue;
     if (j.axis == AxisId::kPol && c.profile_.pol_type == PolType::kCircular) break;
-    if (!c.limit(j.axis, j.dir)) c.start_jog(j.axis, j.dir, c.axis(j.axis).fast, kKeyJogHold);
+    // At the speed the axis is configured for (the Speed key's or the last
+    // jog's), not an auto move's: E-98, whichever side 'S' shows.
+    if (!c.limit(j.axis, j.dir)) c.start_jog(j.axis, j.dir, c.axis(j.axis).configured_fast, kKeyJogHold);
     break;
   }
   if (key == '0')

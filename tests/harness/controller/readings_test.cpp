@@ -257,6 +257,22 @@ TEST(Readings, E98TheOtherSideShowsTheConfiguredSpeedInAnAutoMove) {
   EXPECT_EQ(other.status().az_status, 0x07) << "slow as configured, remote auto move";
 }
 
+// E-98: a key jog (§3.7 'K') runs at the speed the axis is configured for
+// on both sides, not at the speed of the auto move before it (the reference
+// side's 'S' after that move is 1; the random profiles of the live fuzzer
+// found the sides jogging at different speeds).
+TEST(Readings, E98AKeyJogRunsAtTheConfiguredSpeedOnBothSides) {
+  Profile slow = site_profile();
+  slow.az.power_on_speed = AxisSpeed::kSlow;
+  Rig ref(slow), other(reading(slow, "E-98"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMoveAzEl{200, 450}})));
+    r->wait(600s);
+    ASSERT_FALSE(is_nak(r->send(Misc{'K', '6'})));  // azimuth CW, held for the remote jog time
+    EXPECT_EQ(r->status().az_status & 0x1F, 0x05) << "moving clockwise, slow";
+  }
+}
+
 // E-66: 'C' after a LOCATE and a jog.
 TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
   Rig ref(site_profile()), other(reading(site_profile(), "E-66"));
