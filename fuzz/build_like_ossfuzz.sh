@@ -3,8 +3,9 @@
 # service's Docker image cannot run here): CC, CXX, CFLAGS, CXXFLAGS,
 # LIB_FUZZING_ENGINE, SRC, WORK and OUT set as base-builder sets them for
 # libFuzzer, with clang-14. Then checks that $OUT has every target of
-# fuzz_targets.txt with its seed-corpus zip, .dict and .options, and that
-# each target runs its seed corpus.
+# fuzz_targets.txt with its seed-corpus zip, .dict and .options, that
+# each target runs its seed corpus, and that each one runs a few seconds from
+# an empty corpus (run_empty_corpus.sh).
 #   fuzz/build_like_ossfuzz.sh [OUT_DIR]     (SANITIZER=address|undefined, default address)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -46,6 +47,9 @@ for t in $targets; do
   else
     echo "ok: $t ($seeds seeds, $(grep -o 'cov: [0-9]*' "$corpus.log" | tail -1))"
   fi
+  # And from nothing, as the service's bad-build check and a job without a
+  # stored corpus run it.
+  bash "$root/fuzz/run_empty_corpus.sh" "$OUT/$t" "$OUT/$t.options" || missing=1
 done
 if ((n == 0)); then echo "no targets listed"; exit 1; fi
 # The service's CXXFLAGS instrument everything; the targets still get

@@ -4,8 +4,8 @@
 # (ASan+UBSan) flavours, and runs the whole ctest suite in both (the release
 # suite builds the Debian package and runs it from a fresh prefix); with clang
 # present it also builds the libFuzzer targets, runs each for FUZZ_SECONDS
-# (default 30) from its seed corpus, and builds them as ClusterFuzzLite does
-# (fuzz/build_like_ossfuzz.sh).
+# (default 30) from its seed corpus and 5 s from an empty one, and builds
+# them as ClusterFuzzLite does (fuzz/build_like_ossfuzz.sh).
 # Ends with one line "tests: N passed, N failed" over all runs, and exits
 # non-zero when any test failed.
 set -euo pipefail

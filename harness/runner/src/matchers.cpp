@@ -6,6 +6,7 @@
 #include <functional>
 #include <regex>
 #include <sstream>
+#include <unordered_map>
 
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/runner.hpp"
@@ -179,6 +180,22 @@ std::optional<std::string> check_reading(const FrameDescription& reply, const Fi
   return fail(want);
 }
 
+// A regex matcher's pattern, compiled once per thread: compiling a
+// std::regex costs far more than the search (each check compiling its
+// pattern was a third of a sweep's time), and a suite has a few dozen
+// patterns. Per thread, so the sweep's parallel profiles share nothing; a
+// pattern that does not compile throws as before and is not kept.
+const std::regex& compiled_regex(const std::string& pattern) {
+  thread_local std::unordered_map<std::string, std::regex> kept;
+  auto it = kept.find(pattern);
+  if (it == kept.end()) {
+    std::regex re(pattern);
+    if (kept.size() >= 1024) kept.clear();  // patterns built from captures could grow it without end
+    it = kept.emplace(pattern, std::move(re)).first;
+  }
+  return it->second;
+}
+
 std::optional<std::string> check_one_field(const FrameDescription& reply, const FieldDescription& field,
                                            const FieldMatcher& m, Captures& captures) {
   const std::string got = matcher_text(field);
@@ -201,7 +218,7 @@ std::optional<std::string> check_one_field(const FrameDescription& reply, const 
     }
     case FieldMatcher::Kind::kRegex:
       try {
-        if (!m.values.empty() && !std::regex_search(got, std::regex(m.values[0]))) return fail("/" + m.values[0] + "/");
+        if (!m.values.empty() && !std::regex_search(got, compiled_regex(m.values[0]))) return fail("/" + m.values[0] + "/");
       } catch (const std::regex_error&) {
         return "matcher for \"" + m.field + "\": bad regex /" + m.values[0] + "/";
       }

@@ -3,10 +3,12 @@
 #include "sabus/harness/locate_targets.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <tuple>
 
 namespace sabus::harness::locate {
 namespace {
@@ -29,26 +31,65 @@ motion::Interval in_view(const Profile& p) {
   return {std::max(kLowestElevation, p.el.min_deg + kInsideLimits), std::min(kHighestElevation, p.el.max_deg - kInsideLimits)};
 }
 
+// Which search a cached answer belongs to.
+enum class Target : std::uint8_t { kVisible, kBelowHorizon, kOutsideAzimuth, kAboveElevation };
+
+// Everything a search reads: the site (navigation data, sensor, heading
+// kind, as site_of reduces them) and both axes' limits. Two profiles with the
+// same key have the same targets.
+struct SearchKey {
+  Target target;
+  double lat, lon, offset, az_min, az_max, el_min, el_max;
+  bool operator==(const SearchKey&) const = default;
+};
+
+// The answers of the last few searches on this thread. A search tries 3,599
+// longitudes (a sine, a cosine and two arc tangents each), and the same
+// profile asks for the same target each time a vector expands a LOCATE
+// expression: a run asks hundreds of times, a sweep the same for every
+// profile. Keyed by what the search reads, so a changed profile misses; per
+// thread, so the sweep's parallel profiles share nothing.
+motion::Maybe<double> cached(const SearchKey& key, const std::function<motion::Maybe<double>()>& search) {
+  struct Entry {
+    SearchKey key;
+    motion::Maybe<double> result;
+  };
+  constexpr std::size_t kKept = 8;  // four targets, for a profile and the one before
+  thread_local std::array<std::optional<Entry>, kKept> kept;
+  thread_local std::size_t next = 0;
+  for (const auto& e : kept)
+    if (e && e->key == key) return e->result;
+  auto result = search();
+  kept[next] = Entry{key, result};
+  next = (next + 1) % kKept;
+  return result;
+}
+
 // The longitude, in tenths of a degree from -179.9 to 179.9 (§3.18 bytes
 // 15-20), whose pointing scores highest; a score below 0 rules it out. Each
 // score is the least of the margins the target keeps, so the one chosen
 // keeps them all best.
 using Score = std::function<double(const look::Pointing&)>;
-motion::Maybe<double> best(const Profile& p, const Score& score, const std::string& wanted) {
+motion::Maybe<double> best(const Profile& p, Target target, const Score& score, const std::string& wanted) {
   const auto site = site_of(p);
   if (!site.value) return {std::nullopt, site.reason};
-  std::optional<double> lon;
-  double top = 0;
-  for (int tenths = -1799; tenths <= 1799; ++tenths) {
-    const double x = tenths / 10.0;
-    const double s = score(look::pointing(*site.value, x));
-    if (s >= 0 && (!lon || s > top)) {
-      top = s;
-      lon = x;
+  const look::Site& at = *site.value;
+  const SearchKey key{target, at.latitude_deg, at.longitude_deg, at.azimuth_offset_deg,
+                      p.az.min_deg, p.az.max_deg, p.el.min_deg, p.el.max_deg};
+  return cached(key, [&]() -> motion::Maybe<double> {
+    std::optional<double> lon;
+    double top = 0;
+    for (int tenths = -1799; tenths <= 1799; ++tenths) {
+      const double x = tenths / 10.0;
+      const double s = score(look::pointing(at, x));
+      if (s >= 0 && (!lon || s > top)) {
+        top = s;
+        lon = x;
+      }
     }
-  }
-  if (!lon) return {std::nullopt, wanted};
-  return {lon, {}};
+    if (!lon) return {std::nullopt, wanted};
+    return {lon, {}};
+  });
 }
 
 std::string degrees_text(double x) {
@@ -62,7 +103,7 @@ std::string degrees_text(double x) {
 motion::Maybe<double> visible(const Profile& p) {
   const motion::Interval el = in_view(p);
   return best(
-      p,
+      p, Target::kVisible,
       [&](const look::Pointing& to) {
         return std::min({to.elevation_deg - el.low, el.high - to.elevation_deg, inside_azimuth(p, to.azimuth_deg) - kInsideLimits});
       },
@@ -73,7 +114,7 @@ motion::Maybe<double> visible(const Profile& p) {
 motion::Maybe<double> below_horizon(const Profile& p) {
   const double top = std::min(0.0, p.el.min_deg) - kBeyondLimits;
   return best(
-      p,
+      p, Target::kBelowHorizon,
       [&](const look::Pointing& to) {
         return std::min({top - to.elevation_deg, to.elevation_deg - kDeepestElevation,
                          inside_azimuth(p, to.azimuth_deg) - kInsideLimits});
@@ -85,7 +126,7 @@ motion::Maybe<double> below_horizon(const Profile& p) {
 motion::Maybe<double> outside_azimuth(const Profile& p) {
   const motion::Interval el = in_view(p);
   return best(
-      p,
+      p, Target::kOutsideAzimuth,
       [&](const look::Pointing& to) {
         return std::min({to.elevation_deg - el.low, el.high - to.elevation_deg,
                          look::azimuth_outside_by(p.az, to.azimuth_deg) - kBeyondLimits});
@@ -97,7 +138,7 @@ motion::Maybe<double> outside_azimuth(const Profile& p) {
 motion::Maybe<double> above_elevation(const Profile& p) {
   const double bottom = p.el.max_deg + kBeyondLimits;
   return best(
-      p,
+      p, Target::kAboveElevation,
       [&](const look::Pointing& to) {
         return std::min({to.elevation_deg - bottom, kHighestElevation - to.elevation_deg,
                          inside_azimuth(p, to.azimuth_deg) - kInsideLimits});

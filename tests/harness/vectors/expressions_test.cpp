@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/expressions.hpp"
@@ -113,6 +116,42 @@ TEST(Expressions, LocateSatellitesComeFromTheSiteHeadingAndRanges) {
   EXPECT_EQ(expand("{locate_any()}", lost).text, "0");
   EXPECT_EQ(expand("{locate_az(100.0)}", lost).kind, Kind::kUnavailable);
   EXPECT_EQ(expand("{locate_az(180.1)}", p).kind, Kind::kError);
+}
+
+// The LOCATE targets are kept per thread, keyed by what their search reads
+// (locate_targets.cpp): whatever was asked before, each answer is the one a
+// thread that never searched gives (a new thread starts with nothing kept).
+TEST(Expressions, LocateTargetsFollowEveryChangeOfTheProfile) {
+  const char* const kTargets[] = {"{locate_visible()}", "{locate_below_horizon()}", "{locate_outside_az()}",
+                                  "{locate_above_el()}"};
+  auto answers = [&](const Profile& p) {
+    std::vector<std::string> out;
+    for (const char* t : kTargets) out.push_back(expand(t, p).text);
+    return out;
+  };
+  auto on_a_new_thread = [&](const Profile& p) {
+    std::vector<std::string> out;
+    std::thread([&] { out = answers(p); }).join();
+    return out;
+  };
+  const Profile base = southern_site();
+  std::vector<Profile> changed(8, base);
+  changed[0].navigation.latitude_min = *base.navigation.latitude_min + 600;
+  changed[1].navigation.longitude_min = *base.navigation.longitude_min - 1200;
+  changed[2].navigation.heading_tenths = 900;
+  changed[3].az.min_deg = base.az.min_deg + 40;
+  changed[4].az.max_deg = base.az.max_deg - 10;
+  changed[5].el.min_deg = 20;
+  changed[6].el.max_deg = 30;
+  changed[7].navigation.latitude_min.reset();
+  const auto first = answers(base);
+  EXPECT_EQ(first, on_a_new_thread(base));
+  for (const Profile& p : changed) {
+    const auto got = answers(p);
+    EXPECT_EQ(got, on_a_new_thread(p));
+    EXPECT_EQ(answers(base), first) << "asked again after another profile";
+  }
+  EXPECT_NE(answers(changed[6]), first) << "a lower elevation limit moves the targets";
 }
 
 TEST(Expressions, CapturesAreNumbersWhenTheyReadAsNumbers) {
