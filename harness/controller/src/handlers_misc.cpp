@@ -68,6 +68,9 @@ Outcome Handlers::misc(C& c, const Misc& m) {
       c.start_move(AxisId::kEl, c.profile_.el.has_stow_limit ? c.profile_.el.stow_deg : c.profile_.el.min_deg, false);
       if (c.profile_.pol.has_stow_limit && c.profile_.pol_type != PolType::kCircular)
         c.start_move(AxisId::kPol, c.profile_.pol.stow_deg, false);
+      // Already stowed: the STOW finishes at once (as a LOCATE or DEPLOY
+      // with nothing to move does), not a STOW_MODE that never ends.
+      if (!c.moving()) c.on_motion_done();
       return status(c, 0x36, "stow");
     case 'D':
       if (!c.profile_.deploy && !c.faults_.has(Fault::kStowWithoutCapability))

@@ -372,6 +372,21 @@ TEST(Controller, StowReachesEveryStowLimit) {
   EXPECT_EQ(s.el_limits & 1, 0) << "elevation away from its stow position";
 }
 
+// A STOW from the stow position has nothing to move: it finishes at once
+// instead of staying in STOW_MODE.
+TEST(Controller, StowFromTheStowPositionFinishes) {
+  Profile p = test_profile();
+  p.az.initial_deg = 0.0;
+  p.el.has_stow_limit = true;
+  p.el.stow_deg = p.el.initial_deg;
+  Rig r(p);
+  r.send(Misc{'S', ' '});
+  r.wait(1s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "MANUAL_MODE");
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "STOW_FINISHED_NORMALLY");
+}
+
 // ERRATA E-90: the reference search moves leg by leg about where it began,
 // then returns there and exits with no peak found.
 TEST(Controller, ASearchMovesAboutWhereItBeganAndReturns) {
