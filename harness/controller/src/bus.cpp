@@ -7,8 +7,9 @@
 namespace sabus::harness {
 
 ReceiverOptions receiver_options(const Profile& profile, const FaultSet& faults, Parity parity) {
-  ReceiverOptions o = faults.has(Fault::kAnswersForeignAddress) ? ReceiverOptions::slave_any_address()
-                                                                : ReceiverOptions::slave(profile.address);
+  // The faults that act on frames for other addresses take every address in.
+  const bool any_address = faults.has(Fault::kAnswersForeignAddress) || faults.has(Fault::kNaksForeignFrames);
+  ReceiverOptions o = any_address ? ReceiverOptions::slave_any_address() : ReceiverOptions::slave(profile.address);
   o.parity = faults.has(Fault::kIgnoresParity) ? Parity::kUnchecked : parity;
   o.stx_restarts_in_data = profile.stx_restarts_in_data;                      // E-7
   o.check_byte_restarts_on_stx = faults.has(Fault::kCheckByteStxRestarts);
@@ -99,6 +100,23 @@ void Bus::receive(ByteView wire, Bytes& out) {
     }
     u->discards.clear();
     for (const Frame& f : u->frames) {
+      const bool foreign = f.address != u->controller.profile().address;
+      if (foreign && !u->controller.faults().has(Fault::kAnswersForeignAddress)) {
+        // Fault naks-foreign-frames: §1 "A remote station only sends a
+        // response following a command containing its unique address", but
+        // this one NAKs a frame for another address that it would NAK for its
+        // own (unknown code, wrong length, bad data), executing nothing: the
+        // NAK is decided on a copy.
+        Controller probe = u->controller;
+        Frame own = f;
+        own.address = probe.profile().address;
+        if (probe.execute(own).nak) {
+          Bytes nak = encode_frame(nak_reply(f.address, f.command));
+          append_to_line(out, nak);
+          if (transcript_) log_ += "reply " + to_hex(nak) + " (NAK for a frame to another address)\n";
+        }
+        continue;
+      }
       if (transcript_) {
         const Bytes in = encode_frame(f);
         log_ += "command " + to_hex(in) + "  " + describe_frame(in).summary + "\n";

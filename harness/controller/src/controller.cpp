@@ -714,7 +714,7 @@ StatusBlock Controller::status_block() const {
   b.elevation = reading(AxisId::kEl);
   b.polarization = reading(AxisId::kPol);  // '******' also "not equipped with a rotating feed"
   auto limit_bits = [&](AxisId a) {
-    return static_cast<std::uint8_t>((limit(a, +1) ? 4 : 0) | (limit(a, -1) ? 2 : 0) | (stow_limit(a) ? 1 : 0));
+    return static_cast<std::uint8_t>((limit(a, +1) ? 4 : 0) | (limit(a, -1) ? 2 : 0) | (stow_limit(a) && !faults_.has(Fault::kStowLimitBitsMissing) ? 1 : 0));
   };
   b.az_limits = faults_.has(Fault::kAzLimitBitsMissing) ? 0 : limit_bits(AxisId::kAz);
   b.el_limits = limit_bits(AxisId::kEl);

@@ -16,7 +16,8 @@ bool valid_key(char k) { return (k >= '0' && k <= '9') || (k >= 'A' && k <= 'G')
 
 // ---- §3.1 / §3.2 / §3.8 / §3.16 / §3.17 -------------------------------------
 Outcome Handlers::device_type(C& c) {
-  DeviceTypeReply r{"3K", c.profile_.firmware};
+  // §3.1 "A.BC" version number: the controller's own (the profile's firmware).
+  DeviceTypeReply r{"3K", c.faults_.has(Fault::kDeviceTypeFixedVersion) ? std::string("1.59") : c.profile_.firmware};
   if (c.faults_.has(Fault::kDeviceTypeNoDot)) {
     std::string v = r.version;
     std::erase(v, '.');
@@ -59,8 +60,17 @@ Outcome Handlers::misc(C& c, const Misc& m) {
       if (!c.profile_.stow && !c.faults_.has(Fault::kStowWithoutCapability)) return nak(c, 0x36, NakRule::kMiscNoStow);
       // READING-NOTES 25: any printable parameter.
       c.enter_mode("STOW_MODE", "STOW_MOVING_TO_AZIM_STOW");
-      c.start_move(AxisId::kAz, 0.0, false);
+      // ERRATA E-98: a STOW drives every axis with a stow limit to it (§3.2
+      // bytes 32-34 bit C then shows it); an azimuth without one goes to 0.0
+      // and an elevation without one to its lower limit, all at once (E-89).
+      // A circular feed has no polarization drive (§3.5).
+      c.start_move(AxisId::kAz, c.profile_.az.has_stow_limit ? c.profile_.az.stow_deg : 0.0, false);
       c.start_move(AxisId::kEl, c.profile_.el.has_stow_limit ? c.profile_.el.stow_deg : c.profile_.el.min_deg, false);
+      if (c.profile_.pol.has_stow_limit && c.profile_.pol_type != PolType::kCircular)
+        c.start_move(AxisId::kPol, c.profile_.pol.stow_deg, false);
+      // Already stowed: the STOW finishes at once (as a LOCATE or DEPLOY
+      // with nothing to move does), not a STOW_MODE that never ends.
+      if (!c.moving()) c.on_motion_done();
       return status(c, 0x36, "stow");
     case 'D':
       if (!c.profile_.deploy && !c.faults_.has(Fault::kStowWithoutCapability))

@@ -42,6 +42,12 @@ auto reply_to_read(const Controller& c, const List& list, std::uint32_t index, M
   return reply;
 }
 
+// The slot a write of `index` stores into (39h, 3Bh, 43h): `index` itself, or
+// slot 1 under the fault stores-into-first-slot.
+std::size_t slot_written(const Controller& c, std::size_t index) {
+  return c.faults().has(Fault::kStoresIntoFirstSlot) ? 1 : index;
+}
+
 }  // namespace
 
 // ---- §3.6 Query Name --------------------------------------------------------------
@@ -80,9 +86,10 @@ Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
   if (w.index < 1 || w.index > 20) return nak(c, 0x39, NakRule::kSatelliteIndex, "index " + std::to_string(w.index));
   if (!satellite_fields_ok(w.sat)) return nak(c, 0x39, NakRule::kSatelliteField);
   if (w.sat.ephemeris != '0' && w.index > 10) return nak(c, 0x39, NakRule::kEphemerisIndex);
-  PresetSatellite p{static_cast<std::uint8_t>(w.index), w.sat, false};
-  if (const auto& old = c.state_.presets[w.index - 1]) p.dual_band = old->dual_band;
-  c.state_.presets[w.index - 1] = p;
+  const std::size_t slot = slot_written(c, w.index);
+  PresetSatellite p{static_cast<std::uint8_t>(slot), w.sat, false};
+  if (const auto& old = c.state_.presets[slot - 1]) p.dual_band = old->dual_band;
+  c.state_.presets[slot - 1] = p;
   return stored(ack(c, 0x39, AckReply{}, "preset " + std::to_string(w.index) + " written"));
 }
 Outcome Handlers::read_satellite(C& c, const ReadSatellite& r) {
@@ -98,8 +105,8 @@ Outcome Handlers::write_tle(C& c, const WriteTle& w) {
   if (w.index < 1 || w.index > max) return nak(c, 0x3B, NakRule::kTleIndex, "index " + std::to_string(w.index));
   if (c.profile_.nak_bad_tle_checksum && (!tle_checksum_ok(w.line1) || !tle_checksum_ok(w.line2)))
     return nak(c, 0x3B, NakRule::kTleChecksum);
-  if (w.index <= c.state_.tles.size())
-    c.state_.tles[w.index - 1] = TleSet{static_cast<std::uint8_t>(w.index), w.line1, w.line2};
+  if (const std::size_t slot = slot_written(c, w.index); slot <= c.state_.tles.size())
+    c.state_.tles[slot - 1] = TleSet{static_cast<std::uint8_t>(slot), w.line1, w.line2};
   return stored(ack(c, 0x3B, AckReply{}, "TLE " + std::to_string(w.index) + " written"));
 }
 Outcome Handlers::read_tle(C& c, const ReadTle& r) {
@@ -170,13 +177,17 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
   if (!in_range(d.longitude, -1799, 1800) || !in_range(d.frequency, 10700, 12750) ||
       !in_range(d.symbol_rate, 1000, 30000))
     return nak(c, 0x43, NakRule::kSignpostField);
-  c.state_.signposts[w.index - 1] = Signpost{static_cast<std::uint8_t>(w.index), d};
+  const std::size_t slot = slot_written(c, w.index);
+  c.state_.signposts[slot - 1] = Signpost{static_cast<std::uint8_t>(slot), d};
   return stored(ack(c, 0x43, AckReply{}, "signpost " + std::to_string(w.index) + " written"));
 }
 Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
   if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
   if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
-  return ack(c, 0x44, reply_to_read(c, c.state_.signposts, r.index, signpost_reply));
+  auto reply = reply_to_read(c, c.state_.signposts, r.index, signpost_reply);
+  // §3.21 bytes 30-33 "pad with zeros"; the fault fills them with blanks.
+  if (reply.index && c.faults_.has(Fault::kSpareBytesBlank)) reply.signpost.spare = "    ";
+  return ack(c, 0x44, reply);
 }
 
 // ---- §3.22 / §3.23 Navigation data ---------------------------------------------------

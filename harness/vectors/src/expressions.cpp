@@ -183,6 +183,24 @@ Result filled_slot(const Call& c) {
                      " filled in the profile (a write there could not be undone: a slot cannot be emptied)");
 }
 
+// second_filled(list): the second-lowest index the profile fills, for a
+// vector that writes two different slots and reads each back (issue 32: a
+// controller that stores every record into one slot).
+Result second_filled_slot(const Call& c) {
+  const Value& v = c.args[0];
+  const SlotList* list = nullptr;
+  for (const auto& l : kSlotLists)
+    if (!v.is_number && v.text == l.name) list = &l;
+  if (!list) return error("second_filled: argument 1 must be presets, tles or signposts");
+  bool first = true;
+  for (int i = 1; i <= list->slots; ++i) {
+    if (!list->filled(c.cx.profile, i)) continue;
+    if (!first) return number(i);
+    first = false;
+  }
+  return unavailable("two filled " + std::string(list->what) + " slots: the profile has " + (first ? "none" : "one"));
+}
+
 }  // namespace
 
 // The STORE list (§3.6) beside kSlotLists: its entries are 1..n, none empty.
@@ -395,6 +413,8 @@ const Function kFunctions[] = {
          return number(a.accel_dps2 ? v * v / (2 * *a.accel_dps2) : 0.0);
        });
      }},
+    {{"firmware", "", "the controller's software version the profile states, \"A.BC\" (§3.1 bytes 5-8), as text"}, 0,
+     [](const Call& c) { return text(c.cx.profile.firmware); }},
     {{"agc", "", "the AGC level the profile states, 0-999 (§3.2 bytes 41-43)"}, 0,
      [](const Call& c) { return number(c.cx.profile.agc); }},
     {{"count_step", "", "the position one pulse count stands for: 1 / counts_per_degree (§3.16)"}, 0,
@@ -491,6 +511,8 @@ const Function kFunctions[] = {
      [](const Call& c) { return slot(c, true, false); }},
     {{"last_filled", "presets|tles|signposts", "the highest index the profile fills"}, 1,
      [](const Call& c) { return slot(c, true, true); }},
+    {{"second_filled", "presets|tles|signposts", "the second-lowest index the profile fills; unavailable with fewer than two"}, 1,
+     second_filled_slot},
     {{"first_filled_upto", "presets|tles|signposts, max", "the lowest index up to max that the profile fills"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({1})) return error(*e);

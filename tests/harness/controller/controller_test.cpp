@@ -349,6 +349,44 @@ TEST(Controller, StowDeployAndSearchChangeTheMode) {
   EXPECT_EQ(meanings::mode_name(r.extended().mode), "SPIRAL_REMOTE_MODE");
 }
 
+// ERRATA E-99: a STOW drives every axis with a stow limit to it, so §3.2
+// bytes 32-34 show bit C on each; a move away clears it.
+TEST(Controller, StowReachesEveryStowLimit) {
+  Profile p = test_profile();
+  p.az.has_stow_limit = true;
+  p.az.stow_deg = 35.0;
+  p.pol.has_stow_limit = true;
+  p.pol.stow_deg = -20.0;
+  Rig r(p);
+  r.send(Misc{'S', ' '});
+  r.wait(600s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "STOW_FINISHED_NORMALLY");
+  EXPECT_EQ(x.status.az_limits & 1, 1) << "azimuth stow";
+  EXPECT_EQ(x.status.el_limits & 1, 1) << "elevation stow";
+  EXPECT_EQ(x.status.pol_limits & 1, 1) << "polarization stow";
+  r.send(AutoMove{AutoMoveAzEl{0, 300}});
+  r.wait(600s);
+  auto s = r.status();
+  EXPECT_EQ(s.az_limits & 1, 0) << "azimuth away from its stow position";
+  EXPECT_EQ(s.el_limits & 1, 0) << "elevation away from its stow position";
+}
+
+// A STOW from the stow position has nothing to move: it finishes at once
+// instead of staying in STOW_MODE.
+TEST(Controller, StowFromTheStowPositionFinishes) {
+  Profile p = test_profile();
+  p.az.initial_deg = 0.0;
+  p.el.has_stow_limit = true;
+  p.el.stow_deg = p.el.initial_deg;
+  Rig r(p);
+  r.send(Misc{'S', ' '});
+  r.wait(1s);
+  auto x = r.extended();
+  EXPECT_EQ(meanings::mode_name(x.mode), "MANUAL_MODE");
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "STOW_FINISHED_NORMALLY");
+}
+
 // ERRATA E-90: the reference search moves leg by leg about where it began,
 // then returns there and exits with no peak found.
 TEST(Controller, ASearchMovesAboutWhereItBeganAndReturns) {
@@ -1188,6 +1226,24 @@ TEST(Faults, EveryFaultChangesTheWire) {
        wire(ReadSatellite{{2}}, '2')},
       {Fault::kStoreEntryShiftedInMiddle, [](Profile& p) { p.store = {{"ONE"}, {"TWO"}, {"THREE"}}; },
        wire(QueryName{{2}}, '2')},
+      // Issue 32, values on every legal profile.
+      {Fault::kDeviceTypeFixedVersion, [](Profile& p) { p.firmware = "2.07"; }, wire(DeviceTypeQuery{}, '2')},
+      {Fault::kStoresIntoFirstSlot, none, wire(WriteSatellite{5, {"FIVE", 1250, 3, '1', '1', 125}}, '2'),
+       wire(ReadSatellite{{5}}, '2')},
+      // Resting on the elevation's stow limit: §3.2 byte 33 bit C.
+      {Fault::kStowLimitBitsMissing,
+       [](Profile& p) {
+         p.el.has_stow_limit = true;
+         p.el.stow_deg = p.el.initial_deg;
+       },
+       poll},
+      {Fault::kNaksForeignFrames, none, add_even_parity(encode_frame({FrameKind::kCommand, '3', 0x5A, {}}))},
+      {Fault::kSpareBytesBlank,
+       [](Profile& p) {
+         p.dvb_receiver = true;
+         p.signposts = {Signpost{}};
+       },
+       wire(ReadSignpost{{1}}, '2')},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {

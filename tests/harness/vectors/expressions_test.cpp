@@ -292,6 +292,28 @@ TEST(Expressions, AMissingCapabilityIsUnavailableWithItsReason) {
   EXPECT_EQ(expand("{first_filled_upto(presets, 10)}", p).text, "1");
 }
 
+// second_filled: the second slot a profile fills, for a write of two slots
+// read back each to its own record (issue 32); unavailable below two.
+TEST(Expressions, SecondFilledSlotNeedsTwo) {
+  Profile p;
+  p.tles.clear();
+  EXPECT_EQ(expand("{second_filled(tles)}", p).kind, Kind::kUnavailable);
+  p.tles.push_back({4, "", ""});
+  const Expansion one = expand("{second_filled(tles)}", p);
+  EXPECT_EQ(one.kind, Kind::kUnavailable);
+  EXPECT_NE(one.text.find("two filled TLE slots"), std::string::npos) << one.text;
+  p.tles.push_back({9, "", ""});
+  EXPECT_EQ(expand("{second_filled(tles)}", p).text, "9");
+  EXPECT_EQ(expand("{first_filled(tles)}", p).text, "4");
+}
+
+// firmware(): the version §3.1 bytes 5-8 report, as the profile states it.
+TEST(Expressions, FirmwareIsTheProfilesVersionAsText) {
+  Profile p;
+  p.firmware = "2.07";
+  EXPECT_EQ(expand("{firmware()}", p).text, "2.07");
+}
+
 // other_address: another valid address (§1: 31h-6Fh) on either side of the
 // device's, one no controller on the line has (issue 22: at 111 it is 110).
 TEST(Expressions, AnotherAddressIsTakenOnEitherSide) {

@@ -87,7 +87,18 @@ namespace sabus::harness {
   X(kSlotReadShiftedInMiddle, "slot-read-shifted-in-middle",                                                     \
     "a read of a slot between the first and the last of its list (3Ah, 3Ch, 44h) answers the next slot's record") \
   X(kStoreEntryShiftedInMiddle, "store-entry-shifted-in-middle",                                                 \
-    "35h answers an entry between the first and the last of the STORE list with the next entry's name")
+    "35h answers an entry between the first and the last of the STORE list with the next entry's name")          \
+  /* Values on every legal profile (issue 32) */                                                                   \
+  X(kDeviceTypeFixedVersion, "device-type-fixed-version",                                                        \
+    "the device type reply reports version 1.59 whatever the controller's firmware (§3.1)")                        \
+  X(kStoresIntoFirstSlot, "stores-into-first-slot",                                                              \
+    "39h, 3Bh and 43h store every record into slot 1, whatever index they carry (§3.10, §3.12, §3.20)")          \
+  X(kStowLimitBitsMissing, "stow-limit-bits-missing",                                                            \
+    "status bytes 32-34 never show a stow limit (bit C, §3.2), also at the stow position after a STOW")           \
+  X(kNaksForeignFrames, "naks-foreign-frames",                                                                   \
+    "a frame for another address that the controller would NAK (unknown code, wrong length, bad data) is NAKed")  \
+  X(kSpareBytesBlank, "spare-bytes-blank",                                                                       \
+    "44h returns the signpost's spare bytes 30-33 as blanks instead of the zeros §3.21 fixes")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,
