@@ -60,7 +60,7 @@ Outcome Handlers::misc(C& c, const Misc& m) {
       if (!c.profile_.stow && !c.faults_.has(Fault::kStowWithoutCapability)) return nak(c, 0x36, NakRule::kMiscNoStow);
       // READING-NOTES 25: any printable parameter.
       c.enter_mode("STOW_MODE", "STOW_MOVING_TO_AZIM_STOW");
-      // ERRATA E-98: a STOW drives every axis with a stow limit to it (§3.2
+      // ERRATA E-99: a STOW drives every axis with a stow limit to it (§3.2
       // bytes 32-34 bit C then shows it); an azimuth without one goes to 0.0
       // and an elevation without one to its lower limit, all at once (E-89).
       // A circular feed has no polarization drive (§3.5).
