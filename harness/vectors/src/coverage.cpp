@@ -12,6 +12,7 @@
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/lrc.hpp"
+#include "vector_loader_internal.hpp"
 
 namespace sabus::harness {
 
@@ -67,11 +68,10 @@ std::map<ReplyKind, Bytes> sample_replies(std::index_sequence<I...>) {
 // matcher_text): each 7-bit character put at its byte that the codec reads
 // as valid. Empty for a field of several bytes.
 std::vector<std::string> one_byte_values(ReplyKind reply, std::string_view field) {
-  static const auto samples = sample_replies(std::make_index_sequence<std::variant_size_v<Reply>>{});
-  const auto sample = samples.find(reply);
-  if (sample == samples.end()) return {};
+  const auto sample = vector_loader_internal::sample_reply(reply);
+  if (!sample) return {};
   std::optional<std::size_t> at;
-  for (const FieldDescription& f : describe_frame(sample->second).fields) {
+  for (const FieldDescription& f : describe_frame(*sample).fields) {
     if (f.name != field) continue;
     if (f.first != f.last || (at && *at != f.first)) return {};  // several bytes, or two fields of the name
     at = f.first;
@@ -79,7 +79,7 @@ std::vector<std::string> one_byte_values(ReplyKind reply, std::string_view field
   if (!at) return {};
   std::vector<std::string> out;
   for (int c = 0x20; c < 0x7F; ++c) {
-    Bytes b = sample->second;
+    Bytes b = *sample;
     b[*at] = static_cast<std::uint8_t>(c);
     b.back() = lrc(ByteView(b.data(), b.size() - 1));
     for (const FieldDescription& f : describe_frame(b).fields)
@@ -292,3 +292,14 @@ std::vector<std::string> CoverageMatrix::missing() const {
 }
 
 }  // namespace sabus::harness
+
+namespace sabus::harness::vector_loader_internal {
+
+std::optional<Bytes> sample_reply(ReplyKind reply) {
+  static const auto samples = sample_replies(std::make_index_sequence<std::variant_size_v<Reply>>{});
+  const auto it = samples.find(reply);
+  if (it == samples.end()) return std::nullopt;
+  return it->second;
+}
+
+}  // namespace sabus::harness::vector_loader_internal
