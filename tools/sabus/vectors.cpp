@@ -536,8 +536,9 @@ Command add_vectors_command(CLI::App& app) {
       ->excludes(update)
       ->excludes(check);
   CLI::App* cov = sub->add_subcommand(
-      "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids; exit 1 when a cell "
-                  "the spec defines has no vector");
+      "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids and the reply fields whose "
+                  "value each vector checks; exit 1 when a cell the spec defines has no vector, or a field's value is "
+                  "checked only on a literal profile value or only on some of the profiles where it exists");
   cov->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   cov->add_flag("--json", opts->json, "Print JSON");
   cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
