@@ -109,24 +109,32 @@ TEST_F(JsonOutputs, VectorsListWithLoadErrorsAndAnEmptySelectionIsJson) {
 }
 
 // One file leaves required cells without a vector (exit 1); the shipped
-// suite leaves none (exit 0): the same document both times.
+// suite leaves none, and its fields' gaps are the known ones (exit 0): the
+// same document both times.
 TEST_F(JsonOutputs, VectorsCoverageWithAndWithoutMissingCellsIsJson) {
-  for (const auto& [args, status] : {std::pair{std::vector<std::string>{"vectors", "coverage", kShipped, "--json"}, 1},
-                                     std::pair{std::vector<std::string>{"vectors", "coverage", "--json"}, 0}}) {
+  const std::string gaps = SABUS_SOURCE_DIR "/tests/tools/field_value_gaps.txt";
+  for (const auto& [args, status] :
+       {std::pair{std::vector<std::string>{"vectors", "coverage", kShipped, "--json", "--profiles", "3"}, 1},
+        std::pair{std::vector<std::string>{"vectors", "coverage", "--json", "--known-gaps", gaps}, 0}}) {
     const Output o = sabus(args);
     EXPECT_EQ(o.status, status) << o.out;
     const auto j = parsed(o);
-    EXPECT_EQ(keys_of(j), (std::set<std::string>{"rows", "unknown_codes", "nak_rules", "missing", "fields", "missing_values"}));
+    EXPECT_EQ(keys_of(j),
+              (std::set<std::string>{"rows", "unknown_codes", "nak_rules", "missing", "fields", "missing_values", "shares"}));
     EXPECT_EQ(j["missing"].empty(), status == 0) << j["missing"];
+    ASSERT_TRUE(j["shares"].is_array() && !j["shares"].empty());
+    for (const auto& share : j["shares"])
+      EXPECT_EQ(keys_of(share), (std::set<std::string>{"reply", "field", "exists", "checked", "unchecked"})) << share;
     ASSERT_TRUE(j["rows"].is_array() && !j["rows"].empty());
     for (const auto& row : j["rows"])
       EXPECT_EQ(keys_of(row), (std::set<std::string>{"command", "key", "paragraph", "form", "cells"})) << row;
     ASSERT_TRUE(j["fields"].is_array() && !j["fields"].empty());
     for (const auto& field : j["fields"])
-      EXPECT_EQ(keys_of(field), (std::set<std::string>{"reply", "field", "class", "paragraph", "required", "vectors"}))
+      EXPECT_EQ(keys_of(field),
+                (std::set<std::string>{"reply", "field", "class", "paragraph", "required", "vectors", "literal_vectors"}))
           << field;
     ASSERT_TRUE(j["missing_values"].is_array());
-    EXPECT_EQ(j["missing_values"].empty(), status == 0) << j["missing_values"];
+    if (status == 1) EXPECT_FALSE(j["missing_values"].empty()) << "one file checks few fields";
   }
 }
 

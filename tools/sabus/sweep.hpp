@@ -25,6 +25,10 @@ struct SweepOptions {
   CLI::App* command = nullptr;  // the subcommand, to tell whether it was given
 };
 
+// The seed of the i-th profile of a sweep of seed `seed` (random_profile):
+// `sabus vectors coverage` draws the same profiles.
+std::uint64_t sweep_profile_seed(std::uint64_t seed, std::uint64_t i);
+
 // Registers `sweep` under `sabus vectors`.
 void add_sweep_subcommand(CLI::App& vectors, std::shared_ptr<SweepOptions> options);
 int run_sweep(const SweepOptions& options);

@@ -25,6 +25,8 @@
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/expressions.hpp"
 #include "sabus/harness/files.hpp"
+#include "sabus/harness/profile_generator.hpp"
+#include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
 namespace sabus::cli {
@@ -44,6 +46,14 @@ struct VectorsOptions {
   bool summary = false;
   std::string update, check;  // errata: the ERRATA.md to rewrite or compare
   std::string classes;        // errata: the ERRATA.md whose entries' classes to list
+  // coverage: the random profiles the field shares are taken over, besides
+  // the shipped ones (the sweep's profiles of that seed).
+  std::uint64_t random_profiles = 100;
+  std::uint64_t seed = 1;
+  // coverage: the fields known to be checked only on some profiles (or only
+  // on a literal profile value), one "reply field" a line: reported, not
+  // failed; a listed field that is checked everywhere fails (the list shrinks).
+  std::string known_gaps;
 };
 
 LoadResult load(const VectorsOptions& o) {
@@ -133,8 +143,56 @@ int run_list(const VectorsOptions& o) {
   return r.errors.empty() ? kExitOk : kExitFailed;
 }
 
+// The profiles a field's value check must reach (issue 32): the shipped
+// ones (vectors/profiles/*.yaml) and the sweep's random ones of a seed, each
+// with the vectors whose requirements hold there.
+std::vector<harness::ProfileSite> coverage_sites(const VectorsOptions& o, const LoadResult& r) {
+  std::vector<harness::ProfileSite> sites;
+  std::vector<fs::path> shipped;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(harness::default_vectors_dir()) / "profiles", ec))
+    if (e.path().extension() == ".yaml") shipped.push_back(e.path());
+  std::sort(shipped.begin(), shipped.end());
+  for (const auto& path : shipped) {
+    const harness::ProfileResult p = harness::load_profile_file(path.string());
+    if (p) sites.push_back(harness::requirement_site(r.files, *p.profile, path.filename().string()));
+    else std::cerr << "sabus vectors coverage: " << path.string() << ": not a profile: " << p.error->message << "\n";
+  }
+  for (std::uint64_t i = 0; i < o.random_profiles; ++i) {
+    const std::uint64_t seed = sweep_profile_seed(o.seed, i);
+    sites.push_back(harness::requirement_site(r.files, harness::random_profile(seed),
+                                              fmt::format("sweep seed {} profile {} (--profile-seed {})", o.seed, i + 1, seed)));
+  }
+  return sites;
+}
+
+// The field labels of a known-gaps file ("status azimuth"), one a line; '#'
+// starts a comment. nullopt when the file cannot be read.
+std::optional<std::set<std::string>> read_known_gaps(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return std::nullopt;
+  std::set<std::string> out;
+  for (std::string line; std::getline(in, line);) {
+    line = line.substr(0, line.find('#'));
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+    const auto start = line.find_first_not_of(" \t");
+    if (start != std::string::npos) out.insert(line.substr(start));
+  }
+  return out;
+}
+
+// "a, b, c and 4 more"
+std::string some_of(const std::vector<std::string>& items, std::size_t shown = 6) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < shown; ++i) out += (i ? ", " : "") + items[i];
+  if (items.size() > shown) out += fmt::format(" and {} more", items.size() - shown);
+  return out;
+}
+
 // The matrix command x form x path, one line a cell with its vector ids;
-// exit 1 when a cell the spec defines has none (CoverageMatrix::missing).
+// exit 1 when a cell the spec defines has none (CoverageMatrix::missing),
+// a field's value is checked by no vector on capabilities, or is left
+// unchecked on a profile where it exists (field_shares).
 int run_coverage(const VectorsOptions& o) {
   LoadResult r = load(o);
   for (const auto& e : r.errors) std::cerr << e.text() << "\n";
@@ -142,6 +200,30 @@ int run_coverage(const VectorsOptions& o) {
   const harness::CoverageMatrix m = harness::coverage(r.files);
   const auto missing = m.missing();
   const auto missing_values = m.missing_values();
+  const auto sites = coverage_sites(o, r);
+  const auto shares = harness::field_shares(m, sites);
+  std::set<std::string> known;
+  if (!o.known_gaps.empty()) {
+    auto read = read_known_gaps(o.known_gaps);
+    if (!read) {
+      std::cerr << "sabus vectors coverage: --known-gaps: cannot read " << o.known_gaps << "\n";
+      return kExitUsage;
+    }
+    known = std::move(*read);
+  }
+  // A field with a gap: checked by no vector on capabilities, or left
+  // unchecked on a profile where it exists. A known one is reported only.
+  std::set<std::string> gaps;
+  for (const auto& row : m.fields)
+    if (value_required(row.field->cls) && row.ids.empty()) gaps.insert(harness::field_label(*row.field));
+  for (const auto& s : shares)
+    if (s.checked < s.exists) gaps.insert(harness::field_label(*s.field));
+  std::vector<std::string> unknown_gaps, stale_gaps;
+  for (const auto& g : gaps)
+    if (!known.count(g)) unknown_gaps.push_back(g);
+  for (const auto& k : known)
+    if (!gaps.count(k)) stale_gaps.push_back(k);
+  const auto partial = std::count_if(shares.begin(), shares.end(), [](const harness::FieldShare& s) { return s.checked < s.exists; });
   if (o.json) {
     nlohmann::json rows = nlohmann::json::array();
     for (const auto& row : m.rows) {
@@ -160,13 +242,22 @@ int run_coverage(const VectorsOptions& o) {
                         {"class", std::string(to_string(f.field->cls))},
                         {"paragraph", std::string(f.field->paragraph)},
                         {"required", value_required(f.field->cls)},
-                        {"vectors", f.ids}});
+                        {"vectors", f.ids},
+                        {"literal_vectors", f.literal_ids}});
+    nlohmann::json shares_json = nlohmann::json::array();
+    for (const auto& s : shares)
+      shares_json.push_back({{"reply", std::string(to_string(s.field->reply))},
+                             {"field", std::string(s.field->field)},
+                             {"exists", s.exists},
+                             {"checked", s.checked},
+                             {"unchecked", s.unchecked}});
     std::cout << json_text({{"rows", rows},
                             {"unknown_codes", {{"nak", m.unknown_codes}}},
                             {"nak_rules", m.nak_rules},
                             {"fields", fields},
                             {"missing", missing},
-                            {"missing_values", missing_values}});
+                            {"missing_values", missing_values},
+                            {"shares", shares_json}});
   } else {
     std::size_t covered = 0, cells = 0;
     for (const auto& row : m.rows) {
@@ -201,15 +292,37 @@ int run_coverage(const VectorsOptions& o) {
                                                              : fmt::format("{}", fmt::join(f.ids, " ")));
     }
     for (const auto& line : missing) std::cout << "MISSING " << line << "\n";
-    for (const auto& line : missing_values) std::cout << "MISSING value of " << line << ": no vector checks it\n";
+    auto known_gap = [&](const ReplyFieldClass& f) { return known.count(harness::field_label(f)) ? "KNOWN GAP: " : ""; };
+    for (const auto& line : missing_values)  // "status azimuth (motion, §3.2): ..."
+      std::cout << (known.count(line.substr(0, line.find(" ("))) ? "KNOWN GAP: " : "") << "MISSING value of " << line << "\n";
+    // The field shares: a field checked only on some profiles (issue 32).
+    for (const auto& s : shares)
+      if (s.checked < s.exists)
+        std::cout << fmt::format("{}UNCHECKED value of {} (§{}) on {} of the {} profiles where it exists: {}\n",
+                                 known_gap(*s.field), harness::field_label(*s.field), s.field->paragraph,
+                                 s.exists - s.checked, s.exists, some_of(s.unchecked));
+    for (const auto& k : stale_gaps)
+      std::cout << "STALE known gap " << k << ": its value is checked on every profile where it exists; take it off "
+                << o.known_gaps << "\n";
     std::cout << fmt::format("{} of {} cells covered; {} required cell(s) without a vector\n", covered, cells,
                              missing.size());
     std::cout << fmt::format("{} of {} fields the device's state decides have their value checked; {} without a vector\n",
                              checked, required, missing_values.size());
+    std::cout << fmt::format("{} of {} such fields checked on every profile where they exist; {} checked only on some "
+                             "({} profiles: {} shipped, {} random of seed {})\n",
+                             shares.size() - static_cast<std::size_t>(partial), shares.size(), partial, sites.size(),
+                             sites.size() - o.random_profiles, o.random_profiles, o.seed);
+    if (!o.known_gaps.empty())
+      std::cout << fmt::format("{} field(s) with a gap, {} of them known ({}); {} not known, {} known gap(s) closed\n",
+                               gaps.size(), gaps.size() - unknown_gaps.size(), o.known_gaps, unknown_gaps.size(),
+                               stale_gaps.size());
   }
   // A required cell or a state-decided field without a vector fails the
   // coverage gate (gate.coverage).
-  return missing.empty() && missing_values.empty() ? kExitOk : kExitFailed;
+  // A required cell without a vector, or a field with a gap that is not
+  // known (or a known gap that is closed) fails the coverage gate
+  // (gate.coverage).
+  return missing.empty() && unknown_gaps.empty() && stale_gaps.empty() ? kExitOk : kExitFailed;
 }
 
 // Paragraph order: numbers by their parts (3.2 < 3.10), then the topics.
@@ -423,11 +536,21 @@ Command add_vectors_command(CLI::App& app) {
       ->excludes(update)
       ->excludes(check);
   CLI::App* cov = sub->add_subcommand(
-      "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids; exit 1 when a cell "
-                  "the spec defines has no vector");
+      "coverage", "Print the matrix command x form x path (ack/nak/offline/ignore) -> vector ids and the reply fields whose "
+                  "value each vector checks; exit 1 when a cell the spec defines has no vector, or a field's value is "
+                  "checked only on a literal profile value or only on some of the profiles where it exists");
   cov->add_option("paths", opts->paths, where)->check(CLI::ExistingPath);
   cov->add_flag("--json", opts->json, "Print JSON");
   cov->add_flag("--missing", opts->missing_only, "Print only the cells without a vector");
+  cov->add_option("--profiles", opts->random_profiles,
+                  "Random profiles (the sweep's, of --seed) that field values must be checked on, besides the shipped "
+                  "ones (default 100)")
+      ->check(CLI::Range(0, 100000));
+  cov->add_option("--known-gaps", opts->known_gaps,
+                  "A file of fields (\"status azimuth\", one a line) known to be checked only on some profiles: "
+                  "reported, not failed; a listed field checked everywhere fails")
+      ->check(CLI::ExistingFile);
+  cov->add_option("--seed", opts->seed, "Seed of those random profiles, as `sabus vectors sweep --seed` (default 1)");
   CLI::App* functions =
       sub->add_subcommand("functions", "List the functions of profile expressions (\"{home(az)}\", vectors/README.md)");
   auto sweep = std::make_shared<SweepOptions>();

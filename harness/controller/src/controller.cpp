@@ -284,9 +284,13 @@ void Controller::enter_mode(enums::Mode mode, std::string_view state, std::strin
     const std::string locate_changed = exit_of_old.empty() ? moving_exit(false) : std::string(exit_of_old);
     state_.mode.last_mode = state_.mode.mode;
     const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
-    state_.mode.exit_status =
-        exits ? enum_value(exits, locate_changed.empty() ? normal_exit_name(*exits) : std::string_view(locate_changed))
-              : enums::kFirstValue;
+    // Fault locate-stop-exit-stale: a stopped LOCATE leaves byte 48 as it was (§3.17).
+    const bool stale = faults_.has(Fault::kLocateStopExitStale) && state_.mode.last_mode == enums::Mode("LOCATE_MODE").value &&
+                       locate_changed.ends_with("_STOP_KEY");
+    if (!stale)
+      state_.mode.exit_status =
+          exits ? enum_value(exits, locate_changed.empty() ? normal_exit_name(*exits) : std::string_view(locate_changed))
+                : enums::kFirstValue;
     state_.mode.mode = mode.value;
     chain_pending_ = false;
     if (mode != enums::Mode("TRACK_MODE")) state_.track.active = false;

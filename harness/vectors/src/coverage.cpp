@@ -12,6 +12,7 @@
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/lrc.hpp"
+#include "vector_loader_internal.hpp"
 
 namespace sabus::harness {
 
@@ -67,11 +68,10 @@ std::map<ReplyKind, Bytes> sample_replies(std::index_sequence<I...>) {
 // matcher_text): each 7-bit character put at its byte that the codec reads
 // as valid. Empty for a field of several bytes.
 std::vector<std::string> one_byte_values(ReplyKind reply, std::string_view field) {
-  static const auto samples = sample_replies(std::make_index_sequence<std::variant_size_v<Reply>>{});
-  const auto sample = samples.find(reply);
-  if (sample == samples.end()) return {};
+  const auto sample = vector_loader_internal::sample_reply(reply);
+  if (!sample) return {};
   std::optional<std::size_t> at;
-  for (const FieldDescription& f : describe_frame(sample->second).fields) {
+  for (const FieldDescription& f : describe_frame(*sample).fields) {
     if (f.name != field) continue;
     if (f.first != f.last || (at && *at != f.first)) return {};  // several bytes, or two fields of the name
     at = f.first;
@@ -79,7 +79,7 @@ std::vector<std::string> one_byte_values(ReplyKind reply, std::string_view field
   if (!at) return {};
   std::vector<std::string> out;
   for (int c = 0x20; c < 0x7F; ++c) {
-    Bytes b = sample->second;
+    Bytes b = *sample;
     b[*at] = static_cast<std::uint8_t>(c);
     b.back() = lrc(ByteView(b.data(), b.size() - 1));
     for (const FieldDescription& f : describe_frame(b).fields)
@@ -129,10 +129,15 @@ bool checks_value(const FieldMatcher& m, ReplyKind reply) {
 
 namespace {
 
-// The fields of `reply` a step's ACK expectation checks the value of.
-void add_value_checks(CoverageMatrix& m, ReplyKind reply, const Step& s, const std::string& id) {
+// The fields of `reply` a step's ACK expectation checks the value of: in
+// the row's ids, or its literal_ids when the vector requires a literal
+// profile value (issue 32).
+void add_value_checks(CoverageMatrix& m, ReplyKind reply, const Step& s, const Vector& v) {
+  const std::string& id = v.id;
+  const bool literal = std::any_of(v.requires_.begin(), v.requires_.end(), literal_requirement);
   auto add = [&](FieldValueRow& row) {
-    if (std::find(row.ids.begin(), row.ids.end(), id) == row.ids.end()) row.ids.push_back(id);
+    auto& ids = literal ? row.literal_ids : row.ids;
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   };
   for (FieldValueRow& row : m.fields) {
     if (row.field->reply != reply) continue;
@@ -150,7 +155,7 @@ void add_value_checks(CoverageMatrix& m, ReplyKind reply, const Step& s, const s
 
 CoverageMatrix coverage(const std::vector<VectorFile>& files) {
   CoverageMatrix m;
-  for (const ReplyFieldClass& f : reply_field_classes()) m.fields.push_back({&f, {}});
+  for (const ReplyFieldClass& f : reply_field_classes()) m.fields.push_back({&f, {}, {}});
   for (const CommandInfo& c : catalog()) {
     for (const FormInfo& f : c.forms) m.rows.push_back({&c, &f, {}});
     if (c.forms.size() > 1) m.rows.push_back({&c, nullptr, {}});
@@ -177,9 +182,60 @@ CoverageMatrix coverage(const std::vector<VectorFile>& files) {
           auto row = std::find_if(m.rows.begin(), m.rows.end(),
                                   [&](const CoverageRow& r) { return r.command == cf.info && r.form == cf.form; });
           if (row != m.rows.end()) add(row->ids[static_cast<std::size_t>(*path)], v.id);
-          if (*path == CoveragePath::kAck) add_value_checks(m, cf.info->reply, s, v.id);
+          if (*path == CoveragePath::kAck) {
+            add(m.acked[cf.info->reply], v.id);
+            add_value_checks(m, cf.info->reply, s, v);
+          }
         }
   return m;
+}
+
+bool literal_requirement(const Requirement& r) {
+  // As the requirement reader writes the values (to_yaml's spelling): true,
+  // false and the schema's choices are lower-case words.
+  return std::any_of(r.values.begin(), r.values.end(), [](const std::string& v) {
+    return v.empty() || !std::all_of(v.begin(), v.end(), [](char c) { return (c >= 'a' && c <= 'z') || c == '_'; });
+  });
+}
+
+ProfileSite requirement_site(const std::vector<VectorFile>& files, const Profile& profile, std::string label) {
+  ProfileSite site{std::move(label), {}};
+  // Most vectors share their file's or group's requirements: each set is
+  // judged once (a judgement writes the profile out).
+  std::map<std::string, bool> judged;
+  for (const VectorFile& f : files)
+    for (const Vector& v : f.vectors) {
+      std::string key;
+      for (const Requirement& r : v.requires_) {
+        key += r.key + "=";
+        for (const auto& value : r.values) key += value + "|";
+        key += ";";
+      }
+      auto [it, fresh] = judged.try_emplace(key, false);
+      if (fresh) it->second = requirements_hold(profile, v.requires_);
+      if (it->second) site.runs.insert(v.id);
+    }
+  return site;
+}
+
+std::vector<FieldShare> field_shares(const CoverageMatrix& m, const std::vector<ProfileSite>& sites) {
+  std::vector<FieldShare> out;
+  for (const FieldValueRow& row : m.fields) {
+    if (!value_required(row.field->cls)) continue;
+    FieldShare share{row.field, 0, 0, {}};
+    const auto acked = m.acked.find(row.field->reply);
+    for (const ProfileSite& site : sites) {
+      auto runs_one = [&](const std::vector<std::string>& ids) {
+        return std::any_of(ids.begin(), ids.end(), [&](const std::string& id) { return site.runs.count(id) > 0; });
+      };
+      if (acked == m.acked.end() || !runs_one(acked->second)) continue;  // the reply is never asked for here
+      ++share.exists;
+      if (runs_one(row.ids)) ++share.checked;
+      else share.unchecked.push_back(site.label);
+    }
+    out.push_back(std::move(share));
+  }
+  return out;
 }
 
 std::string command_label(const CommandInfo& c) {
@@ -204,9 +260,16 @@ std::string field_label(const ReplyFieldClass& f) { return std::string(to_string
 std::vector<std::string> CoverageMatrix::missing_values() const {
   std::vector<std::string> out;
   for (const FieldValueRow& row : fields)
-    if (value_required(row.field->cls) && row.ids.empty())
-      out.push_back(field_label(*row.field) + " (" + std::string(to_string(row.field->cls)) + ", §" +
-                    std::string(row.field->paragraph) + ")");
+    if (value_required(row.field->cls) && row.ids.empty()) {
+      std::string line = field_label(*row.field) + " (" + std::string(to_string(row.field->cls)) + ", §" +
+                         std::string(row.field->paragraph) + ")";
+      if (row.literal_ids.empty()) line += ": no vector checks it";
+      else {
+        line += ": checked only by vectors that require a literal profile value, which judge only the controllers that have it:";
+        for (const auto& id : row.literal_ids) line += " " + id;
+      }
+      out.push_back(std::move(line));
+    }
   return out;
 }
 
@@ -229,3 +292,14 @@ std::vector<std::string> CoverageMatrix::missing() const {
 }
 
 }  // namespace sabus::harness
+
+namespace sabus::harness::vector_loader_internal {
+
+std::optional<Bytes> sample_reply(ReplyKind reply) {
+  static const auto samples = sample_replies(std::make_index_sequence<std::variant_size_v<Reply>>{});
+  const auto it = samples.find(reply);
+  if (it == samples.end()) return std::nullopt;
+  return it->second;
+}
+
+}  // namespace sabus::harness::vector_loader_internal

@@ -6,11 +6,14 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include "sabus/harness/errata.hpp"
 #include "sabus/harness/expressions.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/enumerations.hpp"
+#include "sabus/protocol/lrc.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "sabus/harness/data_dir.hpp"
 #include "vector_loader_internal.hpp"
@@ -186,6 +189,120 @@ void lint_motion_positions(const Vector& v, const Step& s, const FrameSketch& sk
                       "from distance and speed) or write a profile expression"});
 }
 
+// ---- enumerated fields: no expectation wider than the spec's answer (issue 32)
+
+// One enumerated field of a reply as its layout reads it: a byte the codecs
+// read with an enumeration (the §3.17 mode, state and exit-status lists,
+// EnumByte; a Choice of listed characters: band, axis, polarization, ...).
+struct EnumeratedField {
+  bool enumerated = false;
+  // The field's list hangs on another byte of the reply (the state list on
+  // the current mode, the exit-status list on the last exited mode): the
+  // same codes are entries of every mode's list.
+  bool by_mode = false;
+  std::map<std::string, bool> entry;  // matcher text ("0x45") of each code 20h-7Eh -> whether it is an entry of the field's list
+};
+
+// The meanings the layout gives the byte at `at` of `frame` with each code.
+std::string meaning_at(Bytes frame, std::size_t at, std::uint8_t code, std::string_view field) {
+  frame[at] = code;
+  frame.back() = lrc(ByteView(frame.data(), frame.size() - 1));
+  for (const FieldDescription& f : describe_frame(frame).fields)
+    if (f.first == at && f.name == field) return f.meaning + (f.ok ? "" : " (invalid)");
+  return "";
+}
+
+// Whether `meaning` is the name an enumeration list of §3.17 gives `code`.
+bool names_entry(std::uint8_t code, const std::string& meaning) {
+  if (auto n = enums::mode_names().name_of(code); n && *n == meaning) return true;
+  for (const enums::EnumList* list : enums::all_lists())
+    if (auto n = list->name_of(code); n && *n == meaning) return true;
+  return false;
+}
+
+const EnumeratedField& enumerated_field(ReplyKind reply, const std::string& field) {
+  static std::map<std::pair<ReplyKind, std::string>, EnumeratedField> cache;
+  auto [it, fresh] = cache.try_emplace({reply, field});
+  if (!fresh) return it->second;
+  EnumeratedField& out = it->second;
+  const auto sample = sample_reply(reply);
+  if (!sample) return out;
+  const auto fields = describe_frame(*sample).fields;
+  const FieldDescription* f = nullptr;
+  for (const auto& d : fields)
+    if (d.name == field && d.first == d.last) f = &d;
+  if (!f || (f->kind != fields::Kind::kEnumByte && f->kind != fields::Kind::kChoice)) return out;
+  out.enumerated = true;
+  // Hangs on another enumeration byte: a code's meaning changes with it.
+  for (const auto& other : fields) {
+    if (&other == f || other.kind != fields::Kind::kEnumByte || other.first != other.last) continue;
+    Bytes with = *sample;
+    for (std::uint8_t g = enums::kFirstValue; g < 0x60 && !out.by_mode; ++g) {
+      with[other.first] = g;
+      for (std::uint8_t c = enums::kFirstValue; c < 0x24 && !out.by_mode; ++c)
+        out.by_mode = meaning_at(with, f->first, c, field) != meaning_at(*sample, f->first, c, field);
+    }
+  }
+  for (int c = 0x20; c < 0x7F; ++c) {
+    Bytes b = *sample;
+    b[f->first] = static_cast<std::uint8_t>(c);
+    b.back() = lrc(ByteView(b.data(), b.size() - 1));
+    for (const FieldDescription& d : describe_frame(b).fields) {
+      if (d.first != f->first || d.name != field) continue;
+      const bool entry = f->kind == fields::Kind::kChoice ? d.ok : names_entry(static_cast<std::uint8_t>(c), d.meaning);
+      out.entry[matcher_text(d)] = entry;
+    }
+  }
+  return out;
+}
+
+// A range or a regex on an enumerated field accepts codes by their numbers,
+// and the numbers of one list are the codes of the others: every list of
+// §3.17 begins at 20h, so a range from 20h takes the first entry of every
+// mode's exit list, and a controller that never writes the byte passes.
+// Flagged: a range on an enumerated field; a regex on a field whose list
+// hangs on a mode that picks some codes and not all (a value check that
+// cannot say whose entries it takes); a regex that takes a code that is no
+// entry of the field's list (another enumeration's). One_of the legal
+// entries names them.
+void lint_enumerated(const Vector& v, const std::vector<FieldMatcher>& matchers, ReplyKind reply, const std::string& key,
+                     std::vector<LoadError>& errors) {
+  for (const FieldMatcher& m : matchers) {
+    if (m.kind != FieldMatcher::Kind::kRange && m.kind != FieldMatcher::Kind::kRegex) continue;
+    const EnumeratedField& e = enumerated_field(reply, m.field);
+    if (!e.enumerated) continue;
+    const std::string where = key + "." + m.field;
+    if (m.kind == FieldMatcher::Kind::kRange) {
+      errors.push_back({m.where, v.id, where,
+                        "a range on an enumerated field: its codes are names, and a range of them takes codes of "
+                        "another enumeration or another mode (every §3.17 list begins at 0x20); write one_of the legal "
+                        "entries (issue 32)"});
+      continue;
+    }
+    std::size_t taken = 0;
+    std::vector<std::string> foreign;
+    try {
+      const std::regex re(m.values.empty() ? std::string() : m.values[0]);
+      for (const auto& [text, entry] : e.entry) {
+        if (!std::regex_search(text, re)) continue;
+        ++taken;
+        if (!entry) foreign.push_back(text);
+      }
+    } catch (const std::regex_error&) {
+      continue;  // the loader names a bad regex
+    }
+    if (e.by_mode && taken > 0 && taken < e.entry.size())
+      errors.push_back({m.where, v.id, where,
+                        "a regex that picks some codes of a field whose list hangs on the mode: the same codes are "
+                        "entries of every mode's list (§3.17); write one_of the legal entries (issue 32)"});
+    else if (!e.by_mode && !foreign.empty() && taken < e.entry.size())
+      errors.push_back({m.where, v.id, where,
+                        "a regex on an enumerated field that takes codes that are no entry of its list (" +
+                            foreign.front() + (foreign.size() > 1 ? " and " + std::to_string(foreign.size() - 1) + " more" : "") +
+                            "); take the list's entries only (one_of them, or a regex within the list; issue 32)"});
+  }
+}
+
 void lint_step_list(const Vector& v, const std::vector<Step>& steps, const std::string& list, std::vector<LoadError>& errors) {
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const Step& s = steps[i];
@@ -199,6 +316,8 @@ void lint_step_list(const Vector& v, const std::vector<Step>& steps, const std::
     lint_motion_positions(v, s, *sketch, key, errors);
     lint_matchers(v, s.expect.fields, sketch->command, key + ".expect.fields", errors);
     lint_matchers(v, s.until, sketch->command, key + ".until", errors);
+    lint_enumerated(v, s.expect.fields, sketch->command->reply, key + ".expect.fields", errors);
+    lint_enumerated(v, s.until, sketch->command->reply, key + ".until", errors);
   }
 }
 

@@ -1203,6 +1203,8 @@ TEST(Faults, EveryFaultChangesTheWire) {
       {Fault::kLocateIgnoresStop, fast_locating, cat({locate_to(-750), wire(Jog{{'X', 'F', 0}}, '2')})},
       {Fault::kLocateStopExitCompleted, fast_locating, cat({locate_to(-750), wire(Jog{{'X', 'F', 0}}, '2')}),
        wire(ExtendedStatusPoll{}, '2')},
+      {Fault::kLocateStopExitStale, fast_locating, cat({locate_to(-750), wire(Jog{{'X', 'F', 0}}, '2')}),
+       wire(ExtendedStatusPoll{}, '2')},
       {Fault::kLocateWithoutSiteCompletes, [](Profile& p) { p.navigation.latitude_min.reset(); }, locate_to(-750),
        wire(ExtendedStatusPoll{}, '2')},
       {Fault::kStowIgnoresStop, [](Profile& p) { p.stow = true; }, cat({wire(Misc{'S', 'S'}, '2'), wire(Jog{{'X', 'F', 0}}, '2')})},

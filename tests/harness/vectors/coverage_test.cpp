@@ -110,10 +110,10 @@ TEST(CoverageValues, AMatcherThatChecksOnlyTheFormIsNotAValueCheck) {
   EXPECT_EQ(value_row(m, ReplyKind::kStatus, "track").ids, std::vector<std::string>{"3.2-x"});
   EXPECT_EQ(value_row(m, ReplyKind::kStatus, "azimuth").ids, std::vector<std::string>{"3.2-x"});
   EXPECT_TRUE(value_row(m, ReplyKind::kExtendedStatus, "azimuth").ids.empty()) << "another reply's field";
-  EXPECT_TRUE(value_missing(m, "status az limits (motion, §3.2)"));
-  EXPECT_FALSE(value_missing(m, "status el limits (motion, §3.2)"));
-  EXPECT_FALSE(value_missing(m, "status agc (device, §3.2)")) << "a measured level is left to the device";
-  EXPECT_TRUE(value_missing(m, "pulse count azimuth count (motion, §3.16)"));
+  EXPECT_TRUE(value_missing(m, "status az limits (motion, §3.2): no vector checks it"));
+  EXPECT_FALSE(value_missing(m, "status el limits (motion, §3.2): no vector checks it"));
+  EXPECT_FALSE(value_missing(m, "status agc (device, §3.2): no vector checks it")) << "a measured level is left to the device";
+  EXPECT_TRUE(value_missing(m, "pulse count azimuth count (motion, §3.16): no vector checks it"));
 }
 
 // A reply expected byte for byte checks every field; the profile's record
@@ -127,6 +127,60 @@ TEST(CoverageValues, WholeRepliesAndProfileRecordsCheckTheirFields) {
   EXPECT_EQ(value_row(m, ReplyKind::kSatelliteData, "pol offset").ids, std::vector<std::string>{"3.2-x"});
   EXPECT_EQ(value_row(m, ReplyKind::kSatelliteData, "index").ids, std::vector<std::string>{"3.2-x"});
   EXPECT_TRUE(value_row(m, ReplyKind::kTleData, "tle line 1").ids.empty());
+}
+
+// Issue 32: a vector that requires a literal profile value (a firmware, a
+// count) checks a field only on the controllers that have it: it does not
+// count, and the field is missing, naming it.
+TEST(CoverageValues, AVectorOnALiteralProfileValueDoesNotCount) {
+  const std::string text =
+      "paragraph: \"3.1\"\ntitle: t\nvectors:\n"
+      "  - id: 3.1-literal\n    comment: c\n    spec: {paragraph: \"3.1\", quote: q}\n    level: must\n"
+      "    requires: {firmware: \"1.59\"}\n"
+      "    steps:\n      - send: {command: device_type}\n        expect: {reply: ack, fields: {version: \"1.59\"}}\n"
+      "  - id: 3.1-capability\n    comment: c\n    spec: {paragraph: \"3.1\", quote: q}\n    level: must\n"
+      "    requires: {dvb_receiver: true}\n"
+      "    steps:\n      - send: {command: device_type}\n        expect: {reply: ack, fields: {controller type: \"3K\"}}\n";
+  const LoadResult r = load_vector_text(text, "literal.yaml");
+  ASSERT_TRUE(r.ok()) << (r.errors.empty() ? "" : r.errors[0].text());
+  const CoverageMatrix m = coverage(r.files);
+  const auto& version = *std::find_if(m.fields.begin(), m.fields.end(),
+                                      [](const FieldValueRow& f) { return field_label(*f.field) == "device type version"; });
+  EXPECT_TRUE(version.ids.empty());
+  EXPECT_EQ(version.literal_ids, std::vector<std::string>{"3.1-literal"});
+  const auto all = m.missing_values();
+  EXPECT_NE(std::find_if(all.begin(), all.end(),
+                         [](const std::string& l) {
+                           return l.rfind("device type version (profile, §3.1): checked only by vectors that require a literal "
+                                          "profile value", 0) == 0 && l.ends_with(" 3.1-literal");
+                         }),
+            all.end());
+  EXPECT_TRUE(literal_requirement(r.files[0].vectors[0].requires_[0]));
+  EXPECT_FALSE(literal_requirement(r.files[0].vectors[1].requires_[0]));
+
+  // The shares: the controller type, checked only with a DVB receiver, is
+  // unchecked on a profile without one, where the reply is asked for.
+  Profile with, without;
+  with.dvb_receiver = true;
+  without.dvb_receiver = false;
+  const auto shares = field_shares(m, {requirement_site(r.files, with, "with"), requirement_site(r.files, without, "without")});
+  const auto& type = *std::find_if(shares.begin(), shares.end(),
+                                   [](const FieldShare& s) { return field_label(*s.field) == "device type controller type"; });
+  EXPECT_EQ(type.exists, 2u) << "3.1-literal asks for the reply on both (1.59 is the default firmware)";
+  EXPECT_EQ(type.checked, 1u);
+  EXPECT_EQ(type.unchecked, std::vector<std::string>{"without"});
+  const auto& v = *std::find_if(shares.begin(), shares.end(),
+                                [](const FieldShare& s) { return field_label(*s.field) == "device type version"; });
+  EXPECT_EQ(v.exists, 2u);
+  EXPECT_EQ(v.checked, 0u);
+  // A profile where no vector asks for the reply does not count.
+  Profile other_firmware;
+  other_firmware.firmware = "2.00";
+  const auto none = field_shares(m, {requirement_site(r.files, other_firmware, "2.00")});
+  EXPECT_EQ(std::find_if(none.begin(), none.end(), [](const FieldShare& s) {
+              return field_label(*s.field) == "device type version";
+            })->exists,
+            0u);
 }
 
 }  // namespace

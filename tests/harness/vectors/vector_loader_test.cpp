@@ -807,6 +807,43 @@ TEST(vectors, LintMotionRestsOnTheProfile) {
                   .empty());
 }
 
+// Issue 32: no expectation wider than the spec's answer. A range on an
+// enumerated field (§3.17 exit status) takes codes of every mode's list: a
+// controller that never updates byte 48 passes with 0x20.
+TEST(vectors, LintEnumeratedFieldsTakeTheirEntriesNotARangeOfCodes) {
+  expect_lint(lint_vector("      - send: {command: extended_status}\n"
+                          "        expect: {reply: ack, fields: {last exited mode: 0x25, exit status: {range: [\"{0x20}\", "
+                          "\"{locate_exit('LOCATE_FUNCTION_COMPLETED') - 1}\"]}}}\n"),
+              {"exit status", 1, "3.2-x", "steps[0].expect.fields.exit status", "a range on an enumerated field"});
+  {
+    const auto errors = lint_text(lint_vector("      - send: {command: extended_status}\n"
+                                              "        expect: {reply: ack, fields: {exit status: {range: [\"{0x20}\", \"{0x37}\"]}}}\n"));
+    ASSERT_EQ(errors.size(), 1u) << all_errors(errors);
+    EXPECT_EQ(errors[0].text().rfind("test.yaml:10:39: ", 0), 0u) << errors[0].text();  // file and line
+    EXPECT_NE(errors[0].text().find("[3.2-x] steps[0].expect.fields.exit status: "), std::string::npos) << errors[0].text();
+  }
+  // A regex that picks some codes of a list that hangs on the mode (byte 46 on byte 45).
+  expect_lint(lint_vector("      - send: {command: extended_status}\n"
+                          "        expect: {reply: ack, fields: {current state: {regex: \"^0x2[0-7]$\"}}}\n"),
+              {"current state", 1, "3.2-x", "steps[0].expect.fields.current state", "hangs on the mode"});
+  // A regex on the mode that takes codes past the mode list (5Dh-5Fh are no mode).
+  expect_lint(lint_vector("      - send: {command: extended_status}\n"
+                          "        expect: {reply: ack, fields: {current mode: {regex: \"^0x(?!25$)[2-5][0-9a-f]$\"}}}\n"),
+              {"current mode", 1, "3.2-x", "steps[0].expect.fields.current mode", "no entry of its list (0x5d and 2 more)"});
+  // In the until of a poll too.
+  expect_lint(lint_vector("      - poll: {send: {command: extended_status}, until: {exit status: {range: [32, 40]}}}\n"),
+              {"exit status", 1, "3.2-x", "steps[0].until.exit status", "a range on an enumerated field"});
+  // The legal entries named, a regex within the mode list, and a form check
+  // that takes every code, pass.
+  EXPECT_TRUE(lint_text(lint_vector("      - send: {command: extended_status}\n"
+                                    "        expect:\n          reply: ack\n          fields:\n"
+                                    "            current mode: {regex: \"^0x(?!25$)([2-4][0-9a-f]|5[0-9a-c])$\"}\n"
+                                    "            current state: {regex: \"^0x[2-7][0-9a-f]$\"}\n"
+                                    "            exit status: {one_of: [\"{locate_exit('LOCATE_AZIM_MOVEMENT_STOP_KEY')}\", "
+                                    "\"{locate_exit('LOCATE_AZIM_MOVEMENT_MODE_CHANGED')}\"]}\n"))
+                  .empty());
+}
+
 TEST(vectors, RequirementsNameCapabilitiesNeverAProfile) {
   expect_error(one_vector("      - send: {command: status}\n        expect: ack\n", "    requires: {name: rc3000-1.59}\n"),
                {"name", 1, "3.2-x", "requires.name", "a vector requires capabilities, never a profile's name"});

@@ -71,6 +71,8 @@ namespace sabus::harness {
     "a LOCATE lacking the site, heading or magnetic variation ends at once as completed instead of waiting")      \
   X(kLocateStopExitCompleted, "locate-stop-exit-completed",                                                     \
     "a LOCATE stopped before it arrives exits with LOCATE_FUNCTION_COMPLETED")                                  \
+  X(kLocateStopExitStale, "locate-stop-exit-stale",                                                              \
+    "a LOCATE stopped before it arrives never updates the extended status exit status (byte 48): it keeps the last one") \
   X(kStowIgnoresStop, "stow-ignores-stop",                                                                     \
     "a STOW in motion goes on to its stow position after 33h 'X' or the Stop key, which are ACKed")              \
   X(kStowStopExitFinished, "stow-stop-exit-finished",                                                           \

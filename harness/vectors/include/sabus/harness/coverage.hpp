@@ -8,9 +8,11 @@
 
 #include <array>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "sabus/harness/profile.hpp"
 #include "sabus/harness/vector.hpp"
 #include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/field_classes.hpp"
@@ -37,9 +39,17 @@ struct CoverageRow {
 // (checks_value), or expecting the whole reply's bytes, or the profile's
 // record (`from_profile`, its stored and echoed fields). `any`, a range of
 // constants or a regex that every legal value passes checks only the form.
+//
+// Only a vector whose requirements are capabilities counts (issue 32): a
+// vector that requires a literal profile value (`firmware: "1.59"`, a count,
+// an index) judges only the controllers that happen to have it, so its
+// checks are kept apart (literal_ids) and a field they alone check is
+// missing. Whether the capabilities leave some profiles unchecked is the
+// share over profiles (field_shares).
 struct FieldValueRow {
   const ReplyFieldClass* field = nullptr;
   std::vector<std::string> ids;
+  std::vector<std::string> literal_ids;  // checks by vectors that require a literal profile value
 };
 
 struct CoverageMatrix {
@@ -60,9 +70,42 @@ struct CoverageMatrix {
   // The field-value matrix: every field of every reply, in reply and byte order.
   std::vector<FieldValueRow> fields;
   // The fields whose value a suite must check (value_required) that no
-  // vector checks, one line each: "status azimuth (motion, §3.2)".
+  // vector on capabilities checks, one line each: "status azimuth (motion,
+  // §3.2): no vector checks it", or what follows the colon names the vectors
+  // that check it on a literal profile value only.
   std::vector<std::string> missing_values() const;
+  // Reply -> the vectors that expect an ACK with that reply (any matcher,
+  // any requirement): where they run, the reply's fields exist.
+  std::map<ReplyKind, std::vector<std::string>> acked;
 };
+
+// Whether a requirement names a literal profile value rather than a
+// capability: a capability is a yes/no or a named choice of the profile
+// schema (`dvb_receiver: true`, `polarization: circular`, `track.active:
+// false`); a number, a version or a text (`firmware: "1.59"`,
+// `errata.locate_index_min: 1`, `alarms.code: 2`) is a literal.
+bool literal_requirement(const Requirement& r);
+
+// A profile and the vectors that run on it: the ids whose requirements hold
+// (requirement_site), or those a run did not skip (sabus vectors sweep).
+struct ProfileSite {
+  std::string label;            // "rc3000-1.59.yaml", "sweep seed 1 profile 3 (--profile-seed 123)"
+  std::set<std::string> runs;   // vector ids
+};
+ProfileSite requirement_site(const std::vector<VectorFile>& files, const Profile& profile, std::string label);
+
+// The share of profiles on which a field's value is checked (issue 32): of
+// the profiles where the field exists (a vector that expects an ACK with its
+// reply runs there), those where a vector that checks its value runs too.
+// 100% is the gate; `unchecked` names the profiles that leave it unchecked.
+struct FieldShare {
+  const ReplyFieldClass* field = nullptr;
+  std::size_t exists = 0, checked = 0;
+  std::vector<std::string> unchecked;  // site labels
+};
+// Every field whose value a suite must check (value_required), in the
+// matrix's order.
+std::vector<FieldShare> field_shares(const CoverageMatrix& m, const std::vector<ProfileSite>& sites);
 
 // Every send and poll step of every vector (setup, steps, teardown) that
 // expects ack, nak, offline or silence; `any` counts nowhere. The
