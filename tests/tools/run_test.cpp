@@ -6,9 +6,12 @@
 #include <fstream>
 #include <regex>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <map>
 #include <sstream>
 
 #include "process.hpp"
+#include "sabus/reports/document.hpp"
 #include "temp_dir.hpp"
 
 namespace sabus::harness {
@@ -270,6 +273,108 @@ TEST(Run, ARealDeviceIsStillBackedUpAndRestored) {
   EXPECT_EQ(read_json((fs::path(dir) / "backup-2.json").string())["store_names"], backup["store_names"]);
   EXPECT_EQ(sim.interrupt(), 0);
   fs::remove_all(dir);
+}
+
+// ---- re-runs and shards (issue 34): each run JSON read back by the run
+// document's reader ------------------------------------------------------
+
+reports::RunDocument read_run(const std::string& path) {
+  std::string error;
+  auto doc = reports::read_run_file(path, error);
+  EXPECT_TRUE(doc) << error;
+  return doc.value_or(reports::RunDocument{});
+}
+
+std::set<std::string> ids_of(const reports::RunDocument& d) {
+  std::set<std::string> out;
+  for (const auto& v : d.vectors) out.insert(v.id);
+  return out;
+}
+
+TEST(Run, LastFailedAndFailedFirstNameABadFileAndExit2) {
+  const auto missing = shell(kSabus + " run --last-failed /no/such/run.json 2>&1");
+  EXPECT_EQ(missing.status, 2) << missing.out;
+  EXPECT_NE(missing.out.find("sabus run: --last-failed: /no/such/run.json: no such file"), std::string::npos) << missing.out;
+  const std::string bad = temp_path("bad-run.json");
+  std::ofstream(bad) << "{\"schema\": \"sabus-run\", ";
+  const auto broken = shell(kSabus + " run --failed-first " + bad + " 2>&1");
+  EXPECT_EQ(broken.status, 2) << broken.out;
+  EXPECT_NE(broken.out.find("sabus run: --failed-first: " + bad + ": not JSON"), std::string::npos) << broken.out;
+  const auto both = shell(kSabus + " run --last-failed " + bad + " --failed-first " + bad + " 2>&1");
+  EXPECT_EQ(both.status, 2) << both.out;
+  fs::remove(bad);
+}
+
+// A run with a fault, then --last-failed on a controller without it: only
+// the vectors that failed run, and pass; --failed-first runs them first,
+// then the rest.
+TEST(Run, LastFailedRunsOnlyTheFailuresOfTheEarlierRunAndFailedFirstRunsThemFirst) {
+  const std::string first = temp_path("first.json"), again = temp_path("again.json"), ordered = temp_path("ordered.json");
+  EXPECT_EQ(shell(kSabus + " run -q --fault short-status --paragraph 3.2 --json " + first + " >/dev/null 2>&1").status, 1);
+  const reports::RunDocument f = read_run(first);
+  std::set<std::string> failed;
+  for (const auto& v : f.vectors)
+    if (v.is_failure()) failed.insert(v.id);
+  ASSERT_FALSE(failed.empty());
+  ASSERT_LT(failed.size(), f.vectors.size());
+  EXPECT_EQ(shell(kSabus + " run -q --last-failed " + first + " --json " + again + " >/dev/null 2>&1").status, 0);
+  const reports::RunDocument a = read_run(again);
+  EXPECT_EQ(ids_of(a), failed);
+  EXPECT_EQ(a.options.value("last_failed", ""), first);
+  for (const auto& v : a.vectors) EXPECT_EQ(v.outcome, "pass") << v.id;
+  EXPECT_EQ(shell(kSabus + " run -q --paragraph 3.2 --failed-first " + first + " --json " + ordered + " >/dev/null 2>&1").status, 0);
+  const reports::RunDocument o = read_run(ordered);
+  ASSERT_EQ(o.vectors.size(), f.vectors.size());
+  for (std::size_t i = 0; i < o.vectors.size(); ++i)
+    EXPECT_EQ(failed.count(o.vectors[i].id) > 0, i < failed.size()) << i << " " << o.vectors[i].id;
+  for (const auto& p : {first, again, ordered}) fs::remove(p);
+}
+
+// -x: the run stops after the first must-level failure, exits 1, and the
+// JSON and JUnit say it was aborted and what did not run.
+TEST(Run, ExitFirstStopsAtTheFirstFailureAndTheReportsSayWhatDidNotRun) {
+  const std::string json = temp_path("x.json"), junit = temp_path("x.xml");
+  const auto r = shell(kSabus + " run --fault short-status -x --json " + json + " --junit " + junit + " 2>&1");
+  EXPECT_EQ(r.status, 1) << r.out;
+  const reports::RunDocument d = read_run(json);
+  EXPECT_EQ(d.status, "aborted");
+  ASSERT_FALSE(d.vectors.empty());
+  EXPECT_TRUE(d.vectors.back().is_failure()) << d.vectors.back().id;
+  EXPECT_EQ(std::count_if(d.vectors.begin(), d.vectors.end(), [](const auto& v) { return v.is_failure(); }), 1);
+  EXPECT_LT(d.vectors.size(), d.planned);
+  const std::string stop = "stopped at the first failure (--exitfirst): " + d.vectors.back().id + " failed; " +
+                           std::to_string(d.planned - d.vectors.size()) + " vector(s) did not run: ";
+  EXPECT_EQ(d.abort_reason.rfind(stop, 0), 0u) << d.abort_reason;
+  EXPECT_TRUE(d.options.value("exit_first", false));
+  std::ifstream in(junit);
+  std::stringstream xml;
+  xml << in.rdbuf();
+  EXPECT_NE(xml.str().find("stopped at the first failure (--exitfirst)"), std::string::npos);
+  fs::remove(json);
+  fs::remove(junit);
+}
+
+// --shard K/N over every K runs each vector of the selection exactly once.
+TEST(Run, TheShardsOfARunRunEachVectorOnce) {
+  const std::string whole = temp_path("whole.json");
+  shell(kSabus + " run -q --json " + whole + " >/dev/null 2>&1");
+  const std::set<std::string> all = ids_of(read_run(whole));
+  ASSERT_GT(all.size(), 100u);
+  std::map<std::string, int> seen;
+  for (int k = 1; k <= 3; ++k) {
+    const std::string part = temp_path("shard-" + std::to_string(k) + ".json");
+    shell(kSabus + " run -q --shard " + std::to_string(k) + "/3 --json " + part + " >/dev/null 2>&1");
+    const reports::RunDocument d = read_run(part);
+    EXPECT_EQ(d.options.value("shard", ""), std::to_string(k) + "/3");
+    for (const auto& v : d.vectors) ++seen[v.id];
+    fs::remove(part);
+  }
+  EXPECT_EQ(seen.size(), all.size());
+  for (const auto& id : all) EXPECT_EQ(seen[id], 1) << id;
+  const auto bad = shell(kSabus + " run --shard 4/3 2>&1");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("sabus run: --shard 4/3: K must be between 1 and N (3)"), std::string::npos) << bad.out;
+  fs::remove(whole);
 }
 
 }  // namespace

@@ -150,5 +150,35 @@ TEST_F(SweepFiles, AProfileThatCannotBeWrittenIsSaidToBe) {
   EXPECT_EQ(r.out.find("profile written to"), std::string::npos) << r.out;
 }
 
+// --shard K/N slices the profiles of one --seed and --profiles by seed: the
+// shards over every K run each profile exactly once; a bad value is a usage
+// error naming the option.
+TEST_F(SweepFiles, TheShardsOfASweepRunEachProfileOnce) {
+  const std::string common = "--vectors '" SABUS_SOURCE_DIR "/vectors/3.1-device-type.yaml' --profiles 9 --seed 4";
+  auto seeds = [](const std::string& out) {
+    std::multiset<std::string> found;
+    const std::regex line(R"(^profile \d+ seed (\d+):)");
+    std::istringstream in(out);
+    for (std::string l; std::getline(in, l);)
+      if (std::smatch m; std::regex_search(l, m, line)) found.insert(m[1]);
+    return found;
+  };
+  const auto whole = sweep(common);
+  ASSERT_EQ(whole.status, 0) << whole.out;
+  const auto all = seeds(whole.out);
+  ASSERT_EQ(all.size(), 9u) << whole.out;
+  std::multiset<std::string> sharded;
+  for (int k = 1; k <= 3; ++k) {
+    const auto part = sweep(common + " --shard " + std::to_string(k) + "/3");
+    ASSERT_EQ(part.status, 0) << part.out;
+    EXPECT_NE(part.out.find("of 9, shard " + std::to_string(k) + "/3"), std::string::npos) << part.out;
+    for (const auto& seed : seeds(part.out)) sharded.insert(seed);
+  }
+  EXPECT_EQ(sharded, all);
+  const auto bad = sweep(common + " --shard 0/3");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("sabus vectors sweep: --shard 0/3: K must be between 1 and N (3)"), std::string::npos) << bad.out;
+}
+
 }  // namespace
 }  // namespace sabus::harness

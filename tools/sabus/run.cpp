@@ -21,6 +21,7 @@
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/runner.hpp"
+#include "sabus/harness/selection.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/reports/document.hpp"
@@ -55,7 +56,7 @@ struct RunCliOptions {
   int repeat = 0;
   long pace_ms = -1;
   std::uint64_t seed = 0;
-  bool allow_motion = false, allow_destructive = false, strict = false;
+  bool allow_motion = false, allow_destructive = false, strict = false, exit_first = false;
 };
 
 std::optional<Level> parse_level(const std::string& s) {
@@ -63,39 +64,6 @@ std::optional<Level> parse_level(const std::string& s) {
   if (s == "should") return Level::kShould;
   if (s == "informative") return Level::kInformative;
   return std::nullopt;
-}
-
-// Known issues: one vector id per line, then its reason ("id: reason" or
-// "id  reason"); '#' starts a comment. Every id must name a vector of the
-// suite: a mistyped id would leave its failure failing the run and the
-// list silently wrong. On an error, says which line and returns nullopt.
-std::optional<std::map<std::string, std::string>> read_known_issues(const std::string& path,
-                                                                    const std::set<std::string>& ids) {
-  std::ifstream in(path);
-  if (!in) {
-    std::cerr << "sabus run: --known-issues " << path << ": cannot read\n";
-    return std::nullopt;
-  }
-  std::map<std::string, std::string> out;
-  std::size_t line_number = 0, unknown = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_number;
-    line = line.substr(0, line.find('#'));
-    const auto a = line.find_first_not_of(" \t");
-    if (a == std::string::npos) continue;
-    const auto b = line.find_first_of(": \t", a);
-    const std::string id = line.substr(a, b == std::string::npos ? std::string::npos : b - a);
-    if (!ids.count(id)) {
-      std::cerr << fmt::format("sabus run: {}:{}: no vector has the id \"{}\"\n", path, line_number, id);
-      ++unknown;
-      continue;
-    }
-    std::string reason = b == std::string::npos ? "" : line.substr(b + 1);
-    reason.erase(0, reason.find_first_not_of(" \t:"));
-    out[id] = reason.empty() ? "listed as a known issue" : reason;
-  }
-  if (unknown) return std::nullopt;
-  return out;
 }
 
 struct ReportPaths {
@@ -227,6 +195,7 @@ void set_run_options(RunOptions& ro, const RunCliOptions& o, Level level, const 
   ro.max_level = level;
   ro.repeat = o.repeat;
   ro.strict = o.strict;
+  ro.exit_first = o.exit_first;
   ro.seed = o.seed;
   // §4: no more than one status request a second, and wait for ACK/NAK.
   ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
@@ -259,6 +228,8 @@ reports::RunDocument start_document(const RunCliOptions& o, const RunOptions& ro
                  {"strict", o.strict},
                  {"filters", o.selection.filters}, {"excludes", o.selection.excludes},
                  {"paragraphs", o.selection.paragraphs},
+                 {"shard", o.selection.shard},       {"last_failed", o.selection.last_failed},
+                 {"failed_first", o.selection.failed_first}, {"exit_first", o.exit_first},
                  {"known_issues", o.known_issues}, {"vectors", o.vectors}};
   doc.planned = planned;
   return doc;
@@ -345,19 +316,22 @@ int run_run(RunCliOptions o) {
   if (!all) return kExitUsage;
 
   RunOptions ro;
-  const Selection selection = select_vectors(*all, o.selection, ro);
+  const auto choice = selection_options(o.selection, "sabus run");
+  if (!choice) return kExitUsage;
+  const harness::Selection selection = harness::select_vectors(*all, *choice);
   if (!quiet())
     for (const auto& note : selection.notes) std::cerr << "sabus run: " << note << "\n";
-  if (selection.selected == 0) {
+  if (selection.vectors.empty()) {
     // Said before the device is touched: there is nothing to ask it.
-    std::cerr << "sabus run: NOTHING RAN: " << empty_selection_reason(o.selection) << " (" << all->size()
+    std::cerr << "sabus run: NOTHING RAN: " << harness::empty_selection_reason(*choice) << " (" << all->size()
               << " vectors loaded; `sabus vectors list --filter GLOB` previews a selection)\n";
     return kExitNothingRan;
   }
   if (!o.known_issues.empty()) {
-    auto known = read_known_issues(o.known_issues, ids);
-    if (!known) return kExitUsage;
-    ro.known_issues = *known;
+    auto known = harness::read_known_issues(o.known_issues, ids);
+    for (const auto& e : known.errors) std::cerr << "sabus run: --known-issues " << e << "\n";
+    if (!known.errors.empty()) return kExitUsage;
+    ro.known_issues = std::move(known.reasons);
   }
   const auto paths = report_paths(o);
   if (!paths) return kExitUsage;
@@ -370,9 +344,9 @@ int run_run(RunCliOptions o) {
   // A report on standard output keeps it to itself: the console goes to
   // standard error then.
   std::ostream& out = paths->to_stdout() ? std::cerr : std::cout;
-  Console console(out, paths->to_stdout() ? STDERR_FILENO : STDOUT_FILENO, selection.selected);
+  Console console(out, paths->to_stdout() ? STDERR_FILENO : STDOUT_FILENO, selection.vectors.size());
 
-  reports::RunDocument doc = start_document(o, ro, device, selection.selected);
+  reports::RunDocument doc = start_document(o, ro, device, selection.vectors.size());
   // §3.1: who answers, asked once before the first vector.
   doc.identity = reports::query_identity(transport, device.profile.address);
   if (!doc.identity.ok) std::cerr << "sabus run: device identity: " << doc.identity.error << "\n";
@@ -442,6 +416,8 @@ Command add_run_command(CLI::App& app) {
   sub->add_option("--known-issues", o->known_issues, "Vector ids expected to fail, with reasons");
   sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times (0-100)")->check(CLI::Range(0, 100));
   sub->add_flag("--strict", o->strict, "A should-level failure fails the run too (exit 1)");
+  sub->add_flag("-x,--exitfirst", o->exit_first,
+                "Stop after the first vector that fails the run (exit 1); the reports name the vectors that did not run");
   sub->add_option("--seed", o->seed, "Seed for every random choice")->check(kNonNegative);
   sub->add_option("--pace", o->pace_ms, "Milliseconds between commands, 0-60000 (default 1000 on a line, 0 in-process)")
       ->check(kPaceRange);

@@ -26,6 +26,7 @@
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/readings.hpp"
 #include "sabus/harness/runner.hpp"
+#include "sabus/harness/selection.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "new_file.hpp"
@@ -198,12 +199,26 @@ int run_sweep(const SweepOptions& opts) {
     std::cerr << "sabus vectors sweep: --seed " << opts.seed << ": a whole number below 2^64, or fresh\n";
     return kExitUsage;
   }
+  std::optional<Shard> shard;
+  if (!opts.shard.empty()) {
+    std::string error;
+    shard = parse_shard(opts.shard, error);
+    if (!shard) {
+      std::cerr << "sabus vectors sweep: " << error << "\n";
+      return kExitUsage;
+    }
+  }
   std::vector<std::uint64_t> seeds;
   if (opts.profile_seed) seeds.push_back(*opts.profile_seed);
   else {
-    for (std::uint64_t i = 0; i < opts.profiles; ++i) seeds.push_back(profile_seed(*seed, i));
-    std::cout << fmt::format("sweep seed {}{}: {} profiles (reproduce: --seed {} --profiles {})\n", *seed,
-                             opts.seed == "fresh" ? " (fresh)" : "", seeds.size(), *seed, seeds.size());
+    // A shard takes the profiles whose seed falls in its slice: the N shards
+    // of one --seed and --profiles run each profile exactly once.
+    for (std::uint64_t i = 0; i < opts.profiles; ++i)
+      if (const std::uint64_t s = profile_seed(*seed, i); !shard || in_shard(*shard, std::to_string(s))) seeds.push_back(s);
+    std::cout << fmt::format("sweep seed {}{}: {} profiles{} (reproduce: --seed {} --profiles {}{})\n", *seed,
+                             opts.seed == "fresh" ? " (fresh)" : "", seeds.size(),
+                             shard ? fmt::format(" of {}, shard {}/{}", opts.profiles, shard->index, shard->count) : "",
+                             *seed, opts.profiles, shard ? " --shard " + opts.shard : "");
   }
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -300,6 +315,8 @@ void add_sweep_subcommand(CLI::App& vectors, std::shared_ptr<SweepOptions> o) {
   sub->add_option("--write-profiles", o->write_profiles,
                   "Write every profile (not only the failing ones) to this folder as sweep-SEED.yaml");
   sub->add_option("--reading", o->reading, kReadingHelp);
+  sub->add_option("--shard", o->shard, "Only the K-th of N stable slices of the profiles (by seed), to split a sweep")
+      ->type_name("K/N");
   sub->add_option("--jobs", o->jobs, "Profiles run at once (default: the machine's cores)")->check(CLI::Range(1, 256));
   o->command = sub;
 }

@@ -22,6 +22,8 @@ struct SweepOptions {
   // The side of the spec's open points the reference controller takes
   // (readings.hpp; "" the profile's own); the verdicts keep the profile's pins.
   std::string reading;
+  // --shard K/N: only the profiles in this slice (by seed; selection.hpp Shard).
+  std::string shard;
   CLI::App* command = nullptr;  // the subcommand, to tell whether it was given
 };
 

@@ -118,12 +118,13 @@ int run_list(const VectorsOptions& o) {
   for (const auto& e : r.errors) std::cerr << e.text() << "\n";
   std::vector<Vector> all;
   for (const auto& f : r.files) all.insert(all.end(), f.vectors.begin(), f.vectors.end());
-  harness::RunOptions globs;
-  const Selection selection = select_vectors(all, o.selection, globs);
-  const bool selecting = !o.selection.filters.empty() || !o.selection.excludes.empty() || !o.selection.paragraphs.empty();
+  const auto choice = selection_options(o.selection, "sabus vectors list");
+  if (!choice) return kExitUsage;
+  const harness::Selection selection = harness::select_vectors(all, *choice);
+  const bool selecting = !o.selection.filters.empty() || !o.selection.excludes.empty() || !o.selection.paragraphs.empty() ||
+                         choice->shard || choice->only || !choice->first.empty();
   std::vector<const Vector*> shown;
-  for (const auto& v : selection.vectors)
-    if (harness::is_selected(globs, v.id)) shown.push_back(&v);
+  for (const auto& v : selection.vectors) shown.push_back(&v);
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
     for (const Vector* v : shown) out.push_back(vector_json(*v));
@@ -136,7 +137,7 @@ int run_list(const VectorsOptions& o) {
     for (const auto& note : selection.notes) std::cerr << "sabus vectors list: " << note << "\n";
     std::cerr << fmt::format("{} of {} vectors selected\n", shown.size(), all.size());
     if (shown.empty()) {
-      std::cerr << "sabus vectors list: " << empty_selection_reason(o.selection) << "\n";
+      std::cerr << "sabus vectors list: " << harness::empty_selection_reason(*choice) << "\n";
       if (r.errors.empty()) return kExitNothingRan;
     }
   }

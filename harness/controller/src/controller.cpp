@@ -402,6 +402,7 @@ void Controller::start_move(AxisId a, double target, bool remote) {
   }
   s.direction = s.aim >= s.position ? 1 : -1;
   s.motion = remote ? AxisState::Motion::kRemoteAutoMove : AxisState::Motion::kAutoMove;
+  if (a == AxisId::kAz) az_auto_moved_ = true;
 }
 
 void Controller::step_axis(AxisId a, TimePoint from, TimePoint to) {
@@ -684,6 +685,10 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
     case AxisState::Motion::kAutoMove: code = s.direction > 0 ? 0x5 : 0x4; break;
     case AxisState::Motion::kRemoteAutoMove: code = 0x7; break;
   }
+  // Fault never-shows-rest: the azimuth at rest after an auto move still
+  // reads "automatic movement in progress" (§3.2 byte 36 XXXX 0100/0101).
+  if (faults_.has(Fault::kNeverShowsRest) && a == AxisId::kAz && s.motion == AxisState::Motion::kIdle && az_auto_moved_)
+    code = s.direction > 0 ? 0x5 : 0x4;
   if (s.alarm) code = s.alarm;
   // E-98: 'S' is the speed of the move, or (other side) the configured speed.
   const bool fast = reads_other("E-98") ? s.configured_fast : s.fast;

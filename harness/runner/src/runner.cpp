@@ -1,5 +1,5 @@
 // The conformance runner: runs vectors through a Transport in named phases —
-// select (filters), gate (level, requirements, motion/destructive/parity
+// gate (level, requirements, motion/destructive/parity
 // safety), backup (before the first destructive vector), setup, steps,
 // teardown (and an 'X' stop after motion), verdict (known issues, repeats),
 // journal (counts and the on_result callback), and a liveness check after
@@ -7,8 +7,8 @@
 #include "sabus/harness/runner.hpp"
 
 #include <algorithm>
-#include <fnmatch.h>
 #include <functional>
+#include <utility>
 
 #include "backup.hpp"
 #include "sabus/harness/expressions.hpp"
@@ -54,12 +54,6 @@ int RunResult::exit_code() const {
   for (const auto& v : vectors)
     if (v.counts_as_failure(strict)) return 1;
   return ran() == 0 ? kNothingRanExitCode : 0;
-}
-
-bool is_selected(const RunOptions& options, const std::string& id) {
-  auto matches = [&](const std::string& pattern) { return fnmatch(pattern.c_str(), id.c_str(), 0) == 0; };
-  bool selected = options.filters.empty() || std::any_of(options.filters.begin(), options.filters.end(), matches);
-  return selected && std::none_of(options.excludes.begin(), options.excludes.end(), matches);
 }
 
 Runner::Runner(Transport& transport, const Profile& profile, RunOptions options)
@@ -178,8 +172,12 @@ struct Attempt {
 // device never got into the state the test purpose needs; any other step's
 // is a failure. `where` says which phase or slot ("setup: ", "preset
 // satellite 2: ").
-void record(Attempt& a, const Step& step, const std::string& where, const std::string& error) {
-  if (step.precondition.empty()) a.failures.push_back(where + error);
+// A short poll for rest that did not see rest (kShortRestPoll) ends it
+// inconclusive too: the mount was never shown at rest, which an earlier
+// vector's failure has reported already.
+void record(Attempt& a, Session& s, const Step& step, const std::string& where, const std::string& error) {
+  if (std::exchange(s.rest_unseen, false)) a.inconclusive = where + error;
+  else if (step.precondition.empty()) a.failures.push_back(where + error);
   else a.inconclusive = where + "precondition not met (" + step.precondition + "): " + error;
 }
 
@@ -198,7 +196,7 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
         v.each_slot.empty() ? "" : std::string(slot_what(v.each_slot).value_or(v.each_slot)) + " " + std::to_string(slot) + ": ";
     for (const Step& step : v.steps)
       if (auto e = s.run_step(step)) {
-        record(a, step, where, *e);
+        record(a, s, step, where, *e);
         break;
       }
     if (!a.inconclusive.empty()) return;
@@ -214,15 +212,24 @@ Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& trans
   s.transcript = &transcript;
   s.captures.clear();
   s.vector_moves = v.has_tag("motion");
+  s.vector_id = v.id;
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
-      record(a, step, "setup: ", *e);
+      record(a, s, step, "setup: ", *e);
       break;
     }
   if (!a.ended()) run_steps(s, v, a);
   for (const Step& step : v.teardown) {
     if (is_stop(step) && s.track_governs()) continue;  // as the runner's own stop (Session::stop_motion)
-    if (auto e = s.run_step(step)) a.failures.push_back("teardown: " + *e);
+    if (auto e = s.run_step(step)) {
+      // A short poll for rest that did not see rest: the mount's state after
+      // the vector is unknown, not wrong (an earlier failure said so).
+      if (std::exchange(s.rest_unseen, false)) {
+        if (a.inconclusive.empty()) a.inconclusive = "teardown: " + *e;
+      } else {
+        a.failures.push_back("teardown: " + *e);
+      }
+    }
   }
   if (v.has_tag("motion")) s.stop_motion();  // not while TRACK governs (Session::stop_motion)
   s.transcript = nullptr;
@@ -305,6 +312,20 @@ void abort_run(RunResult& result, std::string why) {
   result.abort_reason = std::move(why);
 }
 
+// -x/--exitfirst: the run ends after `failed`, the first vector that fails
+// it, when vectors are left; the reason names it and the vectors that did not run (the first ten,
+// and how many more; RunResult::not_run has them all).
+void stop_at_first_failure(RunResult& result, const std::string& failed,
+                           const std::vector<std::reference_wrapper<const Vector>>& order, std::size_t next) {
+  for (std::size_t i = next; i < order.size(); ++i) result.not_run.push_back(order[i].get().id);
+  std::string why = "stopped at the first failure (--exitfirst): " + failed + " failed; " +
+                    std::to_string(result.not_run.size()) + " vector(s) did not run: ";
+  constexpr std::size_t kNamed = 10;
+  for (std::size_t i = 0; i < result.not_run.size() && i < kNamed; ++i) why += (i ? ", " : "") + result.not_run[i];
+  if (result.not_run.size() > kNamed) why += " and " + std::to_string(result.not_run.size() - kNamed) + " more";
+  abort_run(result, std::move(why));
+}
+
 // The order the vectors run in: as given, except that `as-found` vectors
 // come first. They read stored data as the profile describes it, which a
 // destructive vector may change for good (46h deletes the STORE list, which
@@ -332,13 +353,14 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   result.measured_turnaround = s.turnaround.max();
 
   int dead_probes = 0;
-  for (const Vector& v : run_order(vectors)) {
+  const auto order = run_order(vectors);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Vector& v = order[i];
     if (const std::string_view signal = options_.stop ? options_.stop() : ""; !signal.empty()) {
       abort_run(result, "stopped by " + std::string(signal));
       result.stopped_by = signal;
       break;
     }
-    if (!is_selected(options_, v.id)) continue;  // select: not part of this run at all
     VectorResult r = result_of(v);
     if (auto why = skip_reason(v, options_, profile_, transport_)) {
       r.verdict = Verdict::kSkip;
@@ -364,8 +386,13 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
       execute(s, v, r, result);
     }
     const bool probe = r.verdict != Verdict::kSkip && expects_silence(v);
+    const bool fails_run = r.counts_as_failure(options_.strict);
     journal(result, std::move(r), options_);
     if (result.aborted) break;
+    if (options_.exit_first && fails_run && i + 1 < order.size()) {  // the last one cuts nothing short
+      stop_at_first_failure(result, v.id, order, i + 1);
+      break;
+    }
     // After an ignore path, make sure the device did not silently die.
     if (!probe) continue;
     result.liveness.push_back(s.liveness("after " + v.id));

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,15 @@ class Session : public ReceiverSink {
   std::vector<TranscriptEntry>* transcript = nullptr;  // where exchanges are recorded; null: nowhere
   std::string expect;  // the expected path of the step being sent (TranscriptEntry::expect)
   bool vector_moves = false;  // the current vector can move the antenna: its polls watch for motion ending
+  // A mount that never shows rest (runner.hpp kShortRestPoll): the vector
+  // running now; the status fields ("az status") a poll for rest timed out
+  // on, in the vector named, until each has shown rest; whether the last
+  // poll was a short one that did not see rest (its failure is then an
+  // inconclusive's reason).
+  std::string vector_id;
+  std::set<std::string> rest_not_shown;
+  std::string rest_timed_out_in;
+  bool rest_unseen = false;
   TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
   std::size_t bytes_sent = 0, bytes_received = 0;
   std::chrono::microseconds silence_listened{0};

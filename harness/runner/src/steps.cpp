@@ -117,6 +117,15 @@ std::optional<bool> every_axis_stopped(const FrameDescription& d) {
   return seen ? std::optional<bool>(true) : std::nullopt;
 }
 
+// The matchers of a poll's `until` on an axis's movement status (§3.2 bytes
+// 36-38): a poll with any waits for the mount at rest (kShortRestPoll).
+std::vector<FieldMatcher> rest_matchers(const Step& s) {
+  std::vector<FieldMatcher> out;
+  for (const auto& m : s.until)
+    if (m.field == "az status" || m.field == "el status" || m.field == "pol status") out.push_back(m);
+  return out;
+}
+
 // The slot a `from_profile` names (a number or a profile expression); 0 for
 // "navigation", which has one record.
 std::optional<std::string> record_index(const std::string& from_profile, std::uint8_t code, const ExprContext& cx,
@@ -332,12 +341,29 @@ std::optional<std::string> Session::run_poll(const Step& s) {
   Step probe = s;
   probe.kind = Step::Kind::kSend;
   int stopped_polls = 0;
+  // A poll for the rest of an axis whose poll for rest timed out is short
+  // (kShortRestPoll), until that axis shows rest.
+  const std::vector<FieldMatcher> rest = rest_matchers(s);
+  auto waits_for_unshown_rest = [&] {
+    return std::any_of(rest.begin(), rest.end(), [&](const FieldMatcher& m) { return rest_not_shown.count(m.field) > 0; });
+  };
+  bool short_poll = waits_for_unshown_rest();
+  rest_unseen = false;
   while (true) {
     if (auto e = run_send(probe)) return "poll: " + *e;
     // The reply of the last exchange, checked against `until`.
     const Bytes reply = last_replies().empty() ? Bytes{} : encode_frame(last_replies()[0]);
     const FrameDescription d = describe_frame(reply);
     const std::optional<std::string> unmet = check_matchers(d, s.until);
+    // The axes that show rest now; when every one a poll timed out on has,
+    // the run is back to normal.
+    std::vector<std::string> moving;
+    for (const auto& m : rest) {
+      if (!check_matchers(d, {m})) rest_not_shown.erase(m.field);
+      else moving.push_back(m.field);
+    }
+    short_poll = short_poll && waits_for_unshown_rest();
+    if (rest_not_shown.empty()) rest_timed_out_in.clear();
     if (!unmet) return std::nullopt;
     if (timeout.count() == 0) timeout = poll_timeout(s, d);
     if (vector_moves && every_axis_stopped(d).value_or(false)) {
@@ -347,7 +373,17 @@ std::optional<std::string> Session::run_poll(const Step& s) {
     } else {
       stopped_polls = 0;
     }
-    if (transport.now() - start >= timeout) return "poll timed out after " + std::to_string(timeout.count()) + " ms: " + *unmet;
+    if (short_poll && transport.now() - start >= std::min(timeout, kShortRestPoll)) {
+      rest_unseen = true;
+      return "the mount did not show rest in a short poll of " + std::to_string(std::min(timeout, kShortRestPoll).count()) +
+             " ms (" + *unmet + "): the poll for rest of " + rest_timed_out_in +
+             " timed out, and later polls for rest are short";
+    }
+    if (transport.now() - start >= timeout) {
+      if (!moving.empty() && rest_not_shown.empty()) rest_timed_out_in = vector_id;
+      rest_not_shown.insert(moving.begin(), moving.end());
+      return "poll timed out after " + std::to_string(timeout.count()) + " ms: " + *unmet;
+    }
     if (options.stop && !options.stop().empty()) return "stopped";
     transport.pause(s.interval);
   }

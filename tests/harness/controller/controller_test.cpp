@@ -1165,6 +1165,8 @@ TEST(Faults, EveryFaultChangesTheWire) {
       {Fault::kDriveResetKeepsAlarm, [](Profile& p) { p.alarms.az = 11; }, wire(Misc{'R', 'A'}, '2')},
       // 1.5 deg of azimuth at 2 deg/s: there after 1 s, or stopped at 0.5.
       {Fault::kMoveStopsShort, [](Profile& p) { p.az.initial_deg = 0; }, wire(AutoMove{AutoMoveAzEl{15, 450}}, '2')},
+      // The same move, ended after 1 s: the status shows it at rest, or still moving.
+      {Fault::kNeverShowsRest, [](Profile& p) { p.az.initial_deg = 0; }, wire(AutoMove{AutoMoveAzEl{15, 450}}, '2')},
       {Fault::kExtendedStatusSpeedBit, none, wire(ExtendedStatusPoll{}, '2')},
       // Resting on the counterclockwise limit: §3.2 byte 32 shows it.
       {Fault::kAzLimitBitsMissing, [](Profile& p) { p.az.initial_deg = p.az.min_deg; }, poll},

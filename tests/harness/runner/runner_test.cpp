@@ -1028,5 +1028,136 @@ TEST(Runner, NoBackupWhenTheDeviceDoesNotOutliveTheRun) {
   EXPECT_TRUE(r.restore_notes.empty());
 }
 
+// ---- -x/--exitfirst -----------------------------------------------------------
+
+// The run stops after the first vector that fails it: a must failure (with
+// --strict a should one); a should failure before it does not stop it. The
+// run is aborted, exits 1, and names the vectors that did not run.
+TEST(Runner, ExitFirstStopsAfterTheFirstFailureThatFailsTheRunAndNamesWhatDidNotRun) {
+  const auto ok = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  const auto wrong = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);
+  Vector should = vector_with("b-should-wrong", {wrong});
+  should.level = Level::kShould;
+  const std::vector<Vector> vectors = {vector_with("a-ok", {ok}), should, vector_with("c-must-wrong", {wrong}),
+                                       vector_with("d-ok", {ok}), vector_with("e-must-wrong", {wrong})};
+  RunOptions o;
+  o.exit_first = true;
+  RunResult r = run_in_process(vectors, {}, o);
+  ASSERT_EQ(r.vectors.size(), 3u);
+  EXPECT_EQ(r.vectors[1].verdict, Verdict::kFail) << "a should failure does not stop the run";
+  EXPECT_EQ(r.vectors[2].id, "c-must-wrong");
+  EXPECT_TRUE(r.aborted);
+  EXPECT_TRUE(r.stopped_by.empty()) << "the run's own stop, not the bench's";
+  EXPECT_EQ(r.exit_code(), 1);
+  EXPECT_EQ(r.not_run, (std::vector<std::string>{"d-ok", "e-must-wrong"}));
+  EXPECT_EQ(r.abort_reason,
+            "stopped at the first failure (--exitfirst): c-must-wrong failed; 2 vector(s) did not run: d-ok, e-must-wrong");
+  // --strict: the should failure is the first that fails the run.
+  o.strict = true;
+  r = run_in_process(vectors, {}, o);
+  ASSERT_EQ(r.vectors.size(), 2u);
+  EXPECT_EQ(r.not_run.size(), 3u);
+  // Without -x every vector runs; a failure of the last vector cuts nothing short.
+  EXPECT_EQ(run_in_process(vectors).vectors.size(), 5u);
+  o = {};
+  o.exit_first = true;
+  r = run_in_process({vector_with("a-ok", {ok}), vector_with("z-must-wrong", {wrong})}, {}, o);
+  EXPECT_FALSE(r.aborted) << r.abort_reason;
+  EXPECT_EQ(r.exit_code(), 1);
+}
+
+// ---- a mount that never shows rest (kShortRestPoll) ---------------------------
+
+Step poll_for(std::vector<FieldMatcher> until) {
+  Step poll = send_command("status", "", {}, Expectation::Kind::kAck);
+  poll.kind = Step::Kind::kPoll;
+  poll.timeout = std::chrono::milliseconds(60000);
+  poll.until = std::move(until);
+  return poll;
+}
+
+FieldMatcher at_rest(std::string field) { return matcher(std::move(field), FieldMatcher::Kind::kRegex, {"^0x[45]0$"}); }
+
+// The status polls a vector sent.
+std::size_t status_polls(const VectorResult& v) {
+  return static_cast<std::size_t>(std::count_if(v.transcript.begin(), v.transcript.end(), [](const TranscriptEntry& e) {
+    return e.sent && e.bytes.size() > 2 && e.bytes[2] == 0x31;
+  }));
+}
+
+// Once a poll for rest has timed out with the azimuth still moving, later
+// polls for its rest are short: their vectors end inconclusive, naming the
+// vector whose poll timed out. A poll for the elevation's rest alone, which
+// it shows, is a normal one and passes.
+TEST(Runner, AfterAPollForRestTimedOutLaterOnesAreShortAndTheirVectorsInconclusive) {
+  const auto move = send_command("auto_move", "2A", {{"azimuth", "-10.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult r = run_in_process({vector_with("a-move", {move, poll_for({at_rest("az status")})}, {"motion"}),
+                                      vector_with("b-az-rest", {poll_for({at_rest("az status")})}),
+                                      vector_with("c-az-and-el-rest", {poll_for({at_rest("el status"), at_rest("az status")})}),
+                                      vector_with("d-el-rest", {poll_for({at_rest("el status")})}),
+                                      vector_with("e-az-rest", {poll_for({at_rest("az status")})})},
+                                     {Fault::kNeverShowsRest}, o);
+  ASSERT_EQ(r.vectors.size(), 5u);
+  const auto& first = r.vectors[0];
+  ASSERT_EQ(first.verdict, Verdict::kFail);
+  EXPECT_GE(status_polls(first), 60u) << "a full poll: a minute of polls a second apart";
+  EXPECT_EQ(first.failures[0].rfind("poll timed out after 60000 ms: byte 36 az status", 0), 0u) << first.failures[0];
+  for (const auto* v : {&r.vectors[1], &r.vectors[2], &r.vectors[4]}) {
+    EXPECT_EQ(v->verdict, Verdict::kInconclusive) << v->id << ": " << (v->failures.empty() ? "" : v->failures[0]);
+    EXPECT_TRUE(v->failures.empty()) << v->id;
+    EXPECT_NE(v->inconclusive_reason.find("the mount did not show rest in a short poll"), std::string::npos)
+        << v->inconclusive_reason;
+    EXPECT_NE(v->inconclusive_reason.find("the poll for rest of a-move timed out"), std::string::npos)
+        << v->inconclusive_reason;
+    // A short poll: one status request, and one more a poll interval (1 s) later.
+    EXPECT_LE(status_polls(*v), 1 + static_cast<std::size_t>(kShortRestPoll / std::chrono::milliseconds(1000))) << v->id;
+  }
+  EXPECT_EQ(r.vectors[3].verdict, Verdict::kPass) << "the elevation shows rest";
+  EXPECT_EQ(r.exit_code(), 1);
+  EXPECT_EQ(r.inconclusive, 3u);
+}
+
+// A poll for rest that timed out while the mount was still on its way (a
+// long move, a short timeout): the next poll for rest is short and ends its
+// vector inconclusive; once a poll sees the azimuth at rest, the run is back
+// to normal, and a later poll for rest that times out fails its vector again.
+TEST(Runner, APollThatSeesRestPutsTheRunBackToNormal) {
+  const auto far = send_command("auto_move", "2A", {{"azimuth", "150.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
+  const auto back = send_command("auto_move", "2A", {{"azimuth", "-150.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
+  Step brief = poll_for({at_rest("az status")});
+  brief.timeout = std::chrono::milliseconds(3000);
+  Step wait;
+  wait.kind = Step::Kind::kWait;
+  wait.timeout = std::chrono::milliseconds(3600000);
+  RunOptions o;
+  o.allow_motion = true;
+  // No motion tag on b and c: their vectors do not stop the mount after them.
+  const RunResult r = run_in_process({vector_with("a-far", {far, brief}), vector_with("b-az-rest", {poll_for({at_rest("az status")})}),
+                                      vector_with("c-wait-then-rest", {wait, poll_for({at_rest("az status")})}),
+                                      vector_with("d-back", {back, brief})},
+                                     {}, o);
+  ASSERT_EQ(r.vectors.size(), 4u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  EXPECT_EQ(r.vectors[1].verdict, Verdict::kInconclusive) << (r.vectors[1].failures.empty() ? "" : r.vectors[1].failures[0]);
+  EXPECT_NE(r.vectors[1].inconclusive_reason.find("the poll for rest of a-far timed out"), std::string::npos);
+  EXPECT_EQ(r.vectors[2].verdict, Verdict::kPass) << r.vectors[2].inconclusive_reason;
+  ASSERT_EQ(r.vectors[3].verdict, Verdict::kFail) << r.vectors[3].inconclusive_reason;
+  EXPECT_EQ(r.vectors[3].failures[0].rfind("poll timed out after 3000 ms", 0), 0u) << r.vectors[3].failures[0];
+}
+
+// The same vectors on a controller without the fault: every poll sees rest.
+TEST(Runner, PollsForRestPassOnAControllerThatShowsRest) {
+  const auto move = send_command("auto_move", "2A", {{"azimuth", "-10.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult r = run_in_process({vector_with("a-move", {move, poll_for({at_rest("az status")})}, {"motion"}),
+                                      vector_with("b-az-rest", {poll_for({at_rest("az status")})})},
+                                     {}, o);
+  ASSERT_EQ(r.vectors.size(), 2u);
+  for (const auto& v : r.vectors) EXPECT_EQ(v.verdict, Verdict::kPass) << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+}
+
 }  // namespace
 }  // namespace sabus::harness

@@ -188,6 +188,9 @@ class Controller {
   // movement ended since the last tick (the next leg begins at the next one).
   TimePoint tick_origin_{};
   bool chain_pending_ = false;
+  // Fault never-shows-rest: the azimuth has made an auto move, and its
+  // status shows one in progress from then on.
+  bool az_auto_moved_ = false;
   // §3.7 'A' (ERRATA E-90): the spiral search in progress.
   struct Search {
     char pattern = 'E';        // 'E' expanding, 'F' flat

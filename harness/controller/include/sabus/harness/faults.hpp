@@ -50,6 +50,7 @@ namespace sabus::harness {
   X(kRemoteDisabledAnswers, "remote-disabled-answers", "with remote control disabled, commands are executed")        \
   X(kDriveResetKeepsAlarm, "drive-reset-keeps-alarm", "a drive reset ('R') ACKs but leaves the axis alarm active")  \
   X(kMoveStopsShort, "move-stops-short", "auto moves stop 1 degree short of their target")                        \
+  X(kNeverShowsRest, "never-shows-rest", "after an auto move has ended, the azimuth status still shows auto move in progress") \
   X(kPulseCountStale, "pulse-count-stale", "pulse counts stay those of the power-on position: they do not follow the mount") \
   X(kPulseCountNoOffset, "pulse-count-no-offset", "pulse counts leave out count_offset: position x counts_per_degree") \
   X(kHundredthsAlwaysZero, "hundredths-always-zero", "extended status bytes 49-50 are '0' on a mount with 0.01 deg feedback") \

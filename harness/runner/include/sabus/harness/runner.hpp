@@ -113,11 +113,15 @@ struct RunOptions {
   bool allow_motion = false;
   bool allow_destructive = false;
   Level max_level = Level::kInformative;      // run vectors up to this level
-  std::vector<std::string> filters;           // id globs to run ("3.3-*"); empty: all
-  std::vector<std::string> excludes;          // id globs to skip
-  std::map<std::string, std::string> known_issues;  // id -> reason
+  // Which vectors run is decided before the run (selection.hpp): the runner
+  // runs every vector it is given.
+  std::map<std::string, std::string> known_issues;  // id -> reason (selection.hpp read_known_issues)
   int repeat = 0;                             // re-run each failing vector N times
   bool strict = false;                        // should-level failures fail the run (h2spec's --strict)
+  // -x/--exitfirst (pytest's): the run stops after the first vector that
+  // fails it (VectorResult::counts_as_failure); RunResult::not_run names
+  // those that did not run, and the abort reason says so.
+  bool exit_first = false;
   std::uint64_t seed = 0;
   std::chrono::milliseconds pace{0};          // at least this long between commands (§4); 0: none
   std::chrono::milliseconds turnaround_allowance{50};
@@ -152,6 +156,16 @@ struct StoredDataBackup {
   std::string to_json() const;
 };
 
+// A poll for rest is a poll whose `until` names an axis's movement status
+// (§3.2 bytes 36-38: "az status", "el status", "pol status"). Once one has
+// timed out with an axis still showing movement, each later poll for that
+// axis's rest lasts at most this long: when the axis shows rest, the run goes
+// back to normal for it; when not, the poll's vector ends inconclusive,
+// naming the vector whose poll timed out. A controller that never shows rest is judged by its
+// first timeout, not after a full poll of every later vector that needs the
+// mount at rest.
+inline constexpr std::chrono::milliseconds kShortRestPoll{1000};
+
 // RunResult::exit_code when no vector ran.
 inline constexpr int kNothingRanExitCode = 5;
 // RunResult::exit_code when the run was stopped before its end by the bench,
@@ -173,6 +187,9 @@ struct RunResult {
   // Why the bench stopped the run ("SIGINT", "SIGTERM", "lost device"); ""
   // when it ran to its end or the device's answers ended it.
   std::string stopped_by;
+  // With RunOptions::exit_first, the vectors given that did not run after
+  // the first failure, in run order ("" ids never).
+  std::vector<std::string> not_run;
   std::chrono::microseconds measured_turnaround{0};
   // Traffic of the whole run, liveness checks included: for line-efficiency figures.
   std::size_t bytes_sent = 0, bytes_received = 0;
@@ -196,10 +213,6 @@ struct RunResult {
   // checked nothing (their test purpose was not reached), so they are not counted.
   std::size_t ran() const { return passed + failed + known + unexpected; }
 };
-
-// Whether a vector id is part of a run with these filters and excludes
-// (the runner passes over the others without a result).
-bool is_selected(const RunOptions& options, const std::string& id);
 
 class Runner {
  public:
