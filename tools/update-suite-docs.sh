@@ -18,5 +18,6 @@ awk -v table="$table" '
 mv vectors/README.md.new vectors/README.md
 "$sabus" vectors errata --update protocol/ERRATA.md
 # The reference pages generated from the code (docs/reference/): the CLI's
-# --help, the faults, the profile keys, the run JSON schema, the errata index.
+# --help, the faults, the vector file keys, the profile keys, the run JSON
+# schema, the errata index.
 /usr/bin/python3 tools/docs/reference.py --sabus "$sabus" --source .

@@ -5,6 +5,7 @@
 
   cli.md           every subcommand's --help, from the built binary
   faults.md        `sabus sim --list-faults`
+  vector-schema.md `sabus vectors schema`: every key the vector loader accepts, node by node
   profile-keys.md  every key of the default profile (vectors/profiles/rc3000-1.59.yaml,
                    which writes every key) with its default value
   run-schema.md    reports/run.schema.json, definition by definition
@@ -95,6 +96,20 @@ def faults_page(sabus):
             "`sabus run --sim --fault NAME`, `sabus fuzz --sim --fault NAME`) and that the suite must catch "
             "(the mutation gate, docs/vectors-and-profiles.md). "
             f"The {len(lines)} faults, as `sabus sim --list-faults` prints them:\n\n" + fence(text))
+
+
+def vector_schema_page(sabus):
+    text = sabus_out(sabus, "vectors", "schema")
+    return (HEADER.format(what="`sabus vectors schema`") +
+            "# Vector file keys\n\n"
+            "Every key a vector file (`vectors/*.yaml`) may hold, node by node, from the table the loader takes "
+            "its keys from (`harness/vectors/src/vector_schema.cpp`; `sabus vectors schema` prints it). A key "
+            "that is not listed at its node is a load error naming the file, line, column and key. What each "
+            "value may hold, with worked examples, is in [vectors/README.md](../../vectors/README.md).\n\n"
+            "Some maps have data for keys and are not listed: a file's `notes` (flag names), `requires` "
+            "(profile key paths, [profile-keys.md](profile-keys.md)), `fields` and `until` (the command's "
+            "field names, as `sabus decode` prints them) and `readings` (the ERRATA ids of the spec's open "
+            "points, [errata-index.md](errata-index.md)).\n\n" + text)
 
 
 def profile_keys_page(source):
@@ -204,11 +219,10 @@ def index_page():
             "- [profile-keys.md](profile-keys.md): every key of a device profile\n"
             "- [run-schema.md](run-schema.md): the run JSON, from `reports/run.schema.json`\n"
             "- [faults.md](faults.md): the faults the reference controller can be given\n"
+            "- [vector-schema.md](vector-schema.md): every key of a vector file, node by node\n"
             "- [errata-index.md](errata-index.md): the errata entries, their levels and switches\n\n"
-            "The vector schema is not generated: the loader's keys are checked in its code "
-            "(`harness/vectors/src/vector_document.cpp`), not kept in a table a script could read, so "
-            "[vectors/README.md](../../vectors/README.md) is its reference, written by hand and "
-            "checked by the vector linter's tests. The same holds for the meaning of each profile key "
+            "Written by hand: the vector format's worked examples and rules "
+            "([vectors/README.md](../../vectors/README.md)), the meaning of each profile key "
             "([vectors/profiles/README.md](../../vectors/profiles/README.md)) and of each run JSON "
             "field ([reports/SCHEMA.md](../../reports/SCHEMA.md)).\n\n"
             "`tools/update-suite-docs.sh` rewrites these pages (with `tools/docs/reference.py`); the "
@@ -225,6 +239,7 @@ def main():
         "README.md": index_page(),
         "cli.md": cli_page(args.sabus),
         "faults.md": faults_page(args.sabus),
+        "vector-schema.md": vector_schema_page(args.sabus),
         "profile-keys.md": profile_keys_page(args.source),
         "run-schema.md": run_schema_page(args.source),
         "errata-index.md": errata_page(args.source),

@@ -28,6 +28,7 @@
 #include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/vector_loader.hpp"
+#include "sabus/harness/vector_schema.hpp"
 
 namespace sabus::cli {
 namespace {
@@ -554,11 +555,14 @@ Command add_vectors_command(CLI::App& app) {
   cov->add_option("--seed", opts->seed, "Seed of those random profiles, as `sabus vectors sweep --seed` (default 1)");
   CLI::App* functions =
       sub->add_subcommand("functions", "List the functions of profile expressions (\"{home(az)}\", vectors/README.md)");
+  CLI::App* schema = sub->add_subcommand(
+      "schema", "Print every key a vector file may hold, node by node, as Markdown (the loader's own table)");
   auto sweep = std::make_shared<SweepOptions>();
   add_sweep_subcommand(*sub, sweep);
-  return {sub, [opts, lint, cov, errata, functions, sweep] {
+  return {sub, [opts, lint, cov, errata, functions, schema, sweep] {
             if (sweep->command->parsed()) return run_sweep(*sweep);
             if (functions->parsed()) return run_functions();
+            if (schema->parsed()) return (std::cout << harness::schema_markdown(), kExitOk);
             if (lint->parsed()) return run_lint(*opts);
             if (cov->parsed()) return run_coverage(*opts);
             if (errata->parsed()) return run_errata(*opts);

@@ -1,7 +1,8 @@
-// The document layer of the vector loader (vectors/*.yaml; schema and worked
-// examples: vectors/README.md): one file read strictly (yaml_reader.hpp:
-// every key checked, duplicates found, marks kept) into its notes, groups and
-// vectors, each vector's error kept apart from the others'. The steps of a
+// The document layer of the vector loader (vectors/*.yaml; its keys are
+// vector_schema.hpp's table, worked examples vectors/README.md): one file read
+// strictly (yaml_reader.hpp: every key checked, duplicates found, marks
+// kept) into its notes, groups and vectors, each vector's error kept apart
+// from the others'. The steps of a
 // vector are the step schema's (vector_steps.cpp), which checks each send
 // against the command catalog and the codecs; what needs the whole suite or
 // the errata is lint()'s (vector_lint.cpp).
@@ -14,6 +15,7 @@
 
 #include "sabus/harness/data_dir.hpp"
 #include "sabus/harness/expressions.hpp"
+#include "sabus/harness/vector_schema.hpp"
 #include "vector_loader_internal.hpp"
 
 namespace sabus::harness::vector_loader_internal {
@@ -86,7 +88,7 @@ std::vector<std::string> read_needs(const YAML::Node& v, const At& at) {
 }
 
 void read_spec(const YAML::Node& v, const At& at, const FileInfo& file, Vector& vec) {
-  MapReader r(v, at, {"paragraph", "quote"});
+  MapReader r(v, at, schema_keys(SchemaNode::kSpec));
   require_keys(r, at, {"paragraph", "quote"}, "spec");
   r.with("paragraph", [&](const YAML::Node& n, const At& a) {
     vec.paragraph = scalar(n, a, "a paragraph");
@@ -110,8 +112,7 @@ std::string peek_id(const YAML::Node& v) {
 Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, const GroupDefaults& g, std::string& id) {
   file.spend(at);
   id = peek_id(v);
-  MapReader r(v, at, {"id", "comment", "spec", "level", "flags", "tags", "requires", "needs", "setup", "each_slot", "steps",
-                        "teardown"});
+  MapReader r(v, at, schema_keys(SchemaNode::kVector));
   Vector vec;
   vec.where = file.loc(at.mark);
   require_keys(r, at, {"id"}, "a vector");
@@ -183,7 +184,7 @@ void read_vector_list(const YAML::Node& v, const At& at, const FileInfo& file, c
 
 void read_group(const YAML::Node& v, const At& at, const FileInfo& file, std::vector<Vector>& out,
                 std::vector<LoadError>& errors) {
-  MapReader r(v, at, {"comment", "requires", "needs", "setup", "teardown", "tags", "flags", "level", "vectors"});
+  MapReader r(v, at, schema_keys(SchemaNode::kGroup));
   require_keys(r, at, {"vectors"}, "a group");
   GroupDefaults g;
   r.with("comment", [](const YAML::Node& n, const At& a) { to_text(n, a, kMaxText); });
@@ -215,7 +216,7 @@ std::map<std::string, Note> read_notes(const YAML::Node& v, const At& at, const 
   std::map<std::string, Note> notes;
   for_each_entry(v, at, kMaxEntries, [&](const std::string& flag, const YAML::Node& value, const At& fa) {
     if (!is_flag_name(flag)) fail(fa, quoted_clip(flag) + " is not a flag name: a letter, then letters, digits, '_'");
-    MapReader r(value, fa, {"description", "errata"});
+    MapReader r(value, fa, schema_keys(SchemaNode::kNote));
     require_keys(r, fa, {"description"}, "a note");
     Note n;
     r.read("description", n.description, [](const YAML::Node& d, const At& a) { return to_text(d, a, kMaxText); });
@@ -236,7 +237,7 @@ std::string to_file_paragraph(const YAML::Node& v, const At& at) {
 void read_file(const YAML::Node& root, FileInfo& info, VectorFile& f, std::vector<LoadError>& errors) {
   const At at{"", root.Mark()};
   if (root.IsNull()) fail(at, "an empty file: a vector file needs paragraph, title and vectors");
-  MapReader r(root, at, {"paragraph", "title", "notes", "requires", "needs", "groups", "vectors"});
+  MapReader r(root, at, schema_keys(SchemaNode::kFile));
   require_keys(r, at, {"paragraph", "title"}, "a vector file");
   if (!r.has("groups") && !r.has("vectors")) fail_missing(at, "vectors", "a vector file needs vectors or groups");
   r.read("paragraph", f.paragraph, to_file_paragraph);

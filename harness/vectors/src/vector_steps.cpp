@@ -12,6 +12,7 @@
 #include "sabus/harness/nak_rules.hpp"
 #include "sabus/harness/readings.hpp"
 #include "sabus/harness/profile_records.hpp"
+#include "sabus/harness/vector_schema.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "vector_loader_internal.hpp"
@@ -113,7 +114,7 @@ void read_near(const YAML::Node& v, const At& at, FieldMatcher& m, const StepCon
   if (v.IsScalar()) {
     m.values = {to_number_text(v, at, cx, literal)};
   } else {
-    MapReader r(v, at, {"value", "axis"});
+    MapReader r(v, at, schema_keys(SchemaNode::kNear));
     require_keys(r, at, {"value"}, "near");
     r.with("value", [&](const YAML::Node& n, const At& a) { m.values = {to_number_text(n, a, cx, literal)}; });
     r.with("axis", [&](const YAML::Node& n, const At& a) {
@@ -127,7 +128,7 @@ void read_near(const YAML::Node& v, const At& at, FieldMatcher& m, const StepCon
 
 // jogged: where a jog of §3.4 can leave the axis (motion.hpp).
 void read_jogged(const YAML::Node& v, const At& at, FieldMatcher& m, const StepContext& cx) {
-  MapReader r(v, at, {"jog", "speed", "from", "ms"});
+  MapReader r(v, at, schema_keys(SchemaNode::kJogged));
   require_keys(r, at, {"jog", "speed", "from", "ms"}, "jogged");
   std::string from, ms;
   std::optional<double> literal;
@@ -160,7 +161,7 @@ FieldMatcher read_matcher(const std::string& name, const YAML::Node& v, const At
     m.values = {to_match_text(v, at, cx)};
     return m;
   }
-  MapReader r(v, at, {"eq", "one_of", "regex", "range", "near", "jogged", "capture"});
+  MapReader r(v, at, schema_keys(SchemaNode::kMatcher));
   const int tests = r.has("eq") + r.has("one_of") + r.has("regex") + r.has("range") + r.has("near") + r.has("jogged");
   if (tests > 1) fail(at, "give one of eq, one_of, regex, range, near, jogged");
   if (tests == 0 && !r.has("capture")) fail(at, "expected eq, one_of, regex, range, near, jogged or capture");
@@ -328,8 +329,7 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     e.kind = to_reply_kind(v, at);
     return e;
   }
-  MapReader r = base ? MapReader(v, at, {"reply", "bytes", "fields", "rule", "from_profile"})
-                     : MapReader(v, at, {"reply", "bytes", "fields", "rule", "from_profile", "readings"});
+  MapReader r(v, at, schema_keys(base ? SchemaNode::kReading : SchemaNode::kExpect));
   if (base && !r.has("reply")) {
     e = *base;
     e.readings.clear();
@@ -468,7 +468,7 @@ StructuredCommand read_structured(const MapReader& r, const At& at, StepContext&
 }
 
 Send read_send(const YAML::Node& v, const At& at, StepContext& cx) {
-  MapReader r(v, at, {"command", "form", "fields", "address", "raw", "from_profile"});
+  MapReader r(v, at, schema_keys(SchemaNode::kSend));
   Send s;
   if (r.has("raw")) {
     for (auto k : {"command", "form", "fields", "address", "from_profile"})
@@ -526,7 +526,7 @@ std::size_t to_index(const YAML::Node& v, const At& at, std::optional<std::size_
 // (vectors/README.md): address, extra_data_bytes, lrc_xor, replace, truncate,
 // parity_flip, then chunks.
 Modifiers read_modifiers(const YAML::Node& v, const At& at, std::optional<std::size_t> length) {
-  MapReader r(v, at, {"lrc_xor", "address", "parity_flip", "extra_data_bytes", "truncate", "replace", "chunks", "pause_ms"});
+  MapReader r(v, at, schema_keys(SchemaNode::kModify));
   Modifiers m;
   auto byte = [](const YAML::Node& n, const At& a, long long lo) { return static_cast<std::uint8_t>(to_integer_or_hex_in(n, a, lo, 0x7F)); };
   r.read("lrc_xor", m.lrc_xor, [&](const YAML::Node& n, const At& a) { return byte(n, a, 1); });
@@ -607,7 +607,7 @@ void read_ms(const YAML::Node& v, const At& at, const StepContext& cx, Step& ste
 }
 
 Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
-  MapReader r(v, at, {"send", "until", "timeout_ms", "interval_ms", "expect"});
+  MapReader r(v, at, schema_keys(SchemaNode::kPoll));
   require_keys(r, at, {"send", "until"}, "a poll");
   Step step;
   step.kind = Step::Kind::kPoll;
@@ -653,7 +653,7 @@ std::string read_precondition(const MapReader& r, const StepContext& cx) {
 
 Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
   cx.file.spend(at);
-  MapReader r(v, at, {"send", "modify", "expect", "length_mismatch", "poll", "wait", "wait_ms", "precondition"});
+  MapReader r(v, at, schema_keys(SchemaNode::kStep));
   const int kinds = r.has("send") + r.has("poll") + r.has("wait") + r.has("wait_ms");
   if (kinds != 1) fail(at, "a step is one of send, poll, wait or wait_ms");
   if (!r.has("send"))
@@ -668,7 +668,7 @@ Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
     step.kind = Step::Kind::kWait;
     r.with("wait_ms", [&](const YAML::Node& n, const At& a) { read_ms(n, a, cx, step); });
     r.with("wait", [&](const YAML::Node& n, const At& a) {
-      MapReader w(n, a, {"ms"});
+      MapReader w(n, a, schema_keys(SchemaNode::kWait));
       require_keys(w, a, {"ms"}, "wait");
       w.with("ms", [&](const YAML::Node& wn, const At& wa) { read_ms(wn, wa, cx, step); });
     });
