@@ -3,6 +3,7 @@
 // path, the NAK rule, the whole reply and the field matchers; a poll repeats
 // a send until its `until` matchers hold; a wait lets time pass.
 #include <algorithm>
+#include <array>
 
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/profile_records.hpp"
@@ -288,14 +289,15 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
   return "no legal reading holds (ERRATA " + ids + "): " + failures;
 }
 
-// A poll without a timeout of its own waits as long as the longest move it
-// can be waiting for takes (motion::longest_move: slow speed, both ramps):
-// the distance from the first reply's position to each position the poll
-// waits for, or every axis's whole range when it waits for none; then half
-// as long again and 10 s more. At most an hour.
+// A poll without a timeout of its own waits as long as the longest moves it
+// can be waiting for take (motion::longest_move: slow speed, both ramps): the
+// distance from the first reply's position to each position the poll waits
+// for, or every axis's whole range when it waits for none, one axis after the
+// other (a controller may run a LOCATE's, STOW's or DEPLOY's legs in turn:
+// ERRATA E-89, E-94); then half as long again and 10 s more. At most an hour.
 std::chrono::milliseconds Session::poll_timeout(const Step& s, const FrameDescription& first_reply) {
   using std::chrono::milliseconds;
-  milliseconds longest{0};
+  std::array<milliseconds, 3> per_axis{};  // the longest move of each axis named
   bool named = false;
   for (const auto& m : s.until) {
     const auto axis = motion::axis_of_field(m.field);
@@ -312,14 +314,16 @@ std::chrono::milliseconds Session::poll_timeout(const Step& s, const FrameDescri
     // readings do not tell how far apart the positions are on a mount whose
     // range passes 360, so the poll allows the whole range.
     const bool heading = *axis == motion::Axis::kAz && profile.az_sensor == AzSensor::kFluxgate;
-    longest = std::max(longest, motion::longest_move(a, heading ? a.max_deg - a.min_deg : target - *now_at));
+    milliseconds& slot = per_axis[static_cast<std::size_t>(*axis)];
+    slot = std::max(slot, motion::longest_move(a, heading ? a.max_deg - a.min_deg : target - *now_at));
     named = true;
   }
   if (!named)
     for (auto axis : {motion::Axis::kAz, motion::Axis::kEl, motion::Axis::kPol}) {
       const AxisProfile& a = motion::profile_of(profile, axis);
-      longest = std::max(longest, motion::longest_move(a, a.max_deg - a.min_deg));
+      per_axis[static_cast<std::size_t>(axis)] = motion::longest_move(a, a.max_deg - a.min_deg);
     }
+  const milliseconds longest = per_axis[0] + per_axis[1] + per_axis[2];
   return std::min<milliseconds>(longest * 3 / 2 + milliseconds(10000), milliseconds(3600000));
 }
 
