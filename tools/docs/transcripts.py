@@ -11,7 +11,7 @@ arguments: README.md and every docs/**/*.md of SRC.
 Running a block (docs/ci.md, "The documentation is tested"):
   - the blocks of one file in one fresh directory, in order, so a file one
     block writes is there for the next; it holds a copy of the source tree's
-    vectors/, links to its docs/, protocol/ and reports/, and the built
+    vectors/, links to its docs/, protocol/, reports/ and tests/, and the built
     binary as `build/tools/sabus` and as `sabus` on PATH;
   - each block in one bash, so `&`, `%1`, `$?` and files carry from one
     command to the next; NO_COLOR set, standard input empty;
@@ -284,14 +284,15 @@ def free_port():
 
 def make_work_dir(work, args):
     """A fresh directory for the blocks of one file: a copy of vectors/ (a
-    transcript may write there), links to docs/, protocol/ and reports/, the
+    transcript may write there), links to docs/, protocol/, reports/ and
+    tests/ (the coverage gate's known gaps), the
     binary as build/tools/sabus and as sabus on PATH, and tmp/."""
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(os.path.join(work, "build", "tools"))
     os.makedirs(os.path.join(work, "tmp"))
     os.makedirs(os.path.join(work, "bin"))
     shutil.copytree(os.path.join(args.source, "vectors"), os.path.join(work, "vectors"), symlinks=True)
-    for d in ("docs", "protocol", "reports"):
+    for d in ("docs", "protocol", "reports", "tests"):
         os.symlink(os.path.join(args.source, d), os.path.join(work, d))
     os.symlink(args.sabus, os.path.join(work, "build", "tools", "sabus"))
     os.symlink(args.sabus, os.path.join(work, "bin", "sabus"))

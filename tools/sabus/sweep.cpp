@@ -118,6 +118,7 @@ ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed,
   options.allow_motion = true;
   options.allow_destructive = true;
   options.keep_transcripts = false;
+  options.record_transcripts = false;  // only the verdicts are read
   const RunResult r = Runner(*transport, p, options).run(vectors);
   if (r.aborted) o.aborted = r.abort_reason;
   for (const auto& v : r.vectors) {

@@ -209,7 +209,7 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
 // the antenna.
 Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& transcript) {
   Attempt a;
-  s.transcript = &transcript;
+  s.transcript = s.options.record_transcripts ? &transcript : nullptr;
   s.captures.clear();
   s.vector_moves = v.has_tag("motion");
   s.vector_id = v.id;

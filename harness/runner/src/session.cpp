@@ -81,7 +81,7 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
   send_in_chunks(chars, m);
   last_send_ = t.now();
   bytes_sent += chars.size();
-  record(true, chars, describe_frame(chars));
+  if (transcript) record(true, chars, describe_frame(chars));  // describing a frame costs more than sending it
   const TimePoint sent_at = t.now();
   // send() does not drain: the request leaves the port over its wire time.
   const TimePoint request_end = sent_at + wire_time(chars.size(), t.baud());
@@ -103,11 +103,13 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
     if (n == 0 && !frames_.empty()) break;  // a complete reply and then quiet
   }
   rx.finish(*this);
-  for (const auto& f : frames_) {
-    const Bytes b = encode_frame(f);
-    record(false, b, describe_frame(b));
+  if (transcript) {
+    for (const auto& f : frames_) {
+      const Bytes b = encode_frame(f);
+      record(false, b, describe_frame(b));
+    }
+    for (const auto& s : ignored_) record(false, {}, "ignored " + s);
   }
-  for (const auto& s : ignored_) record(false, {}, "ignored " + s);
   return frames_;
 }
 

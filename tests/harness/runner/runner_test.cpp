@@ -709,6 +709,31 @@ TEST(Runner, AMissingCapabilityIsASkipThatNamesIt) {
 // A mount that stops 1 deg short of its targets (the fault) fails the vector
 // whose setup waits for the target as soon as its axes have stopped, not at a
 // timeout: on a 20 deg/s mount, within 30 s of virtual time, move included.
+// record_transcripts = false (sabus vectors sweep): the same verdicts and
+// failure messages, a faulty controller's too, and no frame described.
+TEST(Runner, WithoutTranscriptsTheVerdictsAreTheSame) {
+  const Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto run = [&](bool record) {
+    auto t = make_in_process_transport({p}, {Fault::kMoveStopsShort});
+    RunOptions o;
+    o.allow_motion = true;
+    o.record_transcripts = record;
+    return Runner(*t, p, o).run(shipped_vectors("3.3-auto-move.yaml"));
+  };
+  const RunResult with = run(true), without = run(false);
+  ASSERT_EQ(with.vectors.size(), without.vectors.size());
+  std::size_t failed = 0, described = 0;
+  for (std::size_t i = 0; i < with.vectors.size(); ++i) {
+    EXPECT_EQ(with.vectors[i].verdict, without.vectors[i].verdict) << with.vectors[i].id;
+    EXPECT_EQ(with.vectors[i].failures, without.vectors[i].failures) << with.vectors[i].id;
+    EXPECT_TRUE(without.vectors[i].transcript.empty()) << with.vectors[i].id;
+    failed += with.vectors[i].verdict == Verdict::kFail;
+    described += with.vectors[i].transcript.size();
+  }
+  EXPECT_GT(failed, 0u) << "the fault fails some vector";
+  EXPECT_GT(described, 0u);
+}
+
 TEST(Runner, AMountThatStopsShortFailsEachSetupWithinSecondsNotAtATimeout) {
   Profile p = load_profile_file(default_profile_path()).profile.value();
   for (AxisProfile* a : {&p.az, &p.el, &p.pol}) {

@@ -132,6 +132,10 @@ struct RunOptions {
   // false: RunResult::vectors keep no transcripts (on_result has had them), so
   // a run of thousands of vectors does not hold every frame it exchanged.
   bool keep_transcripts = true;
+  // false: no transcript is recorded at all, not even for on_result: a sweep
+  // of thousands of profiles reads only the verdicts, and describing every
+  // frame it exchanges was a fifth of its time.
+  bool record_transcripts = true;
   // Where the stored-data backup is written ("": not written); never over a
   // file that is there (write_new_file: backup-2.json, ...).
   std::string backup_path;
