@@ -521,7 +521,7 @@ void Controller::update() {
 void Controller::start_search(char pattern) {
   tick_origin_ = last_update_;
   chain_pending_ = false;
-  search_ = Search{pattern, 0, clock_.now(), false, state_.az, state_.el};
+  search_ = Search{pattern, 0, clock_.now(), false, state_.az, state_.el, ModeState{}};
   enter_mode("SPIRAL_REMOTE_MODE", "BEGINNING_SPIRAL_SEARCH");
   search_.mode = state_.mode;
   next_search_leg();

@@ -115,7 +115,9 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
     const auto v = session.step(f);
     ASSERT_FALSE(v) << "write " << i << " (" << f.what << "): " << to_string(v->kind) << ": " << v->message;
   }
-  if (c.noted) EXPECT_NE(noted(session).find(std::string(c.id) + ":other"), std::string::npos) << noted(session);
+  if (c.noted) {
+    EXPECT_NE(noted(session).find(std::string(c.id) + ":other"), std::string::npos) << noted(session);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
