@@ -17,6 +17,7 @@
 #include <regex>
 
 #include "process.hpp"
+#include "shipped_suite.hpp"
 
 namespace sabus::test {
 namespace {
@@ -81,15 +82,6 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
-// The §3.2 vectors the suite holds, counted from their file: what
-// --paragraph 3.2 selects.
-std::size_t paragraph_3_2_vectors() {
-  std::ifstream in(std::string(SABUS_SOURCE_DIR) + "/vectors/3.2-status.yaml");
-  std::size_t n = 0;
-  for (std::string line; std::getline(in, line);)
-    if (std::regex_search(line, std::regex(R"(^\s*- id: 3\.2-)"))) ++n;
-  return n;
-}
 
 // ---- sabus run ---------------------------------------------------------------
 
@@ -97,7 +89,7 @@ TEST(Console, OnATerminalAProgressLineAndTheFailuresInColour) {
   const auto r = on_terminal({kSabus, "run", "--fault", "short-status", "--paragraph", "3.2"});
   EXPECT_EQ(r.status, 1);
   // "[ 3/22] 0 pass 3 fail 0 skip  0:00 elapsed ..." rewritten in place.
-  const std::string n = std::to_string(paragraph_3_2_vectors());
+  const std::string n = std::to_string(shipped_vectors_in(SABUS_SOURCE_DIR, "3.2-status.yaml", "3.2-"));
   EXPECT_TRUE(std::regex_search(r.out, std::regex("\r\033\\[K\\[" + n + "/" + n + "\\] \\d+ pass \\d+ fail \\d+ skip  0:0\\d elapsed")))
       << r.out;
   EXPECT_NE(r.out.find("\033[1;31mFAIL\033[0m 3.2-status-reply-length §3.2 must: reply does not decode"), std::string::npos)
@@ -169,14 +161,15 @@ TEST(Console, TheSerialBackendNoticeOnlyWithVerbose) {
 // ---- sabus vectors list ------------------------------------------------------
 
 TEST(Console, VectorsListPreviewsASelection) {
+  const std::size_t paragraph_3_2 = shipped_vectors_in(SABUS_SOURCE_DIR, "3.2-status.yaml", "3.2-");
   const auto exact = shell(kSabus + " vectors list --paragraph 3.2 2>&1");
   EXPECT_EQ(exact.status, 0);
-  EXPECT_EQ(count(exact.out, " §3.2 "), paragraph_3_2_vectors()) << exact.out;
+  EXPECT_EQ(count(exact.out, " §3.2 "), paragraph_3_2) << exact.out;
   EXPECT_EQ(count(exact.out, " §3.20 "), 0u);
-  EXPECT_TRUE(std::regex_search(exact.out, std::regex("\n" + std::to_string(paragraph_3_2_vectors()) + " of [1-9][0-9]* vectors selected\n"))) << exact.out;
+  EXPECT_TRUE(std::regex_search(exact.out, std::regex("\n" + std::to_string(paragraph_3_2) + " of [1-9][0-9]* vectors selected\n"))) << exact.out;
   const fs::path stderr_file = fs::temp_directory_path() / ("sabus-console-list-" + std::to_string(getpid()) + ".txt");
   const auto glob = shell(kSabus + " vectors list --filter '3.2*' 2>" + stderr_file.string());
-  EXPECT_EQ(count(glob.out, " §3.2 "), paragraph_3_2_vectors()) << glob.out;
+  EXPECT_EQ(count(glob.out, " §3.2 "), paragraph_3_2) << glob.out;
   EXPECT_GT(count(glob.out, " §3.20 "), 0u) << "the glob takes §3.20 too: " << glob.out;
   const auto notes = shell("cat " + stderr_file.string());
   fs::remove(stderr_file);

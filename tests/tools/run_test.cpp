@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "process.hpp"
+#include "shipped_suite.hpp"
 #include "sabus/reports/document.hpp"
 #include "temp_dir.hpp"
 
@@ -206,15 +207,6 @@ TEST(Run, NegativeAndOutOfRangeValuesAreUsageErrors) {
   EXPECT_EQ(shell(kSabus + " run --filter '3.1-*' --pace 0 --repeat 0 --seed 0 >/dev/null 2>&1").status, 0) << "0 is fine";
 }
 
-// The §3.2 vectors the suite holds, counted from their file: what
-// --paragraph 3.2 selects.
-std::size_t paragraph_3_2_vectors() {
-  std::ifstream in(std::string(SABUS_SOURCE_DIR) + "/vectors/3.2-status.yaml");
-  std::size_t n = 0;
-  for (std::string line; std::getline(in, line);)
-    if (std::regex_search(line, std::regex(R"(^\s*- id: 3\.2-)"))) ++n;
-  return n;
-}
 
 // '3.2*' also matches §3.20-§3.25; --paragraph takes §3.2 exactly.
 TEST(Run, ParagraphSelectsOneParagraphAndAGlobOverSeveralIsNoted) {
@@ -228,7 +220,7 @@ TEST(Run, ParagraphSelectsOneParagraphAndAGlobOverSeveralIsNoted) {
   EXPECT_EQ(exact.status, 0) << exact.out;
   EXPECT_EQ(exact.out.find("matches vectors of"), std::string::npos) << exact.out;
   const auto doc = read_json(json);
-  EXPECT_EQ(doc["planned"], paragraph_3_2_vectors());
+  EXPECT_EQ(doc["planned"], test::shipped_vectors_in(SABUS_SOURCE_DIR, "3.2-status.yaml", "3.2-"));
   for (const auto& v : doc["vectors"]) EXPECT_EQ(v["paragraph"], "3.2") << v["id"];
   EXPECT_EQ(doc["options"]["paragraphs"], nlohmann::json::array({"3.2"}));
   fs::remove(json);
