@@ -1250,10 +1250,10 @@ std::optional<bool> Lockstep::judge_outran_locate(Judging& j, const AckJudging& 
   if (f.name != "last exited mode" && f.name != "exit status") return std::nullopt;
   const auto x = extended_status(r.dev);
   if (!x || meanings::mode_name(x->last_mode) != "LOCATE_MODE" || x->mode != r.nominal().mode.mode) return std::nullopt;
-  const std::string exit = meanings::exit_name(x->last_mode, x->exit_status);
-  if (!(exit.ends_with("_STOP_KEY") || exit.ends_with("_MODE_CHANGED") || exit.ends_with("_MODE_CHANGE"))) return std::nullopt;
+  if (!is_stop_exit(x->last_mode, x->exit_status)) return std::nullopt;
   if (f.name == "last exited mode")
-    note_reading({"E-94"}, Verdict{FindingKind::kValue, "field 'last exited mode' (§3.17) is " + f.raw + " with exit " + exit +
+    note_reading({"E-94"}, Verdict{FindingKind::kValue, "field 'last exited mode' (§3.17) is " + f.raw + " with exit " +
+                                                          meanings::exit_name(x->last_mode, x->exit_status) +
                                                           ": the device's LOCATE still moved when the model's had completed, and was left"});
   j.take_modes = true;
   return true;
