@@ -6,6 +6,7 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -203,13 +204,19 @@ struct EnumeratedField {
   std::map<std::string, bool> entry;  // matcher text ("0x45") of each code 20h-7Eh -> whether it is an entry of the field's list
 };
 
-// The meanings the layout gives the byte at `at` of `frame` with each code.
-std::string meaning_at(Bytes frame, std::size_t at, std::uint8_t code, std::string_view field) {
+// How the layout reads `field`, the byte at `at` of `frame`, holding `code`.
+std::optional<FieldDescription> field_with_code(Bytes frame, std::size_t at, std::uint8_t code, std::string_view field) {
   frame[at] = code;
   frame.back() = lrc(ByteView(frame.data(), frame.size() - 1));
-  for (const FieldDescription& f : describe_frame(frame).fields)
-    if (f.first == at && f.name == field) return f.meaning + (f.ok ? "" : " (invalid)");
-  return "";
+  for (FieldDescription& f : describe_frame(frame).fields)
+    if (f.first == at && f.name == field) return std::move(f);
+  return std::nullopt;
+}
+
+// The meaning the layout gives that byte with `code`.
+std::string meaning_at(const Bytes& frame, std::size_t at, std::uint8_t code, std::string_view field) {
+  const auto f = field_with_code(frame, at, code, field);
+  return f ? f->meaning + (f->ok ? "" : " (invalid)") : "";
 }
 
 // Whether `meaning` is the name an enumeration list of §3.17 gives `code`.
@@ -244,14 +251,9 @@ const EnumeratedField& enumerated_field(ReplyKind reply, const std::string& fiel
     }
   }
   for (int c = 0x20; c < 0x7F; ++c) {
-    Bytes b = *sample;
-    b[f->first] = static_cast<std::uint8_t>(c);
-    b.back() = lrc(ByteView(b.data(), b.size() - 1));
-    for (const FieldDescription& d : describe_frame(b).fields) {
-      if (d.first != f->first || d.name != field) continue;
-      const bool entry = f->kind == fields::Kind::kChoice ? d.ok : names_entry(static_cast<std::uint8_t>(c), d.meaning);
-      out.entry[matcher_text(d)] = entry;
-    }
+    const auto code = static_cast<std::uint8_t>(c);
+    if (const auto d = field_with_code(*sample, f->first, code, field))
+      out.entry[matcher_text(*d)] = f->kind == fields::Kind::kChoice ? d->ok : names_entry(code, d->meaning);
   }
   return out;
 }
