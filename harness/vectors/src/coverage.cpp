@@ -78,13 +78,9 @@ std::vector<std::string> one_byte_values(ReplyKind reply, std::string_view field
   }
   if (!at) return {};
   std::vector<std::string> out;
-  for (int c = 0x20; c < 0x7F; ++c) {
-    Bytes b = *sample;
-    b[*at] = static_cast<std::uint8_t>(c);
-    b.back() = lrc(ByteView(b.data(), b.size() - 1));
-    for (const FieldDescription& f : describe_frame(b).fields)
-      if (f.first == *at && f.name == field && f.ok) out.push_back(matcher_text(f));
-  }
+  for (int c = 0x20; c < 0x7F; ++c)
+    if (const auto f = vector_loader_internal::field_with_code(*sample, *at, static_cast<std::uint8_t>(c), field); f && f->ok)
+      out.push_back(matcher_text(*f));
   return out;
 }
 
@@ -300,6 +296,14 @@ std::optional<Bytes> sample_reply(ReplyKind reply) {
   const auto it = samples.find(reply);
   if (it == samples.end()) return std::nullopt;
   return it->second;
+}
+
+std::optional<FieldDescription> field_with_code(Bytes frame, std::size_t at, std::uint8_t code, std::string_view field) {
+  frame[at] = code;
+  frame.back() = lrc(ByteView(frame.data(), frame.size() - 1));
+  for (FieldDescription& f : describe_frame(frame).fields)
+    if (f.first == at && f.name == field) return std::move(f);
+  return std::nullopt;
 }
 
 }  // namespace sabus::harness::vector_loader_internal

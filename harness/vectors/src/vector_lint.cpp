@@ -14,7 +14,6 @@
 #include "sabus/harness/expressions.hpp"
 #include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/enumerations.hpp"
-#include "sabus/protocol/lrc.hpp"
 #include "sabus/protocol/structured.hpp"
 #include "sabus/harness/data_dir.hpp"
 #include "vector_loader_internal.hpp"
@@ -203,15 +202,6 @@ struct EnumeratedField {
   bool by_mode = false;
   std::map<std::string, bool> entry;  // matcher text ("0x45") of each code 20h-7Eh -> whether it is an entry of the field's list
 };
-
-// How the layout reads `field`, the byte at `at` of `frame`, holding `code`.
-std::optional<FieldDescription> field_with_code(Bytes frame, std::size_t at, std::uint8_t code, std::string_view field) {
-  frame[at] = code;
-  frame.back() = lrc(ByteView(frame.data(), frame.size() - 1));
-  for (FieldDescription& f : describe_frame(frame).fields)
-    if (f.first == at && f.name == field) return std::move(f);
-  return std::nullopt;
-}
 
 // The meaning the layout gives that byte with `code`.
 std::string meaning_at(const Bytes& frame, std::size_t at, std::uint8_t code, std::string_view field) {

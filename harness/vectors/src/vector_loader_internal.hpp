@@ -189,13 +189,16 @@ inline void require_keys(const MapReader& r, const At& at, std::initializer_list
 // matchers make are added to cx.
 std::vector<Step> read_steps(const YAML::Node& v, const At& at, StepContext& cx);
 
-// A `requires` map of key path -> value(s), or a list of such maps
-// (vector_requirements.cpp).
 // A reply of the kind as its codec encodes the defaults, to the first
 // command that answers with it (coverage.cpp): the coverage matrix and the
 // linter put a field's values in it to see how the layout reads them.
 std::optional<Bytes> sample_reply(ReplyKind reply);
+// How the layout reads `field`, the byte at `at` of `frame`, holding `code`
+// (the check byte mended).
+std::optional<FieldDescription> field_with_code(Bytes frame, std::size_t at, std::uint8_t code, std::string_view field);
 
+// A `requires` map of key path -> value(s), or a list of such maps
+// (vector_requirements.cpp).
 std::vector<Requirement> read_requires(const YAML::Node& v, const At& at, const FileInfo& file);
 
 }  // namespace sabus::harness::vector_loader_internal
