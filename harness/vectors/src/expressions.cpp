@@ -148,13 +148,19 @@ const SlotList kSlotLists[] = {
     {"signposts", "signpost", 20, [](const Profile& p, int i) { return has_index(p.signposts, i); }},
 };
 
+// The slot list argument 1 names (presets, tles, signposts); null when it
+// names none.
+const SlotList* slot_list_arg(const Call& c) {
+  const Value& v = c.args[0];
+  for (const auto& l : kSlotLists)
+    if (!v.is_number && v.text == l.name) return &l;
+  return nullptr;
+}
+
 // The first (or last) slot of a list, up to index `upto`, that the profile
 // fills (or leaves empty).
 Result slot(const Call& c, bool want_filled, bool from_end, int upto = 99) {
-  const Value& v = c.args[0];
-  const SlotList* list = nullptr;
-  for (const auto& l : kSlotLists)
-    if (!v.is_number && v.text == l.name) list = &l;
+  const SlotList* list = slot_list_arg(c);
   if (!list) return error(std::string(c.name) + ": argument 1 must be presets, tles or signposts");
   const int slots = std::min(list->slots, upto);
   for (int k = 0; k < slots; ++k) {
@@ -169,10 +175,7 @@ Result slot(const Call& c, bool want_filled, bool from_end, int upto = 99) {
 // filled(list, i): the index when the profile fills that slot, so that a
 // vector that overwrites it can write the profile's record back.
 Result filled_slot(const Call& c) {
-  const Value& v = c.args[0];
-  const SlotList* list = nullptr;
-  for (const auto& l : kSlotLists)
-    if (!v.is_number && v.text == l.name) list = &l;
+  const SlotList* list = slot_list_arg(c);
   if (!list) return error("filled: argument 1 must be presets, tles or signposts");
   if (c.numbers({1})) return error("filled: argument 2 must be an index");
   const int i = c.integer(1);
@@ -187,10 +190,7 @@ Result filled_slot(const Call& c) {
 // vector that writes two different slots and reads each back (issue 32: a
 // controller that stores every record into one slot).
 Result second_filled_slot(const Call& c) {
-  const Value& v = c.args[0];
-  const SlotList* list = nullptr;
-  for (const auto& l : kSlotLists)
-    if (!v.is_number && v.text == l.name) list = &l;
+  const SlotList* list = slot_list_arg(c);
   if (!list) return error("second_filled: argument 1 must be presets, tles or signposts");
   bool first = true;
   for (int i = 1; i <= list->slots; ++i) {
