@@ -26,6 +26,7 @@ std::string_view to_string(Verdict v) {
     case Verdict::kKnownFailure: return "known failure";
     case Verdict::kUnexpectedPass: return "unexpected pass";
     case Verdict::kInconclusive: return "inconclusive";
+    case Verdict::kError: return "error";
   }
   return "?";
 }
@@ -53,7 +54,28 @@ int RunResult::exit_code() const {
   if (aborted) return 1;
   for (const auto& v : vectors)
     if (v.counts_as_failure(strict)) return 1;
+  if (errors > 0) return kLineErrorExitCode;
   return ran() == 0 ? kNothingRanExitCode : 0;
+}
+
+namespace {
+// 1412 -> "1,412": the figures a bench engineer reads at a glance.
+std::string grouped(std::size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+}  // namespace
+
+std::string describe(const LineFaultCounts& c) {
+  std::string s = "line: " + grouped(c.faults) + (c.faults == 1 ? " fault" : " faults") + " in " + grouped(c.exchanges) +
+                  (c.exchanges == 1 ? " exchange" : " exchanges");
+  if (c.faults == 0) return s;
+  if (c.recovered == c.faults) return s + (c.faults == 1 ? ", recovered" : ", all recovered");
+  return s + ", " + grouped(c.recovered) + " recovered";
 }
 
 Runner::Runner(Transport& transport, const Profile& profile, RunOptions options)
@@ -250,14 +272,19 @@ void repeat_failing(Session& s, const Vector& v, int times, VectorResult& r) {
                            : "intermittent: failed " + std::to_string(r.repeat_failures + 1) + " of " + runs + " runs");
 }
 
-// Verdict: fail, inconclusive or pass, in that order (a verdict only gets
-// worse: a failure recorded stays one, TTCN-3's rule); a pass or a failure
+// Verdict: fail, error, inconclusive or pass, in that order (a verdict only
+// gets worse: a failure recorded stays one, TTCN-3's rule). TTCN-3 puts
+// error above fail; here a failure was judged on a clean exchange, so a line
+// fault later in the vector (its teardown) does not take it back. A pass or a failure
 // turned into an unexpected pass or a known failure for a vector listed as
 // a known issue. An inconclusive vector checked nothing: the known issue
 // says nothing of it, so it stays inconclusive.
 void set_verdict(VectorResult& r, const RunOptions& o) {
-  r.verdict = !r.failures.empty() ? Verdict::kFail : !r.inconclusive_reason.empty() ? Verdict::kInconclusive : Verdict::kPass;
-  if (r.verdict == Verdict::kInconclusive) return;
+  r.verdict = !r.failures.empty()              ? Verdict::kFail
+              : !r.error_reason.empty()        ? Verdict::kError
+              : !r.inconclusive_reason.empty() ? Verdict::kInconclusive
+                                               : Verdict::kPass;
+  if (r.verdict == Verdict::kInconclusive || r.verdict == Verdict::kError) return;
   if (auto it = o.known_issues.find(r.id); it != o.known_issues.end()) {
     r.known_issue_reason = it->second;
     r.verdict = r.verdict == Verdict::kFail ? Verdict::kKnownFailure : Verdict::kUnexpectedPass;
@@ -296,6 +323,7 @@ void journal(RunResult& result, VectorResult r, const RunOptions& o) {
     case Verdict::kKnownFailure: ++result.known; break;
     case Verdict::kUnexpectedPass: ++result.unexpected; break;
     case Verdict::kInconclusive: ++result.inconclusive; break;
+    case Verdict::kError: ++result.errors; break;
   }
   result.vectors.push_back(std::move(r));
   if (o.on_result) o.on_result(result.vectors.back());

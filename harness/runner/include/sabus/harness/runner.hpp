@@ -53,8 +53,14 @@ Bytes apply_modifiers(Bytes frame, const Modifiers& m);
 // device never reached the state the vector's test purpose needs and the
 // vector says nothing of its conformance. Neither a pass nor a failure: it
 // never fails the run and is never a known failure or an unexpected pass.
-enum class Verdict : std::uint8_t { kPass, kFail, kSkip, kKnownFailure, kUnexpectedPass, kInconclusive };
-// "pass", "fail", "skip", "known failure", "unexpected pass", "inconclusive".
+// kError: TTCN-3's `error` (ETSI ES 201 873-1): the test system, not
+// the device, went wrong: the line garbled an exchange and its retries
+// (RunOptions::retries) did not get a clean one, or the command could not be
+// sent again safely. The vector says nothing of the device; it never fails
+// the run, but a run with errors and no failure has an exit code of its own
+// (kLineErrorExitCode).
+enum class Verdict : std::uint8_t { kPass, kFail, kSkip, kKnownFailure, kUnexpectedPass, kInconclusive, kError };
+// "pass", "fail", "skip", "known failure", "unexpected pass", "inconclusive", "error".
 std::string_view to_string(Verdict v);
 
 // Why the gate passed a selected vector over (Verdict::kSkip): its level is
@@ -81,6 +87,27 @@ struct TranscriptEntry {
   std::string expect;
 };
 
+// What the line did to a vector's or a run's exchanges (§4: "a garbled
+// status reply" is a symptom of unreliable communications). A line fault is
+// an exchange whose reply showed one: a bad check byte, a parity error, a
+// reply cut short or stretched, bytes between frames, or silence where a
+// reply was due that a repeat then got.
+struct LineFaultCounts {
+  std::size_t exchanges = 0;  // frames sent and their replies read, repeats included
+  std::size_t faults = 0;     // exchanges that showed a line fault
+  std::size_t recovered = 0;  // faults a repeat or a read-back settled
+  std::size_t repeats = 0;    // exchanges sent again after a fault
+  LineFaultCounts& operator+=(const LineFaultCounts& o) {
+    exchanges += o.exchanges;
+    faults += o.faults;
+    recovered += o.recovered;
+    repeats += o.repeats;
+    return *this;
+  }
+};
+// "line: 3 faults in 1,412 exchanges, all recovered" (every report's words).
+std::string describe(const LineFaultCounts& c);
+
 struct VectorResult {
   std::string id, paragraph, file;
   std::string quote, comment;  // the spec quote the vector checks, and what and why (reports)
@@ -93,6 +120,11 @@ struct VectorResult {
   // inconclusive, unless a failure was recorded too (a verdict only gets
   // worse: a teardown that fails after it makes the vector a failure).
   std::string inconclusive_reason;
+  // Why the vector ended in error (Verdict::kError): the exchange the line
+  // left unjudged and what it showed, e.g. "step 2 (41h): no clean reply in
+  // 2 tries: bad check byte ...; not sent again: a second LOCATE acts again".
+  std::string error_reason;
+  LineFaultCounts line;  // this vector's exchanges and the line faults among them
   std::string skip_reason;
   SkipCause skip_cause = SkipCause::kNone;
   std::string known_issue_reason;
@@ -142,6 +174,21 @@ struct RunOptions {
   // false: no backup and no restore, for a device that does not outlive the
   // run (the in-process reference controller).
   bool backup_stored_data = true;
+  // Line faults (LineFaultCounts): how many times an exchange whose reply
+  // showed one is repeated (pymodbus's `retries`). A read or status poll is
+  // sent again after the silence window; a command that changes state only
+  // when the catalog says a second one leaves the device as one does, and
+  // after a status poll has read the device back; never a command that acts
+  // again (a jog, a LOCATE, a key). 0: a line fault is judged as the
+  // device's answer, as a clean line's would be, and the failure says it was
+  // a line fault. The CLI's default is 1 on a line, 0 in-process.
+  int retries = 0;
+  // --strict-line: every line fault fails the vector it happened in, even
+  // one a repeat recovered.
+  bool strict_line = false;
+  // --max-line-fault-rate: the share of garbled replies a line survey
+  // (Step::Kind::kLineSurvey) accepts before it fails the device.
+  double max_line_fault_rate = 0.1;
 };
 
 // The controller's stored data as read back through the protocol before the
@@ -178,6 +225,13 @@ inline constexpr int kNothingRanExitCode = 5;
 // session is this project's usage error, and 128+signal (130, 143) would be
 // read as "killed" and has no number for a lost device.
 inline constexpr int kStoppedExitCode = 4;
+// RunResult::exit_code when no vector failed but some ended in error
+// (Verdict::kError): the line, not the firmware, left them unjudged; the
+// firmware is neither accepted nor rejected. The next code after 5.
+inline constexpr int kLineErrorExitCode = 6;
+// A line whose share of faulty exchanges is above this is not a healthy
+// line: the summary warns (a healthy RS-422 run sees none in thousands).
+inline constexpr double kHealthyLineFaultRate = 0.01;
 // How the failure of the vector that was running when the device was lost
 // begins: the reports show that vector as an error of the bench, not a
 // failure of the firmware.
@@ -203,6 +257,8 @@ struct RunResult {
   std::vector<std::string> restore_notes;  // what was restored, and what could not be
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
   std::size_t inconclusive = 0;  // Verdict::kInconclusive: ran, checked nothing
+  std::size_t errors = 0;        // Verdict::kError: ran, the line left it unjudged
+  LineFaultCounts line;          // the whole run's exchanges, liveness and backup included
   std::map<SkipCause, std::size_t> skipped_by_cause;
   // 0: every must-level vector that ran passed; 1: otherwise (a liveness
   // check failed on a device that sends bytes, too); 3: the device could not
@@ -211,6 +267,7 @@ struct RunResult {
   // ran (every one was skipped, or none was given), or every one that ran
   // ended inconclusive: a run that checked nothing is not a success (pytest's
   // "no tests ran" is 5 too). An inconclusive vector never makes it 1.
+  // 6 (kLineErrorExitCode): no failure, but some vector ended in error.
   bool strict = false;  // RunOptions::strict: should-level failures fail the run too
   int exit_code() const;
   // The vectors that ran and checked something: inconclusive ones ran but
