@@ -457,6 +457,14 @@ Text step_text(const Step& s) {
       put(t, "poll", poll);
       break;
     }
+    case Step::Kind::kSurvey: {
+      Container survey = new_map();
+      put(survey, "send", send_text(s));
+      put(survey, "count", number(static_cast<long long>(s.survey_count)));
+      put(survey, "interval_ms", number(static_cast<long long>(s.interval.count())));
+      put(t, "survey", survey);
+      break;
+    }
   }
   if (!s.precondition.empty()) put(t, "precondition", quoted(s.precondition));
   return t;

@@ -10,10 +10,13 @@ namespace {
 constexpr Effects kNone{};
 constexpr Effects kMoves{.moves_antenna = true};
 constexpr Effects kStores{.changes_stored_data = true};
+constexpr Effects kMovesAgain{.moves_antenna = true, .acts_again = true};
+constexpr Effects kStoresAgain{.changes_stored_data = true, .acts_again = true};
 
 constexpr FormInfo kSingle[] = {{"", "", "the only form", kNone}};
 constexpr FormInfo kSingleStores[] = {{"", "", "the only form", kStores}};
-constexpr FormInfo kSingleMoves[] = {{"", "", "the only form", kMoves}};
+// §3.25 Remote Keypress: a key pressed twice is not a key pressed once.
+constexpr FormInfo kKeypressForms[] = {{"", "", "the only form", kMovesAgain}};
 
 // §3.3 Auto Move: byte 3 selects the form. ' ' is shared by form 1 (a stored
 // name) and form 2A (az/el x10); READING-NOTES 13/31 decide between them.
@@ -27,12 +30,12 @@ constexpr FormInfo kAutoMoveForms[] = {
 
 // §3.4 / §3.24 Jog: byte 3 is the direction (READING-NOTES 14).
 constexpr FormInfo kJogForms[] = {
-    {"E", "E", "azimuth counterclockwise", kMoves},
-    {"W", "W", "azimuth clockwise", kMoves},
-    {"D", "D", "elevation down", kMoves},
-    {"U", "U", "elevation up", kMoves},
-    {"O", "O", "polarization counterclockwise", kMoves},
-    {"L", "L", "polarization clockwise", kMoves},
+    {"E", "E", "azimuth counterclockwise", kMovesAgain},
+    {"W", "W", "azimuth clockwise", kMovesAgain},
+    {"D", "D", "elevation down", kMovesAgain},
+    {"U", "U", "elevation up", kMovesAgain},
+    {"O", "O", "polarization counterclockwise", kMovesAgain},
+    {"L", "L", "polarization clockwise", kMovesAgain},
     {"X", "X", "stop all movement", kMoves},
 };
 
@@ -46,21 +49,21 @@ constexpr FormInfo kPolPresetForms[] = {
 constexpr FormInfo kMiscForms[] = {
     {"R", "R", "drive reset of axis A, E or P", kNone},
     // ERRATA E-26: re-entering TRACK or changing band re-peaks the antenna.
-    {"T", "T", "track error reset (R) or band change (C, K)", kMoves},
+    {"T", "T", "track error reset (R) or band change (C, K)", kMovesAgain},
     {"S", "S", "stow", kMoves},
     {"D", "D", "deploy", kMoves},
-    {"A", "A", "automatic search, expanding (E) or flat (F) spiral", kMoves},
-    {"K", "K", "keypad input", kMoves},
+    {"A", "A", "automatic search, expanding (E) or flat (F) spiral", kMovesAgain},
+    {"K", "K", "keypad input", kMovesAgain},
 };
 
 // §3.18 / §3.19: bit 4 of byte 3 is the preset flag.
 constexpr FormInfo kLocateForms[] = {
-    {"preset", "", "LOCATE an indexed satellite of the preset list", kMoves},
-    {"data", "", "LOCATE a satellite given by name, longitude, inclination and band", kMoves},
+    {"preset", "", "LOCATE an indexed satellite of the preset list", kMovesAgain},
+    {"data", "", "LOCATE a satellite given by name, longitude, inclination and band", kMovesAgain},
 };
 constexpr FormInfo kStoreForms[] = {
-    {"preset", "", "STORE a satellite of the preset list", kStores},
-    {"data", "", "STORE a satellite given by its data", kStores},
+    {"preset", "", "STORE a satellite of the preset list", kStoresAgain},
+    {"data", "", "STORE a satellite given by its data", kStoresAgain},
 };
 
 using RK = ReplyKind;
@@ -95,7 +98,7 @@ constexpr std::array<CommandInfo, kCommandCount> kCatalog = {{
   {0x45, "Read Navigation Data",            "read_navigation",     "3.22", 5,    72,   RK::kNavigationData, kSingle,         true,  false, kNoSelector},
   {0x46, "Write Navigation Data",           "write_navigation",    "3.23", 33,   5,    RK::kAckOnly,        kSingleStores,   true,  false, kNoSelector},
   {0x47, "Jog with Minimal Reply",          "jog_minimal",         "3.24", 11,   12,   RK::kJogPosition,    kJogForms,       true,  false, kByte3},
-  {0x48, "Remote Keypress",                 "keypress",            "3.25", 6,    5,    RK::kAckOnly,        kSingleMoves,    true,  false, kNoSelector},
+  {0x48, "Remote Keypress",                 "keypress",            "3.25", 6,    5,    RK::kAckOnly,        kKeypressForms,  true,  false, kNoSelector},
 }};
 // clang-format on
 
@@ -150,6 +153,7 @@ Effects CommandInfo::effects() const {
   for (const auto& f : forms) {
     e.moves_antenna |= f.effects.moves_antenna;
     e.changes_stored_data |= f.effects.changes_stored_data;
+    e.acts_again |= f.effects.acts_again;
   }
   return e;
 }

@@ -68,11 +68,24 @@ OpenedDevice open_device(const std::string& tool, DeviceOptions o) {
     if (auto why = apply_reading_spec(o.reading, controller_profile.readings)) return usage("--reading: " + *why);
   }
   d.controller_profile = controller_profile;
+  std::optional<LineFaultSpec> line_faults;
+  if (!o.line_faults.empty()) {
+    if (!o.sim) return usage("--line-faults needs --sim: a real line makes its own");
+    std::string error;
+    if (!(line_faults = parse_line_faults(o.line_faults, error))) return usage("--line-faults: " + error);
+    line_faults->seed = o.line_fault_seed;
+  }
   std::optional<HostPort> tcp;
   if (!o.tcp.empty() && !(tcp = parse_host_port(o.tcp))) return usage("--tcp HOST:PORT, with a port 0-65535");
   try {
     if (o.sim) {
-      d.transport = make_in_process_transport(bus_of(controller_profile), d.faults);  // §1 multi-drop: bus_peers
+      auto in_process = make_in_process_transport(bus_of(controller_profile), d.faults);  // §1 multi-drop: bus_peers
+      if (line_faults) {
+        in_process->set_line_faults(*line_faults);
+        const InProcessTransport* t = in_process.get();
+        d.injected_faults = [t] { return t->injected_faults(); };
+      }
+      d.transport = std::move(in_process);
     } else if (is_rfc2217_url(o.port)) {
       std::string error;
       const auto url = parse_rfc2217_url(o.port, error);

@@ -4,12 +4,14 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sabus/harness/faults.hpp"
+#include "sabus/harness/line_faults.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/rfc2217.hpp"
 #include "sabus/harness/transport.hpp"
@@ -24,6 +26,11 @@ struct DeviceOptions {
   // With --sim: the side of the spec's open points the reference controller
   // takes (readings.hpp); the runner's profile keeps its own pins.
   std::string reading;
+  // With --sim (`sabus run --line-faults`): an emulated noisy line between
+  // the runner and the controller, "RATE[,KIND...]" (line_faults.hpp), from
+  // `line_fault_seed`.
+  std::string line_faults;
+  std::uint64_t line_fault_seed = 1;
   int baud = 0;
 };
 
@@ -52,6 +59,9 @@ struct OpenedDevice {
   harness::Profile controller_profile;
   harness::FaultSet faults;
   std::unique_ptr<harness::Transport> transport;
+  // With --sim --line-faults: the emulated line's faults so far (transport
+  // is an InProcessTransport then); nullptr otherwise.
+  std::function<harness::LineFaultTally()> injected_faults;
 };
 // With none of --sim, --port, --tcp: the in-process reference controller.
 OpenedDevice open_device(const std::string& tool, DeviceOptions o);

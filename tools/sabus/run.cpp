@@ -56,7 +56,9 @@ struct RunCliOptions {
   int repeat = 0;
   long pace_ms = -1;
   std::uint64_t seed = 0;
-  bool allow_motion = false, allow_destructive = false, strict = false, exit_first = false;
+  int retries = -1;  // -1: 1 on a line, 0 in-process
+  double max_line_fault_rate = 0.1;
+  bool allow_motion = false, allow_destructive = false, strict = false, exit_first = false, strict_line = false;
 };
 
 std::optional<Level> parse_level(const std::string& s) {
@@ -197,6 +199,11 @@ void set_run_options(RunOptions& ro, const RunCliOptions& o, Level level, const 
   ro.strict = o.strict;
   ro.exit_first = o.exit_first;
   ro.seed = o.seed;
+  // A line garbles a byte now and then (§4 "a garbled status reply"); the
+  // in-process controller never does, unless --line-faults emulates a line.
+  ro.retries = o.retries >= 0 ? o.retries : (transport.in_process() && o.device.line_faults.empty() ? 0 : 1);
+  ro.strict_line = o.strict_line;
+  ro.max_line_fault_rate = o.max_line_fault_rate;
   // §4: no more than one status request a second, and wait for ACK/NAK.
   ro.pace = std::chrono::milliseconds(o.pace_ms >= 0 ? o.pace_ms : (transport.in_process() ? 0 : 1000));
   ro.stop = stop_signal;
@@ -225,7 +232,9 @@ reports::RunDocument start_document(const RunCliOptions& o, const RunOptions& ro
   doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
                  {"level", o.level},               {"seed", o.seed},
                  {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
-                 {"strict", o.strict},
+                 {"strict", o.strict},             {"retries", ro.retries},
+                 {"strict_line", o.strict_line},   {"max_line_fault_rate", o.max_line_fault_rate},
+                 {"line_faults", o.device.line_faults},
                  {"filters", o.selection.filters}, {"excludes", o.selection.excludes},
                  {"paragraphs", o.selection.paragraphs},
                  {"shard", o.selection.shard},       {"last_failed", o.selection.last_failed},
@@ -302,6 +311,7 @@ int finish_console(Console& console, const RunResult& run, const reports::RunDoc
   for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
   if (run.aborted) console.line((run.stopped_by.empty() ? "ABORTED: " : "STOPPED: ") + run.abort_reason);
   console.line(reports::summary_line(*doc.summary));
+  if (run.line.exchanges > 0 && (run.line.faults > 0 || !quiet())) console.line(harness::describe(run.line));
   const int status = run.exit_code();
   if (status == kExitNothingRan)
     console.line(std::string(console.colour() ? "\033[33mNOTHING RAN\033[0m: " : "NOTHING RAN: ") +
@@ -336,6 +346,7 @@ int run_run(RunCliOptions o) {
   const auto paths = report_paths(o);
   if (!paths) return kExitUsage;
 
+  o.device.line_fault_seed = o.seed;
   OpenedDevice device = open_device("run", o.device);
   if (device.exit_code != kExitOk) return device.exit_code;
   Transport& transport = *device.transport;
@@ -375,6 +386,8 @@ int run_run(RunCliOptions o) {
   Runner runner(transport, device.profile, ro);
   last_result = std::chrono::steady_clock::now();
   RunResult run = runner.run(selection.vectors);
+  if (device.injected_faults && !quiet())
+    console.line("emulated line (--line-faults): " + harness::describe(device.injected_faults()));
   reports::finish(doc, run, reports::utc_now());
   journal.close(*paths, doc);
   write_reports(*paths, doc);
@@ -383,6 +396,7 @@ int run_run(RunCliOptions o) {
 
 static_assert(kExitNothingRan == harness::kNothingRanExitCode);
 static_assert(kExitStopped == harness::kStoppedExitCode);
+static_assert(kExitLineErrors == harness::kLineErrorExitCode);
 
 constexpr const char* kRunExitStatus = R"(Exit status:
   0  every must-level vector that ran passed (with --strict every should-level one too), and at least one ran
@@ -398,6 +412,9 @@ constexpr const char* kRunExitStatus = R"(Exit status:
      why, by cause) or ended inconclusive (a precondition step did not hold, so its test purpose was not
      reached); a run that checked nothing is not a success, and 5 is pytest's code for it too.
      An inconclusive vector never makes the code 1
+  6  no vector failed, but some ended in error: the line garbled an exchange and its repeats (--retries)
+     did not get a clean one, so the vector was not judged; the firmware is neither accepted nor rejected.
+     The summary gives the line's faults; run again on a better line, or with --retries higher
 )";
 
 }  // namespace
@@ -421,6 +438,17 @@ Command add_run_command(CLI::App& app) {
   sub->add_option("--seed", o->seed, "Seed for every random choice")->check(kNonNegative);
   sub->add_option("--pace", o->pace_ms, "Milliseconds between commands, 0-60000 (default 1000 on a line, 0 in-process)")
       ->check(kPaceRange);
+  sub->add_option("--retries", o->retries,
+                  "Send an exchange again after a line fault, up to N times, 0-10 (default 1 on a line, 0 in-process); "
+                  "0 judges a garbled reply as the device's")
+      ->check(CLI::Range(0, 10));
+  sub->add_flag("--strict-line", o->strict_line, "Any line fault fails the vector it happened in, even one a repeat recovered");
+  sub->add_option("--max-line-fault-rate", o->max_line_fault_rate,
+                  "The share of garbled replies the line survey accepts before it fails the device, 0-1 (default 0.1)")
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--line-faults", o->device.line_faults,
+                  "With --sim: emulate a noisy line, RATE[,KIND...]: a byte error rate (1e-3) and flip, drop, insert, "
+                  "outage (default all), seeded by --seed");
   sub->add_option("--junit", o->junit, "Write JUnit XML (- : standard output)");
   sub->add_option("--json", o->json,
                   "Write the JSON result (each vector journaled as it finishes, the JSON at the end; - : standard output)");

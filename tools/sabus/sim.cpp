@@ -44,6 +44,8 @@ struct SimOptions {
   double turnaround_ms = -1;
   std::string parity = "even";
   std::string log;
+  std::string line_faults;
+  std::uint64_t line_fault_seed = 1;
   bool list_faults = false;
 };
 
@@ -146,6 +148,15 @@ int run_sim(const SimOptions& o) {
   serve_options.emulate_line = o.emulate_line;
   serve_options.baud = o.baud > 0 ? o.baud : profs->front().baud;
   serve_options.turnaround_ms = o.turnaround_ms >= 0 ? o.turnaround_ms : profs->front().turnaround_ms;
+  if (!o.line_faults.empty()) {
+    std::string error;
+    serve_options.line_faults = parse_line_faults(o.line_faults, error);
+    if (!serve_options.line_faults) {
+      std::cerr << "sabus sim: --line-faults: " << error << "\n";
+      return kExitUsage;
+    }
+    serve_options.line_faults->seed = o.line_fault_seed;
+  }
   if (!o.log.empty()) {
     log_file.open(o.log, std::ios::app);
     if (!log_file) {
@@ -226,6 +237,10 @@ Command add_sim_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 10'000.0));
   sub->add_option("--parity", o->parity, "even: bit 7 carries even parity (a 7E1 line); none: 7-bit characters")
       ->check(CLI::IsMember({"even", "none"}));
+  sub->add_option("--line-faults", o->line_faults,
+                  "Make the line noisy: RATE[,KIND...], a byte error rate each way (1e-3) and flip, drop, insert, "
+                  "outage (default all)");
+  sub->add_option("--line-fault-seed", o->line_fault_seed, "Seed of --line-faults (default 1)");
   sub->add_option("--log", o->log, "Append a decoded transcript to FILE");
   sub->add_flag("--list-faults", o->list_faults, "List the injectable faults and exit");
   return {sub, [o] { return run_sim(*o); }};

@@ -30,6 +30,7 @@ struct Bus::Unit : ReceiverSink {
   // The recent bytes of the stream, to read back a discarded frame (fault
   // nak-bad-check-byte answers one); kept only under that fault.
   bool keeps_recent;
+  std::size_t replies = 0;  // replies sent, for fault garbles-replies
   Bytes recent;
   std::uint64_t recent_base = 0;
 
@@ -124,6 +125,11 @@ void Bus::receive(ByteView wire, Bytes& out) {
       Outcome o = u->controller.execute(f);
       if (o.nak && nak_rules_.size() < 64) nak_rules_.push_back(*o.nak);
       if (o.reply) {
+        // Fault garbles-replies: every third reply leaves with a wrong check
+        // byte, every byte's parity right: the controller's own garbling, which
+        // a line survey (§4 "a garbled status reply") tells from the line's.
+        if (u->controller.faults().has(Fault::kGarblesReplies) && ++u->replies % 3 == 0 && !o.reply->empty())
+          o.reply->back() ^= 0x01;
         append_to_line(out, *o.reply);
         if (transcript_) log_ += "reply " + to_hex(*o.reply) + "  " + o.note + "\n";
       } else {

@@ -69,6 +69,22 @@ SessionEnd run_session(Line& line, LineDevice& device, const ServeOptions& optio
   const auto turnaround = std::chrono::duration_cast<std::chrono::nanoseconds>(
       std::chrono::duration<double, std::milli>(std::max(options.turnaround_ms, 0.0)));
   LinePacer pacer(options.baud, turnaround);
+  std::optional<LineFaultInjector> to_device, from_device;
+  if (options.line_faults) {
+    to_device.emplace(*options.line_faults);
+    LineFaultSpec back = *options.line_faults;
+    back.seed += 1;
+    from_device.emplace(back);
+  }
+  // What the noisy line did, said when the session ends.
+  struct SayFaults {
+    Transcript& transcript;
+    std::optional<LineFaultInjector>& in;
+    std::optional<LineFaultInjector>& out;
+    ~SayFaults() {
+      if (in) transcript.note("line faults made: requests " + describe(in->tally()) + "; replies " + describe(out->tally()));
+    }
+  } say{transcript, to_device, from_device};
   std::array<std::uint8_t, 256> buf{};
   Bytes reply, due;
   std::optional<int> new_baud;
@@ -97,7 +113,13 @@ SessionEnd run_session(Line& line, LineDevice& device, const ServeOptions& optio
       if (n > 0) {
         const auto at = Clock::now();
         reply.clear();
-        device.receive(ByteView(buf.data(), n), reply);
+        if (to_device) {
+          const Bytes noisy = to_device->pass(ByteView(buf.data(), n));
+          device.receive(noisy, reply);
+        } else {
+          device.receive(ByteView(buf.data(), n), reply);
+        }
+        if (from_device && !reply.empty()) reply = from_device->pass(reply);
         if (options.emulate_line) {
           const auto input_end = pacer.received(n, at);
           if (!reply.empty()) pacer.push(reply, input_end);

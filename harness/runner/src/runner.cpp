@@ -184,9 +184,11 @@ std::optional<Skip> skip_reason(const Vector& v, const RunOptions& o, const Prof
 struct Attempt {
   std::vector<std::string> failures;
   std::string inconclusive;
-  // Whether the setup and the steps are over: a step failed or a
-  // precondition did not hold (the teardown still runs).
-  bool ended() const { return !failures.empty() || !inconclusive.empty(); }
+  std::string error;  // why the line left it unjudged (Verdict::kError)
+  // Whether the setup and the steps are over: a step failed, a
+  // precondition did not hold or the line left a step unjudged (the
+  // teardown still runs).
+  bool ended() const { return !failures.empty() || !inconclusive.empty() || !error.empty(); }
 };
 
 // A step's failure, recorded as what it is: a precondition step's
@@ -197,8 +199,10 @@ struct Attempt {
 // A short poll for rest that did not see rest (kShortRestPoll) ends it
 // inconclusive too: the mount was never shown at rest, which an earlier
 // vector's failure has reported already.
+// A step the line left unjudged (Session::line_error) ends it in error.
 void record(Attempt& a, Session& s, const Step& step, const std::string& where, const std::string& error) {
-  if (std::exchange(s.rest_unseen, false)) a.inconclusive = where + error;
+  if (std::exchange(s.line_error, false)) a.error = where + error;
+  else if (std::exchange(s.rest_unseen, false)) a.inconclusive = where + error;
   else if (step.precondition.empty()) a.failures.push_back(where + error);
   else a.inconclusive = where + "precondition not met (" + step.precondition + "): " + error;
 }
@@ -221,7 +225,7 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
         record(a, s, step, where, *e);
         break;
       }
-    if (!a.inconclusive.empty()) return;
+    if (!a.inconclusive.empty() || !a.error.empty()) return;
   }
 }
 
@@ -245,8 +249,11 @@ Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& trans
     if (is_stop(step) && s.track_governs()) continue;  // as the runner's own stop (Session::stop_motion)
     if (auto e = s.run_step(step)) {
       // A short poll for rest that did not see rest: the mount's state after
-      // the vector is unknown, not wrong (an earlier failure said so).
-      if (std::exchange(s.rest_unseen, false)) {
+      // the vector is unknown, not wrong (an earlier failure said so); a step
+      // the line left unjudged is an error.
+      if (std::exchange(s.line_error, false)) {
+        if (a.error.empty()) a.error = "teardown: " + *e;
+      } else if (std::exchange(s.rest_unseen, false)) {
         if (a.inconclusive.empty()) a.inconclusive = "teardown: " + *e;
       } else {
         a.failures.push_back("teardown: " + *e);
@@ -295,10 +302,32 @@ void set_verdict(VectorResult& r, const RunOptions& o) {
 // lost device fails the vector and aborts the run.
 void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
   const TimePoint t0 = s.transport.now();
+  const LineFaultCounts before = s.line;
   try {
+    std::size_t faults_before = s.line.faults;
     Attempt a = attempt(s, v, r.transcript);
+    // The line: an attempt the line left unjudged (an error), or one that
+    // failed after a line fault (a repeat also shifts the timing a vector
+    // may rest on), says nothing sure of the device. The vector runs again
+    // from its setup, up to RunOptions::retries times, and the first attempt
+    // the line left alone decides; its commands are not sent twice blindly,
+    // the setup puts the device back where the vector starts. (Under
+    // --strict-line a line fault is the failure: nothing runs again.)
+    for (int again = 1; again <= s.options.retries && !s.options.strict_line; ++again) {
+      const bool touched = !a.error.empty() || (!a.failures.empty() && s.line.faults > faults_before);
+      if (!touched) break;
+      if (s.options.record_transcripts)
+        r.transcript.push_back({s.t_ms(), false, {}, "the line touched this attempt (" +
+                                    (a.error.empty() ? a.failures.front() : a.error) + "): the vector runs again from its setup",
+                                {}, ""});
+      faults_before = s.line.faults;
+      a = attempt(s, v, r.transcript);
+    }
+    // A clean attempt settled the faults of the ones before it.
+    if (a.error.empty() && s.line.faults == faults_before) s.line.recovered += (s.line.faults - before.faults) - (s.line.recovered - before.recovered);
     r.failures = std::move(a.failures);
     r.inconclusive_reason = std::move(a.inconclusive);
+    r.error_reason = std::move(a.error);
     // --repeat re-runs failures only: an inconclusive vector is not one.
     if (!r.failures.empty() && s.options.repeat > 0) repeat_failing(s, v, s.options.repeat, r);
   } catch (const TransportLost& e) {
@@ -308,6 +337,8 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
     result.stopped_by = "lost device";
   }
   r.duration_ms = std::chrono::duration<double, std::milli>(s.transport.now() - t0).count();
+  r.line = {s.line.exchanges - before.exchanges, s.line.faults - before.faults, s.line.recovered - before.recovered,
+            s.line.repeats - before.repeats};
   set_verdict(r, s.options);
 }
 
@@ -444,6 +475,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   result.bytes_received = s.bytes_received;
   result.silence_listened = s.silence_listened;
   result.silence_windows = s.silence_windows;
+  result.line = s.line;
   return result;
 }
 

@@ -74,6 +74,9 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
   Transport& t = transport;
   pace();
   frames_.clear();
+  raw_.clear();
+  const auto acted_on = frame_acted_on(chars, profile);
+  last_command_ = acted_on ? acted_on->command : 0;
   ignored_.clear();
   ReceiverOptions rx_options = ReceiverOptions::master();
   rx_options.parity = receiver_parity(t);
@@ -81,6 +84,7 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
   send_in_chunks(chars, m);
   last_send_ = t.now();
   bytes_sent += chars.size();
+  ++line.exchanges;
   if (transcript) record(true, chars, describe_frame(chars));  // describing a frame costs more than sending it
   const TimePoint sent_at = t.now();
   // send() does not drain: the request leaves the port over its wire time.
@@ -99,6 +103,7 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
       if (!t.in_process()) turnaround.record(request_end, t.now());
     }
     bytes_received += n;
+    raw_.insert(raw_.end(), buf, buf + n);
     rx.feed(ByteView(buf, n), *this);
     if (n == 0 && !frames_.empty()) break;  // a complete reply and then quiet
   }
@@ -113,9 +118,111 @@ std::vector<Frame> Session::exchange(const Bytes& chars, const Modifiers& m, mil
   return frames_;
 }
 
+std::string Session::last_fault(bool reply_due) const {
+  const std::uint8_t command = last_command_;
+  if (!ignored_.empty()) {
+    std::string s = ignored_.front();
+    if (ignored_.size() > 1) s += " (and " + std::to_string(ignored_.size() - 1) + " more)";
+    return s;
+  }
+  if (reply_due && frames_.empty()) return "no reply";
+  // A reply for another command is a late or stray frame (a request the
+  // line cut in two can be answered after the next one went out).
+  if (frames_.size() == 1 && command != 0 && frames_[0].command != command && !is_offline_reply(frames_[0]))
+    return "a reply for command " + describe_byte(frames_[0].command) + " to " + describe_byte(command);
+  // Bytes lost or added in pairs can leave a frame whose check byte still
+  // holds (an XOR does not see two equal bytes go): an ACK of another length
+  // than the catalog's (§3) was cut short or stretched.
+  const CommandInfo* info = find_command(command);
+  if (frames_.size() == 1 && frames_[0].kind == FrameKind::kAck && !is_offline_reply(frames_[0]) && info &&
+      frames_[0].command == command && info->reply_length &&
+      frames_[0].data.size() + kFrameOverhead != *info->reply_length)
+    return "a reply of " + std::to_string(frames_[0].data.size() + kFrameOverhead) + " bytes where §" +
+           std::string(info->paragraph) + " gives " + std::to_string(*info->reply_length);
+  return "";
+}
+
+bool Session::read_back() {
+  const Bytes poll = encode_request(StatusPoll{}, profile.address);
+  for (int i = 0; i <= options.retries; ++i) {
+    if (i > 0) transport.pause(silence_window());
+    const auto replies = exchange(poll, {}, reply_timeout(poll.size()));
+    if (last_fault(true).empty() && replies.size() == 1 && replies[0].command == 0x31) return true;
+  }
+  return false;
+}
+
+// One exchange, and after a line fault the same frame again while
+// RunOptions::retries and the frame's resend rule allow: after the silence
+// window, so the device's receiver has dropped what the fault left of the
+// last frame (§1: a bad frame is ignored); after a status poll for a frame
+// that changes state. A silence on every try where a reply was due is the
+// device's answer, not the line's: it is judged as one (except for a frame
+// that is never sent again: its silence may be a request the line lost).
+Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window,
+                                         bool reply_due, bool must_not_act) {
+  Judged j;
+  j.replies = exchange(chars, m, window);
+  j.fault = last_fault(reply_due);
+  if (j.fault.empty()) return j;
+  // A frame the device must refuse or ignore (the step expects a NAK, the
+  // offline reply or silence) does nothing on a conforming device, however
+  // often it comes: it is sent again like a read. On a device that acts on
+  // it the vector fails anyway.
+  const Resend rule = must_not_act ? Resend::kAtOnce : resend_rule(chars);
+  const std::string first_fault = j.fault;
+  bool garbled = j.fault != "no reply";  // bytes came back that were not a clean reply
+  int tries = 1;
+  auto note = [&](const std::string& what) {
+    if (transcript) transcript->push_back({t_ms(), false, {}, what, {}, ""});
+  };
+  const int retries = measuring ? 0 : options.retries;
+  for (; tries <= retries && rule != Resend::kNever; ++tries) {
+    note("line fault: " + j.fault + "; sending it again (" + std::string(to_string(rule)) + ")");
+    transport.pause(silence_window());
+    if (rule == Resend::kAfterReadBack && !read_back()) {
+      ++line.faults;
+      j.error = true;
+      j.fault = first_fault + "; the status poll before sending it again got no clean reply either";
+      return j;
+    }
+    ++line.repeats;
+    const Bytes before = raw_;
+    j.replies = exchange(chars, m, window);
+    j.fault = last_fault(reply_due);
+    if (j.fault.empty()) {
+      ++line.faults;
+      ++line.recovered;
+      note("recovered: the repeat got a clean reply");
+      return j;
+    }
+    // The same bytes again: a line does not garble twice alike, so the
+    // device sent them; its reply is judged as it is.
+    if (!raw_.empty() && raw_ == before) {
+      note("the repeat got the same bytes: the device's reply, not the line's");
+      j.fault += " (the same bytes on a repeat: the device's, not the line's)";
+      return j;
+    }
+    garbled = garbled || j.fault != "no reply";
+  }
+  // Silence on every try is the device's own answer, unless the frame was
+  // not sent again: a request lost on the line leaves the same silence.
+  if (!garbled && (rule != Resend::kNever || retries == 0)) {
+    j.fault.clear();
+    return j;
+  }
+  ++line.faults;
+  if (retries == 0) return j;  // judged as it came; the failure names the fault
+  j.error = true;
+  j.fault = rule == Resend::kNever && tries == 1
+                ? first_fault + "; not sent again: " + std::string(to_string(rule))
+                : "no clean reply in " + std::to_string(tries) + " tries: " + j.fault + " (first: " + first_fault + ")";
+  return j;
+}
+
 std::optional<Bytes> Session::ask(const Request& request) {
   const Bytes cmd = encode_request(request, profile.address);
-  const auto replies = exchange(cmd, {}, reply_timeout(cmd.size()));
+  const auto replies = exchange_judged(cmd, {}, reply_timeout(cmd.size()), true).replies;
   if (replies.size() != 1 || replies[0].kind != FrameKind::kAck || is_offline_reply(replies[0])) return std::nullopt;
   return replies[0].data;
 }
@@ -129,7 +236,7 @@ LivenessResult Session::liveness(std::string when) {
   for (std::uint8_t code : {std::uint8_t{0x30}, std::uint8_t{0x31}}) {
     const Bytes cmd = encode_frame({FrameKind::kCommand, profile.address, code, {}});
     try {
-      const auto replies = exchange(cmd, {}, reply_timeout(cmd.size()));
+      const auto replies = exchange_judged(cmd, {}, reply_timeout(cmd.size()), true).replies;
       const bool answered = replies.size() == 1 && replies[0].command == code;
       if (!answered) {
         l.alive = false;
@@ -172,9 +279,29 @@ void Session::stop_motion() {
   }
   const Bytes x = encode_request(Jog{{'X', 'S', 0}}, profile.address);
   try {
-    exchange(x, {}, reply_timeout(x.size()));
+    exchange_judged(x, {}, reply_timeout(x.size()), true);
   } catch (const TransportLost&) {
   }
+}
+
+Resend resend_rule(ByteView frame) {
+  const CommandInfo* info = frame.size() > 2 ? find_command(frame[2]) : nullptr;
+  if (!info) return Resend::kAtOnce;  // no command the device may act on: it NAKs or ignores it
+  const FormInfo* form =
+      info->form_selector_offset && frame.size() > *info->form_selector_offset ? info->form_for_selector(frame[*info->form_selector_offset]) : nullptr;
+  const Effects e = form ? form->effects : info->effects();  // an unknown form: what any form may do
+  if (e.acts_again) return Resend::kNever;
+  if (e.moves_antenna || e.changes_stored_data) return Resend::kAfterReadBack;
+  return Resend::kAtOnce;
+}
+
+std::string_view to_string(Resend r) {
+  switch (r) {
+    case Resend::kAtOnce: return "it changes nothing";
+    case Resend::kAfterReadBack: return "a second one leaves the device as one does; after a status poll";
+    case Resend::kNever: return "a second one would act again";
+  }
+  return "?";
 }
 
 std::optional<SentFrame> frame_acted_on(ByteView chars, const Profile& profile) {

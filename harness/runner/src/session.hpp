@@ -39,6 +39,11 @@ class Session : public ReceiverSink {
   std::set<std::string> rest_not_shown;
   std::string rest_timed_out_in;
   bool rest_unseen = false;
+  // The last send's exchange left unjudged by the line (RunOptions::retries):
+  // its failure is then an error's reason (Verdict::kError), not the device's.
+  bool line_error = false;
+  bool measuring = false;  // a survey runs: no exchange is repeated, the faults are what it counts
+  LineFaultCounts line;  // the run's exchanges and line faults so far
   TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
   std::size_t bytes_sent = 0, bytes_received = 0;
   std::chrono::microseconds silence_listened{0};
@@ -49,6 +54,21 @@ class Session : public ReceiverSink {
   // that come back within `window`, stopping early once a frame arrived and
   // the line went quiet. Paces commands (RunOptions::pace). Throws TransportLost.
   std::vector<Frame> exchange(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window);
+  // exchange(), repeated after a line fault as RunOptions::retries and the
+  // frame's resend rule allow (resend_rule). `reply_due`: a reply is due (a
+  // silence then may be a lost request); false for an ignore path.
+  struct Judged {
+    std::vector<Frame> replies;
+    // The line fault the replies still show ("" when clean): with retries
+    // left unused, it is added to a failure's words; with `error` set, the
+    // exchange could not be judged.
+    std::string fault;
+    bool error = false;
+  };
+  // `must_not_act`: the step expects the device to refuse or ignore the
+  // frame (a NAK, the offline reply, silence).
+  Judged exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window, bool reply_due,
+                         bool must_not_act = false);
   bool track_governs();
   // The frames of the last exchange.
   const std::vector<Frame>& last_replies() const { return frames_; }
@@ -70,6 +90,7 @@ class Session : public ReceiverSink {
   std::optional<std::string> run_step(const Step& s);
   std::optional<std::string> run_send(const Step& s);
   std::optional<std::string> run_poll(const Step& s);
+  std::optional<std::string> run_survey(const Step& s);
   // What came back to a send, as its expectation is checked against it.
   struct Reply {
     const std::vector<Frame>& replies;
@@ -95,17 +116,35 @@ class Session : public ReceiverSink {
   void send_in_chunks(const Bytes& chars, const Modifiers& m);
   std::optional<std::string> check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers);
   std::chrono::milliseconds poll_timeout(const Step& s, const FrameDescription& first_reply);
+  // The line fault the last exchange showed: what the master's receiver
+  // discarded, or no reply where one was due; "" when clean.
+  std::string last_fault(bool reply_due) const;
+  // A status poll after a line fault, before a command that changes state is
+  // sent again: the device answers cleanly again. False when it does not.
+  bool read_back();
 
   TimePoint start_;
   TimePoint last_send_{};
   std::vector<Frame> frames_;
   std::vector<std::string> ignored_;
+  Bytes raw_;  // the bytes of the last exchange's replies, as received
+  std::uint8_t last_command_ = 0;  // the code of the frame the device acts on in the last exchange (0: none)
 };
 
 // The frame of a send that the device acts on, as a device's receiver reads
 // the bytes (§1 states 1-5; an STX in the data restarts reception under E-7):
 // its address and command, for checking the reply. nullopt when no complete
 // frame is in the bytes (a bad LRC, a truncated frame).
+// Whether a frame may be sent again after a line fault (catalog Effects): a
+// frame that changes nothing (a read, a poll, an unknown code the device
+// must NAK) at once; one that moves the antenna or writes stored data and
+// leaves the device as one does when sent twice (an absolute move, a stop, a
+// write of the same record) after a status poll has read the device back;
+// one that acts again (a jog, a LOCATE, a key) never.
+enum class Resend : std::uint8_t { kAtOnce, kAfterReadBack, kNever };
+Resend resend_rule(ByteView frame);
+std::string_view to_string(Resend r);  // why, for the error's words
+
 struct SentFrame {
   std::uint8_t address = 0;
   std::uint8_t command = 0;

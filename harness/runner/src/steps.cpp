@@ -4,6 +4,7 @@
 // a send until its `until` matchers hold; a wait lets time pass.
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/profile_records.hpp"
@@ -222,7 +223,14 @@ std::optional<std::string> Session::run_send(const Step& step) {
   const TimePoint listen_start = transport.now();
   (void)transport.take_nak_rules();  // only this exchange's rules count
   expect = std::string(to_string(s.expect.kind));
-  const auto replies = exchange(wire, s.modifiers, window);
+  const std::size_t faults_before = line.faults;
+  using K = Expectation::Kind;
+  const bool refused = (s.expect.kind == K::kNak || s.expect.kind == K::kOffline || silence) &&
+                       std::all_of(s.expect.readings.begin(), s.expect.readings.end(), [](const ReadingAlternative& a) {
+                         return a.expect.kind == K::kNak || a.expect.kind == K::kOffline || a.expect.kind == K::kSilence;
+                       });
+  const Judged judged = exchange_judged(wire, s.modifiers, window, !silence && s.expect.kind != K::kAny, refused);
+  const auto& replies = judged.replies;
   expect.clear();
   const auto nak_rules = transport.take_nak_rules();
   if (silence) {
@@ -237,9 +245,18 @@ std::optional<std::string> Session::run_send(const Step& step) {
                                   : SentFrame{wire.size() > 1 ? wire[1] : profile.address,
                                               static_cast<std::uint8_t>(wire.size() > 2 ? wire[2] : 0)};
   const std::uint8_t want_address = s.command && s.command->address ? *s.command->address : sent.address;
+  if (judged.error) {
+    line_error = true;
+    return "the line left " + describe_byte(sent.command) + " unjudged: " + judged.fault;
+  }
+  if (options.strict_line && line.faults > faults_before)
+    return "a line fault (--strict-line): " + (judged.fault.empty() ? std::string("recovered by a repeat") : judged.fault);
   const Reply got{replies, nak_rules, want_address, sent.command};
-  if (s.expect.readings.empty()) return check_reply(s.expect, got);
-  return check_sides(s.expect, got);
+  auto failure = s.expect.readings.empty() ? check_reply(s.expect, got) : check_sides(s.expect, got);
+  // With no repeat allowed (--retries 0) a line fault is judged as the reply
+  // it left; the failure says what the line did, for whoever reads it.
+  if (failure && !judged.fault.empty()) *failure += " (the reply showed a line fault: " + judged.fault + ")";
+  return failure;
 }
 
 std::optional<std::string> Session::check_reply(const Expectation& e, const Reply& got) {
@@ -353,8 +370,20 @@ std::optional<std::string> Session::run_poll(const Step& s) {
   };
   bool short_poll = waits_for_unshown_rest();
   rest_unseen = false;
+  // Polls the line left unjudged in a row: a poll asks again anyway, so a
+  // garbled reply only costs one interval, until kUnjudgedPolls in a row.
+  constexpr int kUnjudgedPolls = 5;
+  int unjudged = 0;
   while (true) {
-    if (auto e = run_send(probe)) return "poll: " + *e;
+    if (auto e = run_send(probe)) {
+      if (!line_error || ++unjudged >= kUnjudgedPolls) return "poll: " + *e;
+      line_error = false;
+      if (transport.now() - start >= (timeout.count() > 0 ? timeout : std::chrono::milliseconds(kMaxMs))) return "poll: " + *e;
+      transport.pause(s.interval);
+      continue;
+    }
+    line.recovered += static_cast<std::size_t>(unjudged);  // the poll asked again and got a clean reply
+    unjudged = 0;
     // The reply of the last exchange, checked against `until`.
     const Bytes reply = last_replies().empty() ? Bytes{} : encode_frame(last_replies()[0]);
     const FrameDescription d = describe_frame(reply);
@@ -393,6 +422,62 @@ std::optional<std::string> Session::run_poll(const Step& s) {
   }
 }
 
+namespace {
+// The lower bound of the Wilson score interval for `hits` of `n` at 99%
+// confidence (z = 2.576): the share is at least this, but for a 1-in-100
+// chance. A survey fails the device only when even this is above the
+// threshold, so a line that garbles a reply now and then does not fail a
+// legal controller by bad luck.
+double share_at_least(std::size_t hits, std::size_t n) {
+  if (n == 0) return 0;
+  constexpr double z = 2.576;
+  const double p = static_cast<double>(hits) / static_cast<double>(n), nn = static_cast<double>(n);
+  const double centre = p + z * z / (2 * nn);
+  const double spread = z * std::sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn));
+  return std::max(0.0, (centre - spread) / (1 + z * z / nn));
+}
+}  // namespace
+
+// §4: "a garbled status reply" is a symptom of unreliable communications. A
+// survey sends its frame `survey_count` times at its interval, each once (a
+// repeat would hide what it counts), and counts the replies that came
+// garbled: a controller that garbles its own replies fails here, where the
+// rest of the run repeats and recovers them. A silence is not counted (a
+// request the line lost looks the same); a clean reply that is not an ACK
+// fails as a send's would.
+std::optional<std::string> Session::run_survey(const Step& s) {
+  Step probe = s;
+  probe.kind = Step::Kind::kSend;
+  std::size_t garbled = 0, answered = 0;
+  std::string first;
+  measuring = true;
+  for (std::size_t i = 0; i < s.survey_count; ++i) {
+    if (i > 0) transport.pause(s.interval);
+    const auto failure = run_send(probe);
+    line_error = false;
+    const std::string fault = last_fault(true);
+    if (fault == "no reply") continue;
+    ++answered;
+    if (!fault.empty()) {
+      if (first.empty()) first = fault;
+      ++garbled;
+    } else if (failure) {
+      measuring = false;
+      return "survey: " + *failure;
+    }
+    if (options.stop && !options.stop().empty()) break;
+  }
+  measuring = false;
+  const double limit = options.max_line_fault_rate;
+  const std::string measured = std::to_string(garbled) + " of " + std::to_string(answered) + " replies garbled";
+  if (transcript) transcript->push_back({t_ms(), false, {}, "survey: " + measured, {}, ""});
+  if (answered == 0) return "survey: no reply to any of " + std::to_string(s.survey_count) + " sends";
+  if (share_at_least(garbled, answered) > limit)
+    return "survey: " + measured + " (first: " + first + "), more than " + std::to_string(static_cast<int>(limit * 100 + 0.5)) +
+           "% (--max-line-fault-rate) even at the low end of its 99% confidence interval: the controller garbles its replies";
+  return std::nullopt;
+}
+
 std::optional<std::string> Session::run_step(const Step& s) {
   switch (s.kind) {
     case Step::Kind::kWait: {
@@ -409,6 +494,7 @@ std::optional<std::string> Session::run_step(const Step& s) {
     }
     case Step::Kind::kSend: return run_send(s);
     case Step::Kind::kPoll: return run_poll(s);
+    case Step::Kind::kSurvey: return run_survey(s);
   }
   return std::nullopt;
 }

@@ -30,10 +30,34 @@ InProcessTransport::InProcessTransport(std::vector<Profile> profiles, FaultSet f
       bus_(std::move(profiles), clock_, faults, Parity::kEvenBit7) {}
 
 void InProcessTransport::send(ByteView chars, std::span<const std::size_t> wrong_parity) {
-  const Bytes wire = with_software_parity(chars, wrong_parity);
+  Bytes wire = with_software_parity(chars, wrong_parity);
+  if (to_device_) wire = to_device_->pass(wire);
   Bytes out;
   bus_.receive(wire, out);
+  if (from_device_ && !out.empty()) out = from_device_->pass(out);
   replies_.insert(replies_.end(), out.begin(), out.end());
+}
+
+void InProcessTransport::set_line_faults(const LineFaultSpec& spec) {
+  to_device_.emplace(spec);
+  LineFaultSpec back = spec;
+  back.seed = spec.seed + 1;
+  from_device_.emplace(back);
+  description_ += ", line faults: " + harness::describe(spec);
+}
+
+LineFaultTally InProcessTransport::injected_faults() const {
+  LineFaultTally t;
+  for (const auto* i : {&to_device_, &from_device_})
+    if (*i) {
+      const LineFaultTally& o = (*i)->tally();
+      t.bytes += o.bytes;
+      t.flips += o.flips;
+      t.drops += o.drops;
+      t.inserts += o.inserts;
+      t.outages += o.outages;
+    }
+  return t;
 }
 
 std::size_t InProcessTransport::receive(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) {

@@ -63,14 +63,16 @@ constexpr SchemaKey kSpecKeys[] = {
 };
 
 constexpr SchemaKey kStepKeys[] = {
-    {"send", "one of `send`, `poll`, `wait`, `wait_ms`", "send a frame: a command built from fields, or raw bytes"},
+    {"send", "one of `send`, `poll`, `survey`, `wait`, `wait_ms`", "send a frame: a command built from fields, or raw bytes"},
     {"modify", "", "on a send: damage the frame on purpose"},
     {"expect", "with `send`", "what must come back after the send"},
     {"length_mismatch", "",
      "on a raw send: true when the frame's length differs from the catalog's on purpose (§3 table)"},
-    {"poll", "one of `send`, `poll`, `wait`, `wait_ms`", "send a frame again and again until the reply meets a condition"},
-    {"wait", "one of `send`, `poll`, `wait`, `wait_ms`", "wait `ms` milliseconds (the same as `wait_ms`)"},
-    {"wait_ms", "one of `send`, `poll`, `wait`, `wait_ms`", "wait this many milliseconds (1 to 3600000, or a profile expression)"},
+    {"poll", "one of `send`, `poll`, `survey`, `wait`, `wait_ms`", "send a frame again and again until the reply meets a condition"},
+    {"survey", "one of `send`, `poll`, `survey`, `wait`, `wait_ms`",
+     "send a frame many times and count the replies that come garbled (§4); fails above --max-line-fault-rate"},
+    {"wait", "one of `send`, `poll`, `survey`, `wait`, `wait_ms`", "wait `ms` milliseconds (the same as `wait_ms`)"},
+    {"wait_ms", "one of `send`, `poll`, `survey`, `wait`, `wait_ms`", "wait this many milliseconds (1 to 3600000, or a profile expression)"},
     {"precondition", "",
      "on a send or poll outside a teardown: what must hold for the test purpose, in words; when it does not, the "
      "vector ends inconclusive"},
@@ -107,6 +109,12 @@ constexpr SchemaKey kPollKeys[] = {
     {"timeout_ms", "", "give up after this long (up to 3600000, or a profile expression); derived when left out"},
     {"interval_ms", "", "between sends, at least 1000 (§4, E-3); default 1000"},
     {"expect", "", "what each reply must meet; default ack, never silence"},
+};
+
+constexpr SchemaKey kSurveyKeys[] = {
+    {"send", "yes", "the frame to send, as a step's send; its reply must be an ACK"},
+    {"count", "yes", "how many times, 10 to 1000"},
+    {"interval_ms", "", "between sends, at least 1000 (§4, E-3); default 1000"},
 };
 
 constexpr SchemaKey kExpectKeys[] = {
@@ -172,6 +180,7 @@ struct Table {
         {SchemaNode::kSend, "`send`", "a step's or a poll's `send`", kSendKeys},
         {SchemaNode::kModify, "`modify`", "a send step's `modify`", kModifyKeys},
         {SchemaNode::kPoll, "`poll`", "a step's `poll`", kPollKeys},
+        {SchemaNode::kSurvey, "`survey`", "a step's `survey`", kSurveyKeys},
         {SchemaNode::kExpect, "An expectation", "a send step's or a poll's `expect`, when it is a map (a scalar is the reply alone)", kExpectKeys},
         {SchemaNode::kReading, "A `readings` alternative", "the value of an ERRATA id under an expectation's `readings`: an expectation's keys but `readings`, none required",
          readings},

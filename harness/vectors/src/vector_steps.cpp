@@ -633,6 +633,27 @@ Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
   return step;
 }
 
+// A survey (Step::Kind::kSurvey): a send repeated `count` times, each reply
+// an ACK, the garbled ones counted by the runner.
+Step read_survey(const YAML::Node& v, const At& at, StepContext& cx) {
+  MapReader r(v, at, schema_keys(SchemaNode::kSurvey));
+  require_keys(r, at, {"send", "count"}, "a survey");
+  Step step;
+  step.kind = Step::Kind::kSurvey;
+  Send send;
+  r.with("send", [&](const YAML::Node& n, const At& a) { send = read_send(n, a, cx); });
+  check_length(send, std::nullopt);
+  step.command = send.command;
+  step.raw = send.raw;
+  step.expect.kind = Expectation::Kind::kAck;
+  step.expect.where = cx.file.loc(at.mark);
+  r.with("count", [&](const YAML::Node& n, const At& a) { step.survey_count = static_cast<std::size_t>(to_integer_in(n, a, 10, 1000)); });
+  r.read("interval_ms", step.interval, [](const YAML::Node& n, const At& a) {
+    return std::chrono::milliseconds(to_integer_in(n, a, kMinPollIntervalMs, kMaxMs));  // §4, E-3
+  });
+  return step;
+}
+
 // `precondition`: the words of what the step establishes for the vector's
 // test purpose (vectors/README.md "Preconditions"; TTCN-3's `inconc`). Only a
 // send or a poll checks something, and a teardown runs after the purpose is
@@ -654,8 +675,8 @@ std::string read_precondition(const MapReader& r, const StepContext& cx) {
 Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
   cx.file.spend(at);
   MapReader r(v, at, schema_keys(SchemaNode::kStep));
-  const int kinds = r.has("send") + r.has("poll") + r.has("wait") + r.has("wait_ms");
-  if (kinds != 1) fail(at, "a step is one of send, poll, wait or wait_ms");
+  const int kinds = r.has("send") + r.has("poll") + r.has("survey") + r.has("wait") + r.has("wait_ms");
+  if (kinds != 1) fail(at, "a step is one of send, poll, survey, wait or wait_ms");
   if (!r.has("send"))
     for (auto k : {"modify", "expect", "length_mismatch"})
       if (r.has(k)) fail(r.at(k), std::string(k) + " belongs to a send step (a poll has its own expect)");
@@ -664,6 +685,8 @@ Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
     step = read_send_step(r, at, cx);
   } else if (r.has("poll")) {
     r.with("poll", [&](const YAML::Node& n, const At& a) { step = read_poll(n, a, cx); });
+  } else if (r.has("survey")) {
+    r.with("survey", [&](const YAML::Node& n, const At& a) { step = read_survey(n, a, cx); });
   } else {
     step.kind = Step::Kind::kWait;
     r.with("wait_ms", [&](const YAML::Node& n, const At& a) { read_ms(n, a, cx, step); });

@@ -1248,6 +1248,14 @@ TEST(Faults, EveryFaultChangesTheWire) {
          p.signposts = {Signpost{}};
        },
        wire(ReadSignpost{{1}}, '2')},
+      // The third reply of the probe's three: two polls, then the one after.
+      {Fault::kGarblesReplies, none,
+       [] {
+         Bytes two = wire(StatusPoll{}, '2');
+         const Bytes again = two;
+         two.insert(two.end(), again.begin(), again.end());
+         return two;
+       }()},
   };
   std::set<Fault> probed;
   for (const auto& probe : probes) {

@@ -629,13 +629,21 @@ TEST(vectors, ModifiersAreCheckedAgainstTheFrame) {
 
 TEST(vectors, StepsPollsAndWaits) {
   expect_error(one_vector("      - {send: {command: status}, wait_ms: 5}\n"),
-               {"{send", 1, "3.2-x", "steps[0]", "a step is one of send, poll, wait or wait_ms"});
+               {"{send", 1, "3.2-x", "steps[0]", "a step is one of send, poll, survey, wait or wait_ms"});
   expect_error(one_vector("      - poll: {send: {command: status}, until: {agc: any}, timeout_ms: 5000, interval_ms: 500}\n"),
                {"interval_ms", 1, "3.2-x", "steps[0].poll.interval_ms", "500 is out of range 1000"});
   expect_error(one_vector("      - poll: {send: {command: status}, until: {agc: any}, timeout_ms: 1000, interval_ms: 2000}\n"),
                {"interval_ms", 1, "3.2-x", "steps[0].poll.interval_ms", "longer than timeout_ms"});
   expect_error(one_vector("      - poll: {send: {command: status}, until: {agc: any}, timeout_ms: 1000, expect: silence}\n"),
                {"expect", 1, "3.2-x", "steps[0].poll.expect", "a poll needs a reply"});
+  // A survey (§4): its count and interval, named by key.
+  expect_error(one_vector("      - survey: {send: {command: status}}\n"), {"survey", 1, "3.2-x", "steps[0].survey.count", "a survey needs count"});
+  expect_error(one_vector("      - survey: {send: {command: status}, count: 9}\n"),
+               {"count", 1, "3.2-x", "steps[0].survey.count", "9 is out of range 10"});
+  expect_error(one_vector("      - survey: {send: {command: status}, count: 20, interval_ms: 999}\n"),
+               {"interval_ms", 1, "3.2-x", "steps[0].survey.interval_ms", "999 is out of range 1000"});
+  expect_error(one_vector("      - survey: {send: {command: status}, count: 20, until: {agc: any}}\n"),
+               {"until", 1, "3.2-x", "steps[0].survey.until", "unknown key \"until\""});
   expect_error(one_vector("      - wait: {ms: 0}\n"), {"ms", 1, "3.2-x", "steps[0].wait.ms", "0 is out of range 1"});
   expect_error(kHead + "  - id: 3.2-x\n    comment: c\n    spec: {paragraph: \"3.2\", quote: q}\n    level: must\n    steps: []\n",
                {"steps", 1, "3.2-x", "steps", "at least one step"});

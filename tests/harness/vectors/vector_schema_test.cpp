@@ -81,6 +81,11 @@ groups:
               until:
                 "az status": any
               @kPoll@
+          - survey:
+              send:
+                command: status
+              count: 10
+              @kSurvey@
 )";
 }
 
@@ -88,7 +93,8 @@ const std::pair<SchemaNode, const char*> kMarkers[] = {
     {SchemaNode::kFile, "@kFile@"},       {SchemaNode::kNote, "@kNote@"},       {SchemaNode::kGroup, "@kGroup@"},
     {SchemaNode::kVector, "@kVector@"},   {SchemaNode::kSpec, "@kSpec@"},       {SchemaNode::kStep, "@kStep@"},
     {SchemaNode::kWait, "@kWait@"},       {SchemaNode::kSend, "@kSend@"},       {SchemaNode::kModify, "@kModify@"},
-    {SchemaNode::kPoll, "@kPoll@"},       {SchemaNode::kExpect, "@kExpect@"},   {SchemaNode::kReading, "@kReading@"},
+    {SchemaNode::kPoll, "@kPoll@"},       {SchemaNode::kSurvey, "@kSurvey@"},   {SchemaNode::kExpect, "@kExpect@"},
+    {SchemaNode::kReading, "@kReading@"},
     {SchemaNode::kMatcher, "@kMatcher@"}, {SchemaNode::kNear, "@kNear@"},       {SchemaNode::kJogged, "@kJogged@"},
 };
 

@@ -36,6 +36,12 @@ std::string_view to_string(ReplyKind kind);
 struct Effects {
   bool moves_antenna = false;
   bool changes_stored_data = false;
+  // A second identical frame acts again rather than leaving the device as
+  // the first did: a jog restarts its duration (§3.4), a LOCATE, a search or
+  // a peak starts over, a key is pressed twice, a STORE may add a second
+  // entry. After a line fault the runner sends a command again only when
+  // this is false (RunOptions::retries).
+  bool acts_again = false;
 };
 
 // A form of a command: the variants the spec describes, told apart by a

@@ -101,7 +101,10 @@ namespace sabus::harness {
   X(kNaksForeignFrames, "naks-foreign-frames",                                                                   \
     "a frame for another address that the controller would NAK (unknown code, wrong length, bad data) is NAKed")  \
   X(kSpareBytesBlank, "spare-bytes-blank",                                                                       \
-    "44h returns the signpost's spare bytes 30-33 as blanks instead of the zeros §3.21 fixes")
+    "44h returns the signpost's spare bytes 30-33 as blanks instead of the zeros §3.21 fixes")                  \
+  /* The line (issue 34) */                                                                                        \
+  X(kGarblesReplies, "garbles-replies",                                                                          \
+    "every third reply leaves with a wrong check byte, though every byte's parity is right (§4 a garbled reply)")
 
 enum class Fault : std::uint8_t {
 #define SABUS_X(id, name, description) id,

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "sabus/harness/line.hpp"
+#include "sabus/harness/line_faults.hpp"
 #include "sabus/harness/line_device.hpp"
 #include "sabus/protocol/bytes.hpp"
 
@@ -36,6 +37,11 @@ struct ServeOptions {
   // kPortInUse and closed, as ser2net and commercial device servers do.
   bool rfc2217 = false;
   bool takeover = false;
+  // A noisy line on purpose (line_faults.hpp): each request's bytes and each
+  // reply's pass an injector (seeds spec.seed and spec.seed + 1) before the
+  // device reads them or the line carries them. The log says how many faults
+  // were made when the server stops.
+  std::optional<LineFaultSpec> line_faults;
 };
 
 // What a refused second client reads before its connection is closed

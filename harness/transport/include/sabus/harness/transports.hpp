@@ -17,6 +17,7 @@
 #include "sabus/harness/controller.hpp"
 #include "sabus/harness/faults.hpp"
 #include "sabus/harness/line.hpp"
+#include "sabus/harness/line_faults.hpp"
 #include "sabus/harness/profile.hpp"
 #include "sabus/harness/rfc2217.hpp"
 #include "sabus/harness/transport.hpp"
@@ -64,11 +65,19 @@ class InProcessTransport final : public Transport {
   VirtualClock& clock() { return clock_; }
   std::size_t pending() const { return replies_.size(); }  // reply bytes not yet received
 
+  // An emulated noisy line between the runner and the controllers (`sabus run
+  // --sim --line-faults`): requests and replies each pass their own injector
+  // (seeds spec.seed and spec.seed + 1) on their wire bytes, parity bit included.
+  void set_line_faults(const LineFaultSpec& spec);
+  // The faults the line injected both ways; all zero without line faults.
+  LineFaultTally injected_faults() const;
+
  private:
   std::string description_;
   VirtualClock clock_;  // before bus_: the controllers hold a reference to it
   Bus bus_;
   std::deque<std::uint8_t> replies_;
+  std::optional<LineFaultInjector> to_device_, from_device_;
 };
 
 std::unique_ptr<InProcessTransport> make_in_process_transport(std::vector<Profile> profiles, FaultSet faults = {});

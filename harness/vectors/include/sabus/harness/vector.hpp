@@ -150,7 +150,10 @@ std::string_view to_string(Expectation::Kind kind);
 inline constexpr long long kMaxMs = 3'600'000;
 
 struct Step {
-  enum class Kind : std::uint8_t { kSend, kPoll, kWait };
+  // kSurvey: the send `survey_count` times at `interval`, counting the
+  // replies the line garbled (§4 "a garbled status reply"): a controller
+  // that garbles its own replies fails it (RunOptions::max_line_fault_rate).
+  enum class Kind : std::uint8_t { kSend, kPoll, kWait, kSurvey };
   Kind kind = Kind::kSend;
   std::optional<StructuredCommand> command;  // send / poll: one of command or raw
   std::optional<RawBytes> raw;
@@ -159,7 +162,8 @@ struct Step {
   std::vector<FieldMatcher> until;            // poll: repeat until these hold
   std::chrono::milliseconds timeout{0};       // poll: give up after (0: derived, see the runner); wait: how long
   std::string timeout_text;                   // wait / poll timeout as a profile expression, when written so
-  std::chrono::milliseconds interval{1000};   // poll: between polls (§4 pacing)
+  std::chrono::milliseconds interval{1000};   // poll, survey: between sends (§4 pacing)
+  std::size_t survey_count = 0;               // survey: how many sends
   // send / poll in setup or steps: what must hold for the vector's test
   // purpose, in words ("the search is still running when the stop goes
   // out"). When the step's expectation does not hold, the device never got

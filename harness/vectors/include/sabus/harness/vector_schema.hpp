@@ -25,6 +25,7 @@ enum class SchemaNode {
   kSend,
   kModify,
   kPoll,
+  kSurvey,
   kExpect,
   kReading,  // an alternative under `readings:`: an expectation's keys but `readings`
   kMatcher,
