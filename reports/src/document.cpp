@@ -199,14 +199,9 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
 
 // ---- JSON ------------------------------------------------------------------------
 
-namespace {
-
-// "line": {exchanges, faults, recovered, repeats} (reports/SCHEMA.md).
 ordered_json line_json(const harness::LineFaultCounts& c) {
   return {{"exchanges", c.exchanges}, {"faults", c.faults}, {"recovered", c.recovered}, {"repeats", c.repeats}};
 }
-
-}  // namespace
 
 ordered_json header_json(const RunDocument& d) {
   const auto text = [](const std::string& s) { return json_string(s); };

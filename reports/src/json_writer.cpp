@@ -112,16 +112,7 @@ void put_vector(Writer& w, const VectorRecord& v) {
   // Always written, zeros when none was counted (a skipped vector sent
   // nothing): a reader never has to tell "absent" from "none".
   put_key(w, "line");
-  w.StartObject();
-  put_key(w, "exchanges");
-  w.Uint64(v.line.exchanges);
-  put_key(w, "faults");
-  w.Uint64(v.line.faults);
-  put_key(w, "recovered");
-  w.Uint64(v.line.recovered);
-  put_key(w, "repeats");
-  w.Uint64(v.line.repeats);
-  w.EndObject();
+  put_json(w, line_json(v.line));
   put_key(w, "transcript");
   w.StartArray();
   for (const auto& f : v.transcript) put_frame(w, f);

@@ -176,6 +176,9 @@ void compact_for_reports(VectorRecord& v);
 // Members in the order of reports/SCHEMA.md; a vector's JSON is vector_json
 // (journal.hpp).
 nlohmann::ordered_json header_json(const RunDocument& doc);  // everything except "vectors"
+// A "line" member, the vector's and the summary's: {exchanges, faults,
+// recovered, repeats}.
+nlohmann::ordered_json line_json(const harness::LineFaultCounts& c);
 // A string of the document as its JSON holds it: UTF-8, each byte that is not
 // replaced by U+FFFD (valid_utf8, writers.hpp), the same replacement every
 // report makes, so that the reports `sabus report` makes from the JSON are
