@@ -27,6 +27,7 @@ std::string_view colour_of(std::string_view word) {
   if (word == "FAIL") return "\033[1;31m";     // bold red
   if (word == "KNOWN") return "\033[35m";      // magenta
   if (word == "INCONCLUSIVE") return "\033[36m";  // cyan
+  if (word == "ERROR") return "\033[1;34m";       // bold blue: the bench's, not the firmware's red
   return "\033[33m";                           // SKIP: yellow
 }
 
@@ -61,6 +62,7 @@ std::string_view verdict_word(const VectorRecord& v) {
   if (v.outcome == "known failure") return "KNOWN";
   if (v.outcome == "skip") return "SKIP";
   if (v.is_inconclusive()) return "INCONCLUSIVE";
+  if (v.is_error()) return "ERROR";
   return "PASS";
 }
 
@@ -72,6 +74,7 @@ std::string verdict_line(const VectorRecord& v, bool colour) {
   else if (word == "KNOWN") line += ": " + v.difference() + " (known issue: " + v.known_issue + ")";
   else if (word == "SKIP") line += ": " + v.skip_reason;
   else if (word == "INCONCLUSIVE") line += ": " + v.inconclusive_reason;
+  else if (word == "ERROR") line += ": " + v.error_reason;
   return line;
 }
 
@@ -94,7 +97,41 @@ std::string summary_line(const Summary& s) {
   if (const std::string causes = skip_causes_text(s); !causes.empty()) line += " (" + causes + ")";
   if (s.known) line += fmt::format(", {} known failures", s.known);
   if (s.inconclusive) line += fmt::format(", {} inconclusive", s.inconclusive);
+  if (s.errors) line += fmt::format(", {} {}", s.errors, s.errors == 1 ? "error" : "errors");
   return line;
+}
+
+namespace {
+// 0.0021 -> "0.21%".
+std::string rate_text(double rate) { return fmt::format("{:.2f}%", rate * 100); }
+}  // namespace
+
+std::string line_text(const Summary& s) {
+  if (s.line.exchanges == 0) return "";
+  return harness::describe(s.line) + " (fault rate " + rate_text(line_fault_rate(s.line)) + ")";
+}
+
+std::string line_warning(const Summary& s) {
+  const double rate = line_fault_rate(s.line);
+  if (rate <= harness::kHealthyLineFaultRate) return "";
+  return "the line's fault rate " + rate_text(rate) + " is above a healthy line's " + rate_text(harness::kHealthyLineFaultRate) +
+         ": check the cable, the adapter and the port settings; failures on such a line may be the line's";
+}
+
+std::string line_error_text(const Summary& s) {
+  if (s.errors == 0) return "";
+  const std::size_t judged = s.passed + s.failed + s.known + s.unexpected;
+  const char* them = s.errors == 1 ? "it" : "them";
+  // No vector that ran was judged (an inconclusive one checked nothing
+  // either): the run says nothing of the firmware.
+  if (judged == 0 && s.inconclusive == 0)
+    return fmt::format("nothing was judged: {} that ran ended in error: the line, not the firmware, left {} unjudged",
+                       s.errors == 1 ? "the one vector" : fmt::format("all {} vectors", s.errors), them);
+  if (judged == 0)
+    return fmt::format("nothing was judged: {} ended in error (the line, not the firmware, left {} unjudged), {} inconclusive",
+                       s.errors == 1 ? "1 vector" : fmt::format("{} vectors", s.errors), them, s.inconclusive);
+  return fmt::format("{} {} ended in error: the line, not the firmware, left {} unjudged", s.errors,
+                     s.errors == 1 ? "vector" : "vectors", them);
 }
 
 std::string nothing_ran_reason(const Summary& s) {

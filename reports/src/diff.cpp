@@ -71,6 +71,10 @@ std::optional<std::string> reply_change(const VectorRecord& o, const VectorRecor
 
 bool ran(const VectorRecord& v) { return v.outcome != "skip"; }
 
+// Ran and was judged: neither its purpose unreached (inconclusive) nor left
+// unjudged by the line (error). Only a judged vector can be a fix.
+bool judged(const VectorRecord& v) { return ran(v) && !v.is_inconclusive() && !v.is_error(); }
+
 std::string list_text(const std::vector<std::string>& items) {
   std::string out;
   for (const auto& i : items) out += (out.empty() ? "" : ", ") + i;
@@ -139,9 +143,12 @@ RunDiff diff_runs(const RunDocument& o, const RunDocument& n, const TimingThresh
     }
     if (nv.is_failure() && !ov->is_failure()) {
       d.new_failures.push_back(entry(ov, &nv, nv.difference()));
-    } else if (ov->is_failure() && !nv.is_failure() && ran(nv) && !nv.is_inconclusive()) {
+    } else if (ov->is_failure() && !nv.is_failure() && judged(nv)) {
       // (A failure that is now inconclusive is not fixed: the purpose was
-      // not reached. It is an other change, as pass -> inconclusive is.)
+      // not reached. Nor one now in error: the line left it unjudged. Each
+      // is an other change, as pass -> inconclusive and pass -> error are;
+      // inconclusive -> fail and error -> fail are new failures above: the
+      // device was judged and failed.)
       d.fixes.push_back(entry(ov, &nv));
     } else if (ov->outcome == "pass" && nv.outcome == "skip" && nv.level == "must") {
       d.must_now_skipped.push_back(entry(ov, &nv, nv.skip_reason));

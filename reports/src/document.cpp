@@ -24,7 +24,22 @@ std::string VectorRecord::difference() const {
   if (!failures.empty()) return failures.front();
   if (outcome == "unexpected pass") return "passed but is listed as a known issue (" + known_issue + ")";
   if (is_inconclusive()) return "inconclusive: " + inconclusive_reason;
+  if (is_error()) return "error: " + error_reason;
   return "";
+}
+
+std::string line_counts_problem(const harness::LineFaultCounts& c) {
+  if (c.faults > c.exchanges)
+    return std::to_string(c.faults) + " faults in " + std::to_string(c.exchanges) + " exchanges: a fault is an exchange";
+  if (c.recovered > c.faults)
+    return std::to_string(c.recovered) + " recovered of " + std::to_string(c.faults) + " faults: a recovered fault is a fault";
+  if (c.repeats > c.exchanges)
+    return std::to_string(c.repeats) + " repeats in " + std::to_string(c.exchanges) + " exchanges: a repeat is an exchange";
+  return "";
+}
+
+double line_fault_rate(const harness::LineFaultCounts& c) {
+  return c.exchanges == 0 ? 0.0 : static_cast<double>(c.faults) / static_cast<double>(c.exchanges);
 }
 
 Summary RunDocument::counts() const {
@@ -39,8 +54,11 @@ Summary RunDocument::counts() const {
     else if (v.outcome == "known failure") ++s.known;
     else if (v.outcome == "unexpected pass") ++s.unexpected;
     else if (v.is_inconclusive()) ++s.inconclusive;
+    else if (v.is_error()) ++s.errors;
+    if (!summary) s.line += v.line;
   }
   s.exit_code = summary ? summary->exit_code : 1;
+  if (summary) s.line = summary->line;
   return s;
 }
 
@@ -65,7 +83,12 @@ std::string RunDocument::verdict() const {
   if (status == "aborted") return "ABORTED";
   if (status != "complete") return "INCOMPLETE";
   if (!summary) return "FAIL";
-  return summary->exit_code == 0 ? "PASS" : summary->exit_code == harness::kNothingRanExitCode ? "NOTHING RAN" : "FAIL";
+  switch (summary->exit_code) {
+    case 0: return "PASS";
+    case harness::kNothingRanExitCode: return "NOTHING RAN";
+    case harness::kLineErrorExitCode: return "ERROR";
+    default: return "FAIL";
+  }
 }
 
 namespace {
@@ -134,6 +157,8 @@ VectorRecord vector_record(const harness::VectorResult& r) {
   v.outcome = std::string(harness::to_string(r.verdict));
   v.failures = r.failures;
   v.inconclusive_reason = r.inconclusive_reason;
+  v.error_reason = r.error_reason;
+  v.line = r.line;
   v.skip_reason = r.skip_reason;
   v.skip_cause = std::string(harness::to_string(r.skip_cause));
   v.known_issue = r.known_issue_reason;
@@ -159,7 +184,8 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
   doc.status = run.aborted ? "aborted" : "complete";
   doc.abort_reason = run.abort_reason;
   doc.finished_at = std::move(finished_at);
-  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code(), {}, run.inconclusive};
+  doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code(), {}, run.inconclusive,
+                        run.errors, run.line};
   for (const auto& [cause, n] : run.skipped_by_cause) doc.summary->skipped_by_cause[std::string(harness::to_string(cause))] = n;
   doc.liveness.clear();
   for (const auto& l : run.liveness) doc.liveness.push_back({l.when, l.alive, l.detail});
@@ -172,6 +198,10 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
 }
 
 // ---- JSON ------------------------------------------------------------------------
+
+ordered_json line_json(const harness::LineFaultCounts& c) {
+  return {{"exchanges", c.exchanges}, {"faults", c.faults}, {"recovered", c.recovered}, {"repeats", c.repeats}};
+}
 
 ordered_json header_json(const RunDocument& d) {
   const auto text = [](const std::string& s) { return json_string(s); };
@@ -202,6 +232,7 @@ ordered_json header_json(const RunDocument& d) {
     j["summary"] = {{"passed", d.summary->passed},   {"failed", d.summary->failed},
                     {"skipped", d.summary->skipped}, {"known", d.summary->known},
                     {"unexpected", d.summary->unexpected}, {"inconclusive", d.summary->inconclusive},
+                    {"errors", d.summary->errors}, {"line", line_json(d.summary->line)},
                     {"exit_code", d.summary->exit_code}, {"skipped_by_cause", std::move(causes)}};
   }
   ordered_json live = ordered_json::array();
@@ -235,6 +266,22 @@ T get(const json& j, const char* key, T fallback) {
   return it->get<T>();
 }
 
+// "line" {exchanges, faults, recovered, repeats} (v5): all zero when absent,
+// as in documents of versions 1 to 4; counts line_counts_problem refuses
+// are an error naming them.
+harness::LineFaultCounts line_from_json(const json& j) {
+  harness::LineFaultCounts c;
+  const json line = get<json>(j, "line", json::object());
+  if (!line.is_object()) throw json::type_error::create(302, "line: expected an object, got " + line.dump(), &line);
+  c.exchanges = get<std::size_t>(line, "exchanges", 0);
+  c.faults = get<std::size_t>(line, "faults", 0);
+  c.recovered = get<std::size_t>(line, "recovered", 0);
+  c.repeats = get<std::size_t>(line, "repeats", 0);
+  if (const std::string why = line_counts_problem(c); !why.empty())
+    throw json::other_error::create(501, "line: " + why, &line);
+  return c;
+}
+
 }  // namespace
 
 VectorRecord vector_from_json(const json& v) {
@@ -246,6 +293,8 @@ VectorRecord vector_from_json(const json& v) {
   r.outcome = v.at("outcome").get<std::string>();
   r.failures = get<std::vector<std::string>>(v, "failures", {});
   r.inconclusive_reason = get<std::string>(v, "inconclusive_reason", "");
+  r.error_reason = get<std::string>(v, "error_reason", "");
+  r.line = line_from_json(v);
   r.skip_reason = get<std::string>(v, "skip_reason", "");
   r.skip_cause = get<std::string>(v, "skip_cause", "");
   r.known_issue = get<std::string>(v, "known_issue", "");
@@ -319,7 +368,8 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
                           get<std::size_t>(*it, "skipped", 0), get<std::size_t>(*it, "known", 0),
                           get<std::size_t>(*it, "unexpected", 0), get<int>(*it, "exit_code", 1),
                           get<std::map<std::string, std::size_t>>(*it, "skipped_by_cause", {}),
-                          get<std::size_t>(*it, "inconclusive", 0)};
+                          get<std::size_t>(*it, "inconclusive", 0), get<std::size_t>(*it, "errors", 0),
+                          line_from_json(*it)};
     }
     for (const auto& l : get<json>(j, "liveness", json::array())) {
       where = "liveness";

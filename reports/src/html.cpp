@@ -21,20 +21,28 @@ namespace {
 std::string e(std::string_view s) { return xml_escape(s); }
 
 // The status the filter and the colours use: pass, fail (a failure or an
-// unexpected pass), known, inconclusive, skip.
+// unexpected pass), known, error (the line left it unjudged), inconclusive,
+// skip.
 const char* outcome_class(const std::string& outcome) {
   if (outcome == "pass") return "pass";
   if (outcome == "fail" || outcome == "unexpected pass") return "fail";
   if (outcome == "known failure") return "known";
   if (outcome == "inconclusive") return "inconclusive";
+  if (outcome == "error") return "error";
   return "skip";
 }
 
-// A tally's worst outcome: fail, known, inconclusive (ran, checked nothing),
-// pass, skip; "none" when empty.
+// A tally's worst outcome: fail, known, error (ran, the line left it
+// unjudged), inconclusive (ran, checked nothing), pass, skip; "none" when
+// empty.
 const char* tally_class(const Tally& t) {
   if (t.total() == 0) return "none";
-  return t.failed ? "fail" : t.known ? "known" : t.inconclusive ? "inconclusive" : t.passed ? "pass" : "skip";
+  return t.failed         ? "fail"
+         : t.known        ? "known"
+         : t.errors       ? "error"
+         : t.inconclusive ? "inconclusive"
+         : t.passed       ? "pass"
+                          : "skip";
 }
 
 std::string tally_text(const Tally& t) {
@@ -45,6 +53,7 @@ std::string tally_text(const Tally& t) {
   part(t.passed, "pass");
   part(t.failed, "fail");
   part(t.known, "known");
+  part(t.errors, "error");
   part(t.inconclusive, "inconclusive");
   part(t.skipped, "skip");
   return text;
@@ -94,6 +103,7 @@ constexpr const char* kPassColour = "#c8ecc8";
 constexpr const char* kFailColour = "#f6c1c1";
 constexpr const char* kKnownColour = "#f7e3a6";
 constexpr const char* kInconclusiveColour = "#c6dcf2";
+constexpr const char* kErrorColour = "#d9c6f2";  // violet: the bench's, beside the firmware's red
 constexpr const char* kSkipColour = "#e4e4e4";
 constexpr const char* kNoneColour = "#ffffff";
 
@@ -102,6 +112,7 @@ const char* class_colour(std::string_view cls) {
   if (cls == "fail") return kFailColour;
   if (cls == "known") return kKnownColour;
   if (cls == "inconclusive") return kInconclusiveColour;
+  if (cls == "error") return kErrorColour;
   if (cls == "skip") return kSkipColour;
   return kNoneColour;
 }
@@ -112,9 +123,10 @@ body{{font-family:system-ui,sans-serif;margin:1.5em;color:#222;max-width:1400px}
 table{{border-collapse:collapse;margin:.5em 0}}
 th,td{{border:1px solid #bbb;padding:2px 6px;text-align:left;vertical-align:top;font-size:13px}}
 th{{background:#eee}}
-.pass{{background:{}}}.fail{{background:{}}}.known{{background:{}}}.inconclusive{{background:{}}}.skip{{background:{}}}.none{{color:#999}}
+.pass{{background:{}}}.fail{{background:{}}}.known{{background:{}}}.inconclusive{{background:{}}}.error{{background:{}}}.skip{{background:{}}}.none{{color:#999}}
 .verdict{{padding:2px 10px;border-radius:4px}}
 .PASS{{background:#2e8b2e;color:#fff}}.FAIL,.STOPPED,.ABORTED,.INCOMPLETE{{background:#b22222;color:#fff}}
+.ERROR{{background:#5b3a8c;color:#fff}}
 code,.hex,pre{{font-family:ui-monospace,monospace;font-size:12px}}
 pre{{margin:.3em 0;white-space:pre-wrap}}
 details{{margin:2px 0;border:1px solid #ddd;padding:2px 6px}}
@@ -127,7 +139,7 @@ nav a{{margin-right:1em}}
 [hidden]{{display:none!important}}
 svg text{{font-family:system-ui,sans-serif;font-size:11px;fill:#222}}
 )",
-                     kPassColour, kFailColour, kKnownColour, kInconclusiveColour, kSkipColour);
+                     kPassColour, kFailColour, kKnownColour, kInconclusiveColour, kErrorColour, kSkipColour);
 }
 
 // ---- tables ----------------------------------------------------------------------
@@ -248,7 +260,7 @@ std::string turnaround_chart(const std::vector<Turnaround>& rows) {
 std::string legend_svg(int x, int y) {
   std::string out;
   int at = x;
-  for (const char* cls : {"pass", "fail", "known", "inconclusive", "skip", "none"}) {
+  for (const char* cls : {"pass", "fail", "known", "error", "inconclusive", "skip", "none"}) {
     out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"12\" height=\"12\" fill=\"{}\" stroke=\"#999\"/><text x=\"{}\" y=\"{}\">{}</text>",
                        at, y, class_colour(cls), at + 16, y + 10,
                        std::string_view(cls) == "none" ? "not exercised" : cls);
@@ -262,7 +274,7 @@ std::string legend_svg(int x, int y) {
 std::string coverage_chart(const std::vector<CoverageRow>& rows) {
   constexpr int kLabel = 280, kCell = 72, kRow = 15, kTop = 22;
   const int height = kTop + kRow * static_cast<int>(rows.size()) + 28;
-  constexpr int kLegend = 460;  // legend_svg's six entries
+  constexpr int kLegend = 524;  // legend_svg's seven entries
   const int width = kLabel + std::max(kCell * 4 + 10, kLegend);
   std::string out = fmt::format(
       "<svg id=\"chart-coverage\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
@@ -401,6 +413,10 @@ std::string vector_section(const VectorRecord& v) {
   if (!v.file.empty()) out += "<p><small>" + e(v.file) + "</small></p>\n";
   for (const auto& f : v.failures) out += "<p class=\"fail\">" + e(f) + "</p>\n";
   if (!v.inconclusive_reason.empty()) out += "<p class=\"inconclusive\">inconclusive: " + e(v.inconclusive_reason) + "</p>\n";
+  if (!v.error_reason.empty()) out += "<p class=\"error\">error: " + e(v.error_reason) + "</p>\n";
+  // A vector's line figures where the line did something to it: the run's
+  // are in the header.
+  if (v.line.faults > 0 || v.is_error()) out += "<p class=\"line\">" + e(harness::describe(v.line)) + "</p>\n";
   if (!v.skip_reason.empty()) out += "<p class=\"skip\">skipped: " + e(v.skip_reason) + "</p>\n";
   if (!v.known_issue.empty()) out += "<p class=\"known\">known issue: " + e(v.known_issue) + "</p>\n";
   if (v.repeats > 0) out += fmt::format("<p>repeated {} times, failed {} of them</p>\n", v.repeats, v.repeat_failures);
@@ -422,6 +438,7 @@ std::string filter_form(const RunDocument& d) {
   out += select("status", "Status",
                 {{"fail", "failed (and unexpected passes)"},
                  {"known", "known failures"},
+                 {"error", "in error (the line left them unjudged)"},
                  {"inconclusive", "inconclusive"},
                  {"pass", "passed"},
                  {"skip", "skipped"}});
@@ -444,6 +461,14 @@ std::string html_report(const RunDocument& d) {
   out += fmt::format("<title>sabus conformance run: {}</title>\n<style>{}</style>\n</head>\n<body>\n", verdict, style());
   out += fmt::format("<h1>SAbus conformance run <span class=\"verdict {0}\" id=\"verdict\">{0}</span></h1>\n", verdict);
   out += fmt::format("<p id=\"summary\">{}</p>\n", e(summary_line(c)));
+  // The line figures whenever exchanges were counted, a warning above a
+  // healthy line's fault rate, and what the vectors in error mean.
+  if (const std::string line = line_text(c); !line.empty()) out += fmt::format("<p id=\"line\">{}</p>\n", e(line));
+  if (const std::string warning = line_warning(c); !warning.empty())
+    out += fmt::format("<p id=\"line-warning\" class=\"known\">Warning: {}</p>\n", e(warning));
+  if (const std::string errors = line_error_text(c); !errors.empty())
+    out += fmt::format("<p id=\"line-errors\" class=\"error\">{}.{}</p>\n", e(errors),
+                       c.exit_code == harness::kLineErrorExitCode ? " The firmware is neither accepted nor rejected." : "");
   out += fmt::format("<p id=\"suite\">{} · schema sabus-run v{} · {}{}</p>\n", e(d.generator), d.schema_version,
                      e(d.identity.ok ? "controller " + d.identity.controller_type + ", firmware " + d.identity.firmware_version
                                      : "identity unknown"),

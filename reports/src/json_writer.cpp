@@ -93,6 +93,7 @@ void put_vector(Writer& w, const VectorRecord& v) {
   for (const auto& f : v.failures) put_string(w, f);
   w.EndArray();
   put_string_member(w, "inconclusive_reason", v.inconclusive_reason);
+  put_string_member(w, "error_reason", v.error_reason);
   put_string_member(w, "skip_reason", v.skip_reason);
   put_string_member(w, "skip_cause", v.skip_cause);
   put_string_member(w, "known_issue", v.known_issue);
@@ -108,6 +109,10 @@ void put_vector(Writer& w, const VectorRecord& v) {
   w.Int(v.repeats);
   put_key(w, "repeat_failures");
   w.Int(v.repeat_failures);
+  // Always written, zeros when none was counted (a skipped vector sent
+  // nothing): a reader never has to tell "absent" from "none".
+  put_key(w, "line");
+  put_json(w, line_json(v.line));
   put_key(w, "transcript");
   w.StartArray();
   for (const auto& f : v.transcript) put_frame(w, f);

@@ -6,8 +6,10 @@
 // skipped vector its reason (a known failure is reported as skipped, with the
 // known issue). What stopped the bench is an error, not a failure: a run that
 // did not reach its end has a testsuite "run" whose one testcase holds an
-// error naming why (SIGINT, SIGTERM, a lost device, killed), and the vector
-// during which the device was lost holds an error too.
+// error naming why (SIGINT, SIGTERM, a lost device, killed), the vector
+// during which the device was lost holds an error too, and so does a vector
+// the line left unjudged (TTCN-3 error: the test system failed, which is
+// what JUnit's <error> says), with what the line did and its line counts.
 #include <fmt/format.h>
 
 #include <cctype>
@@ -60,6 +62,8 @@ std::string run_properties(const RunDocument& doc) {
   out += property("started_at", doc.started_at, in);
   out += property("status", doc.status + (doc.abort_reason.empty() ? "" : ": " + doc.abort_reason), in);
   out += property("schema", std::string(kSchemaName) + " " + std::to_string(doc.schema_version), in);
+  // What the line did to the run, when its exchanges were counted.
+  if (const auto line = doc.counts().line; line.exchanges > 0) out += property("line", harness::describe(line), in);
   return out;
 }
 
@@ -108,7 +112,7 @@ std::string junit_xml(const RunDocument& doc) {
   const std::string shared = run_properties(doc);
   std::size_t all_failures = 0, all_errors = unfinished;
   for (const auto* v : all) {
-    all_errors += v->lost_device();
+    all_errors += v->lost_device() || v->is_error();
     all_failures += v->is_failure() && !v->lost_device();
   }
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
@@ -118,7 +122,7 @@ std::string junit_xml(const RunDocument& doc) {
     std::size_t failures = 0, errors = 0, skipped = 0;
     double transport_ms = 0;
     for (const auto* v : vectors) {
-      errors += v->lost_device();
+      errors += v->lost_device() || v->is_error();
       failures += v->is_failure() && !v->lost_device();
       skipped += v->is_skip() || v->is_inconclusive();
       transport_ms += v->duration_ms;
@@ -148,6 +152,10 @@ std::string junit_xml(const RunDocument& doc) {
         text += transcript_text(*v);
         out += fmt::format("      <failure message=\"{}\" type=\"{}\">{}</failure>\n", xml_escape(v->difference()),
                            xml_escape(v->outcome), xml_escape(text));
+      } else if (v->is_error()) {
+        // The message is the reason alone: the element says it is an error.
+        out += fmt::format("      <error message=\"{}\" type=\"line error\">{}</error>\n", xml_escape(v->error_reason),
+                           xml_escape(v->error_reason + "\n" + harness::describe(v->line) + "\n\n" + transcript_text(*v)));
       } else if (v->is_inconclusive()) {
         // JUnit has no inconclusive: a skip is the verdict a CI reads as
         // "checked nothing", which is what it is (TTCN-3 inconc).

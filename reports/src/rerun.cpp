@@ -21,9 +21,10 @@ std::optional<EarlierRun> read_earlier_run(const std::string& path, std::string&
   const auto doc = read_run_or_journal(run.file, notes, error);
   if (!doc) return std::nullopt;
   run.vectors = doc->vectors.size();
-  // An outcome for errors of the bench, when there is one, belongs here too.
+  // The vectors that failed or ended in error (issue 34): a vector the line
+  // left unjudged is one to run again as much as a failure.
   for (const auto& v : doc->vectors)
-    if (v.is_failure()) run.failed.insert(v.id);
+    if (v.is_failure() || v.is_error()) run.failed.insert(v.id);
   return run;
 }
 

@@ -14,6 +14,7 @@ void Tally::add(const VectorRecord& v) {
   else if (v.outcome == "known failure") ++known;
   else if (v.is_failure()) ++failed;
   else if (v.is_inconclusive()) ++inconclusive;
+  else if (v.is_error()) ++errors;
   else ++skipped;
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -284,7 +285,7 @@ TEST(InconclusiveProblems, EachReaderFindsAnInconclusiveVectorRecordedWrong) {
   EXPECT_TRUE(says(checks::html_problems(html_report(r.doc), other), "\"inconclusive: another reason\" is not shown as text"));
   const std::string md = markdown_summary(r.doc);
   EXPECT_TRUE(says(checks::markdown_problems(md, other), "item 1 reads"));
-  EXPECT_TRUE(says(checks::markdown_problems(broken(md, "| must | 1 | 0 | 0 | 1 | 0 |", "| must | 1 | 0 | 0 | 0 | 0 |"), r.doc),
+  EXPECT_TRUE(says(checks::markdown_problems(broken(md, "| must | 1 | 0 | 0 | 0 | 1 | 0 |", "| must | 1 | 0 | 0 | 0 | 0 | 0 |"), r.doc),
                    "per-level table"));
 }
 
@@ -298,7 +299,7 @@ TEST(InconclusiveProblems, ARunWithAnInconclusiveVectorReadsBackInEveryFormat) {
   std::string error;
   const auto back = from_json(json::parse(json_text(r.doc)), error);
   ASSERT_TRUE(back) << error;
-  EXPECT_EQ(back->schema_version, 4);
+  EXPECT_EQ(back->schema_version, kSchemaVersion);
   EXPECT_EQ(back->vectors[1].outcome, "inconclusive");
   EXPECT_EQ(back->vectors[1].inconclusive_reason, why);
   EXPECT_EQ(back->summary->inconclusive, 1u);
@@ -345,6 +346,248 @@ TEST(InconclusiveProblems, ARunnersInconclusiveVectorReadsBack) {
   EXPECT_EQ(r.doc.vectors[0].outcome, "inconclusive");
   EXPECT_EQ(r.doc.summary->inconclusive, 1u);
   EXPECT_EQ(r.doc.summary->exit_code, 0);
+  EXPECT_EQ(joined(checks::run_record_problems(r.doc, r.journal)), "");
+}
+
+// ---- the error outcome and the line counts (schema v5) ---------------------------
+
+// finished_record with a vector the line left unjudged (TTCN-3 error) beside
+// one that passed: no failure, so the run exits 6. The run counted more
+// exchanges and faults than its vectors (liveness probes, a recovered poll).
+MemoryRecord error_record() {
+  MemoryRecord r;
+  r.doc = test_documents::sample_header();
+  r.doc.generator = "sabus 1.2.3";
+  r.doc.planned = 2;
+  r.start();
+  for (const char* outcome : {"pass", "error"}) {
+    VectorRecord v = vector(std::string("3.2-") + outcome, outcome);
+    r.journal += vector_json(v) + "\n";
+    compact_for_reports(v);
+    r.doc.vectors.push_back(v);
+  }
+  r.doc.status = "complete";
+  r.doc.finished_at = "2024-01-01T00:00:01Z";
+  r.doc.summary = Summary{1, 0, 0, 0, 0, harness::kLineErrorExitCode, {}, 0, 1, {40, 3, 1, 1}};
+  r.doc.traffic = {{"bytes_sent", 10}, {"bytes_received", 10}, {"silence_windows", 0}, {"silence_listened_ms", 0.0},
+                   {"measured_turnaround_ms", 0.0}};
+  r.doc.journal.clear();
+  r.journal += journal_record_json("end", r.doc) + "\n";
+  return r;
+}
+
+// The run JSON of `r` with `change` made to it (as another tool, or a
+// broken writer, might have written it).
+std::string changed(const MemoryRecord& r, const std::function<void(json&)>& change) {
+  json j = json::parse(json_text(r.doc));
+  change(j);
+  return j.dump();
+}
+
+// Each reader of the run JSON finds a vector in error, or line counts,
+// recorded wrong: an outcome no version has, an error without its reason or
+// with a failure, a reason on a pass, line counts that cannot be (a fault
+// that is no exchange, a recovered fault that is no fault, a repeat that is
+// no exchange), the summary's counts not the vectors', an exit code 6
+// without a vector in error; the journal's reader too, and the document's.
+TEST(ErrorProblems, TheRunJsonsReadersFindAVectorInErrorOrLineCountsRecordedWrong) {
+  const MemoryRecord r = error_record();
+  ASSERT_EQ(joined(checks::run_json_problems(json_text(r.doc))), "");
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["outcome"] = "errored"; })), "at /vectors/1"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["error_reason"] = ""; })), "at /vectors/1"))
+      << "an error says what the line did";
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1].erase("error_reason"); })), "at /vectors/1"))
+      << "a v5 vector has its error_reason";
+  EXPECT_TRUE(
+      says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["failures"] = {"f"}; })), "at /vectors/1"))
+      << "a vector in error has no failure (a failure is judged, and beats the error)";
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][0]["error_reason"] = "x"; })), "at /vectors/0"))
+      << "a pass has no error";
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1].erase("line"); })), "at /vectors/1"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["line"]["faults"] = -1; })),
+                   "at /vectors/1"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["line"]["faults"] = 3; })),
+                   "vectors[1] (3.2-error): at /line: line: 3 faults in 2 exchanges: a fault is an exchange"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["line"]["recovered"] = 3; })),
+                   "line: 3 recovered of 2 faults: a recovered fault is a fault"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["vectors"][1]["line"]["repeats"] = 3; })),
+                   "line: 3 repeats in 2 exchanges: a repeat is an exchange"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["summary"]["errors"] = 0; })),
+                   "summary.errors is 0, the vectors have 1 error"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["summary"].erase("errors"); })), "at /summary"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["summary"].erase("line"); })), "at /summary"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["summary"]["line"]["faults"] = 50; })),
+                   "summary: line: 50 faults in 40 exchanges"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["summary"]["line"]["faults"] = 1; })),
+                   "summary.line.faults is 1, less than the vectors' 2"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r, [](json& j) { j["summary"]["exit_code"] = 7; })), "at /summary"));
+  EXPECT_TRUE(says(checks::run_json_problems(changed(r,
+                                                     [](json& j) {
+                                                       j["vectors"][1] = j["vectors"][0];
+                                                       j["vectors"][1]["id"] = "3.2-pass-too";
+                                                       j["summary"]["passed"] = 2;
+                                                       j["summary"]["errors"] = 0;
+                                                     })),
+                   "summary.exit_code is 6 (some vector in error), but no vector ended in error"));
+  // The journal: its vector lines and its end record against the same rules.
+  std::string journal = r.journal;
+  const std::string line = "\"line\":{\"exchanges\":2,\"faults\":2,";
+  ASSERT_NE(journal.find(line), std::string::npos) << journal;
+  EXPECT_TRUE(says(checks::journal_problems(journal.replace(journal.find(line), line.size(), "\"line\":{\"exchanges\":2,\"faults\":3,")),
+                   "journal line 3: at /line: line: 3 faults in 2 exchanges"));
+  // The document's own reader refuses such counts too, naming where.
+  std::string error;
+  EXPECT_FALSE(from_json(json::parse(changed(r, [](json& j) { j["vectors"][1]["line"]["faults"] = 3; })), error));
+  EXPECT_NE(error.find("vectors[1] (3.2-error): "), std::string::npos) << error;
+  EXPECT_NE(error.find("line: 3 faults in 2 exchanges: a fault is an exchange"), std::string::npos) << error;
+  EXPECT_FALSE(from_json(json::parse(changed(r, [](json& j) { j["summary"]["line"]["recovered"] = 4; })), error));
+  EXPECT_NE(error.find("summary: "), std::string::npos) << error;
+  EXPECT_NE(error.find("line: 4 recovered of 3 faults"), std::string::npos) << error;
+  EXPECT_FALSE(from_json(json::parse(changed(r, [](json& j) { j["summary"]["line"]["exchanges"] = -1; })), error));
+  EXPECT_NE(error.find("exchanges: expected a whole number"), std::string::npos) << error;
+  EXPECT_FALSE(from_json(json::parse(changed(r, [](json& j) { j["vectors"][1]["line"] = 2; })), error));
+  EXPECT_NE(error.find("line: expected an object, got 2"), std::string::npos) << error;
+}
+
+// The reports' readers find a vector in error shown wrong: in JUnit not an
+// <error> saying what the line did, or counted wrong; in the HTML and the
+// Markdown its reason or the run's line figures not shown, the per-level
+// table without it.
+TEST(ErrorProblems, TheReportsReadersFindAVectorInErrorShownWrong) {
+  const MemoryRecord r = error_record();
+  auto broken = [](std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from << " in\n" << text;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  const std::string xml = junit_xml(r.doc);
+  ASSERT_EQ(joined(checks::junit_problems(xml, r.doc)), "") << xml;
+  EXPECT_TRUE(says(checks::junit_problems(broken(xml, "<error message=\"step 1", "<error message=\"step 2"), r.doc),
+                   "the error of testcase 3.2-error says \"step 2 (status)"));
+  EXPECT_TRUE(says(checks::junit_problems(broken(xml, "errors=\"1\" skipped=\"0\"", "errors=\"0\" skipped=\"0\""), r.doc),
+                   "testsuite \"§3.2\" says errors=\"0\", its testcases have 1"));
+  EXPECT_TRUE(says(checks::junit_problems(broken(xml, "failures=\"0\" errors=\"1\"", "failures=\"0\" errors=\"0\""), r.doc),
+                   "testsuites says errors=\"0\", its testcases have 1"));
+  EXPECT_TRUE(says(checks::junit_problems(broken(xml, "<error message=\"step 1", "<skipped message=\"step 1"), r.doc),
+                   "JUnit line"))
+      << "a skipped element with the error's text does not validate";
+  RunDocument failed = r.doc;
+  failed.vectors[1].outcome = "fail";
+  failed.vectors[1].failures = {"f"};
+  EXPECT_TRUE(says(checks::junit_problems(xml, failed), "testcase 3.2-error is a error, the vector a fail"));
+  RunDocument skipped = r.doc;
+  skipped.vectors[1].outcome = "inconclusive";
+  skipped.vectors[1].inconclusive_reason = "precondition not met (x): y";
+  EXPECT_TRUE(says(checks::junit_problems(junit_xml(skipped), r.doc), "testcase 3.2-error is a skip, the vector a error"));
+
+  const std::string html = html_report(r.doc);
+  ASSERT_EQ(joined(checks::html_problems(html, r.doc)), "");
+  RunDocument other = r.doc;
+  other.vectors[1].error_reason = "another reason";
+  EXPECT_TRUE(says(checks::html_problems(html, other), "\"error: another reason\" is not shown as text"));
+  RunDocument noisier = r.doc;
+  noisier.summary->line = {40, 9, 9, 9};
+  EXPECT_TRUE(says(checks::html_problems(html, noisier), "\"line: 9 faults in 40 exchanges, all recovered (fault rate 22.50%)\" is not shown"));
+
+  const std::string md = markdown_summary(r.doc);
+  ASSERT_EQ(joined(checks::markdown_problems(md, r.doc)), "") << md;
+  EXPECT_TRUE(says(checks::markdown_problems(md, other), "failure item 1 reads"));
+  EXPECT_TRUE(says(checks::markdown_problems(broken(md, "| must | 1 | 0 | 0 | 1 | 0 | 0 |", "| must | 1 | 0 | 0 | 0 | 0 | 0 |"), r.doc),
+                   "per-level table"));
+  EXPECT_TRUE(says(checks::markdown_problems(md, noisier), "no paragraph reads \"line: 9 faults in 40 exchanges"));
+  EXPECT_TRUE(says(checks::markdown_problems(broken(md, "**Errors**", "**Errored**"), r.doc), "strong emphasis the summary does not write: Errored"));
+}
+
+// Then the record of a run with a vector in error reads back in every
+// format, also rebuilt from its JSON and its journal; each names it, what
+// the line did, and the run's line figures.
+TEST(ErrorProblems, ARunWithAVectorInErrorReadsBackInEveryFormat) {
+  const MemoryRecord r = error_record();
+  EXPECT_EQ(joined(checks::run_record_problems(r.doc, r.journal)), "");
+  const std::string why = "step 1 (status): no clean reply in 2 tries: bad check byte: expected 0x04, got 0x05";
+  std::string error;
+  const auto back = from_json(json::parse(json_text(r.doc)), error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->schema_version, kSchemaVersion);
+  EXPECT_EQ(back->vectors[1].outcome, "error");
+  EXPECT_EQ(back->vectors[1].error_reason, why);
+  EXPECT_EQ(harness::describe(back->vectors[1].line), "line: 2 faults in 2 exchanges, 0 recovered");
+  EXPECT_EQ(back->vectors[1].line.repeats, 1u);
+  EXPECT_EQ(back->summary->errors, 1u);
+  EXPECT_EQ(harness::describe(back->summary->line), "line: 3 faults in 40 exchanges, 1 recovered");
+  EXPECT_EQ(back->counts().errors, 1u);
+  EXPECT_EQ(back->verdict(), "ERROR");
+  const std::string line = "line: 3 faults in 40 exchanges, 1 recovered (fault rate 7.50%)";
+  const std::string xml = junit_xml(r.doc);
+  EXPECT_NE(xml.find("<error message=\"" + why + "\" type=\"line error\">" + why + "\nline: 2 faults in 2 exchanges, 0 recovered\n"),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<testsuites name=\"sabus\" tests=\"2\" failures=\"0\" errors=\"1\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<property name=\"line\" value=\"line: 3 faults in 40 exchanges, 1 recovered\"/>"), std::string::npos) << xml;
+  const std::string html = html_report(r.doc);
+  EXPECT_NE(html.find("<p class=\"error\">error: " + why + "</p>"), std::string::npos);
+  EXPECT_NE(html.find("data-status=\"error\""), std::string::npos);
+  EXPECT_NE(html.find("<option value=\"error\">"), std::string::npos);
+  EXPECT_NE(html.find("<p id=\"summary\">1 passed, 0 failed, 0 skipped, 1 error</p>"), std::string::npos);
+  EXPECT_NE(html.find("<p id=\"line\">" + line + "</p>"), std::string::npos);
+  EXPECT_NE(html.find("<p id=\"line-warning\""), std::string::npos) << "7.5% is above a healthy line's 1%";
+  EXPECT_NE(html.find("id=\"verdict\">ERROR<"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"error\">1 pass, 1 error</td>"), std::string::npos) << "the paragraph's tally";
+  const std::string md = markdown_summary(r.doc);
+  EXPECT_NE(md.find("### SAbus conformance: **ERROR**\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("1 passed, 0 failed, 0 skipped, 1 error\n\n" + line + "\n\n**Warning**: "), std::string::npos) << md;
+  EXPECT_NE(md.find("**Line errors**: 1 vector ended in error: the line, not the firmware, left it unjudged."), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| must | 1 | 0 | 0 | 1 | 0 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("**Errors**\n\n- `3.2-error` §3.2 must: " + why + "\n"), std::string::npos) << md;
+}
+
+// A run whose vectors and whole run counted no exchange (a document of
+// versions 1 to 4, a transport that counts none) shows no line figures: no
+// "0 faults in 0 exchanges" to read as a clean line.
+TEST(ErrorProblems, NoLineFiguresWhereNoExchangeWasCounted) {
+  const MemoryRecord r = finished_record();
+  EXPECT_EQ(r.doc.counts().line.exchanges, 0u);
+  EXPECT_EQ(html_report(r.doc).find("id=\"line\""), std::string::npos);
+  EXPECT_EQ(markdown_summary(r.doc).find("line: "), std::string::npos);
+  EXPECT_EQ(junit_xml(r.doc).find("name=\"line\""), std::string::npos);
+}
+
+// The record of a runner's result with a vector in error, as `sabus run`
+// makes it (MemoryRecord: vector_record, finish): the engine that sets the
+// verdict on a line is not this library's, so the result is made here as it
+// gives it.
+TEST(ErrorProblems, ARunnersResultWithAVectorInErrorIsRecordedWhole) {
+  harness::VectorResult pass, erred;
+  pass.id = "3.2-pass";
+  pass.paragraph = "3.2";
+  pass.verdict = harness::Verdict::kPass;
+  pass.line = {3, 1, 1, 1};
+  erred.id = "3.5-locate";
+  erred.paragraph = "3.5";
+  erred.verdict = harness::Verdict::kError;
+  erred.error_reason = "step 2 (41h): no clean reply in 1 try: bad check byte; not sent again: a second LOCATE acts again";
+  erred.line = {2, 1, 0, 0};
+  harness::RunResult run;
+  run.passed = 1;
+  run.errors = 1;
+  run.line = {9, 2, 1, 1};  // the identity query and the liveness probes too
+  run.vectors = {pass, erred};
+  MemoryRecord r;
+  r.doc = test_documents::sample_header();
+  r.doc.generator = "sabus test";
+  r.doc.planned = 2;
+  r.start();
+  r.add(pass, 1.0);
+  r.add(erred, 1.0);
+  r.end(run, "2024-01-01T00:00:01Z");
+  ASSERT_EQ(r.doc.vectors.size(), 2u);
+  EXPECT_EQ(r.doc.vectors[1].outcome, "error");
+  EXPECT_EQ(r.doc.vectors[1].error_reason, erred.error_reason);
+  EXPECT_EQ(harness::describe(r.doc.vectors[0].line), "line: 1 fault in 3 exchanges, recovered");
+  EXPECT_EQ(r.doc.summary->errors, 1u);
+  EXPECT_EQ(r.doc.summary->exit_code, harness::kLineErrorExitCode);
+  EXPECT_EQ(harness::describe(r.doc.summary->line), "line: 2 faults in 9 exchanges, 1 recovered");
   EXPECT_EQ(joined(checks::run_record_problems(r.doc, r.journal)), "");
 }
 

@@ -133,6 +133,70 @@ TEST(Console, AnInconclusiveVectorIsNamedWithWhyAndCounted) {
             "all 3 vectors that ran ended inconclusive (their test purposes were not reached); 2 skipped (2 need --allow-motion)");
 }
 
+// A vector in error (TTCN-3 error: the line left it unjudged): its own word
+// and reason, a count in the summary, the run's line figures with the fault
+// rate, a warning above a healthy line's, and what the errors mean for the
+// run, also when nothing was judged.
+TEST(Console, AVectorInErrorIsNamedWithWhatTheLineDidAndTheLineIsCounted) {
+  VectorRecord v = vector("3.5-locate", "error", "3.5");
+  v.error_reason = "step 2 (41h): no clean reply in 2 tries: bad check byte; not sent again: a second LOCATE acts again";
+  EXPECT_EQ(verdict_word(v), "ERROR");
+  EXPECT_EQ(verdict_line(v), "ERROR 3.5-locate §3.5 must: " + v.error_reason);
+  EXPECT_EQ(verdict_line(v, true).rfind("\033[1;34mERROR\033[0m 3.5-locate", 0), 0u);
+  EXPECT_EQ(v.difference(), "error: " + v.error_reason);
+  EXPECT_FALSE(v.is_failure());
+  EXPECT_FALSE(v.is_skip());
+  EXPECT_FALSE(v.is_inconclusive());
+
+  Summary s{5, 0, 3, 0, 0, harness::kLineErrorExitCode};
+  s.errors = 2;
+  EXPECT_EQ(summary_line(s), "5 passed, 0 failed, 3 skipped, 2 errors");
+  s.errors = 1;
+  EXPECT_EQ(summary_line(s), "5 passed, 0 failed, 3 skipped, 1 error");
+  EXPECT_EQ(line_error_text(s), "1 vector ended in error: the line, not the firmware, left it unjudged");
+  s.errors = 2;
+  EXPECT_EQ(line_error_text(s), "2 vectors ended in error: the line, not the firmware, left them unjudged");
+  EXPECT_EQ(line_error_text({5, 0, 3, 0, 0, 0}), "") << "none in error";
+  Summary none_judged{0, 0, 4, 0, 0, harness::kLineErrorExitCode};
+  none_judged.errors = 3;
+  EXPECT_EQ(line_error_text(none_judged),
+            "nothing was judged: all 3 vectors that ran ended in error: the line, not the firmware, left them unjudged");
+  none_judged.errors = 1;
+  EXPECT_EQ(line_error_text(none_judged),
+            "nothing was judged: the one vector that ran ended in error: the line, not the firmware, left it unjudged");
+  none_judged.inconclusive = 2;
+  EXPECT_EQ(line_error_text(none_judged),
+            "nothing was judged: 1 vector ended in error (the line, not the firmware, left it unjudged), 2 inconclusive");
+
+  // The line figures: none when no exchange was counted, the rate always
+  // beside them, the warning only above a healthy line's rate.
+  Summary line{5, 0, 0, 0, 0, 0};
+  EXPECT_EQ(line_text(line), "");
+  EXPECT_EQ(line_warning(line), "");
+  line.line = {1412, 3, 3, 3};
+  EXPECT_EQ(line_text(line), "line: 3 faults in 1,412 exchanges, all recovered (fault rate 0.21%)");
+  EXPECT_EQ(line_warning(line), "");
+  line.line = {1000, 0, 0, 0};
+  EXPECT_EQ(line_text(line), "line: 0 faults in 1,000 exchanges (fault rate 0.00%)");
+  line.line = {100, 1, 1, 1};
+  EXPECT_EQ(line_warning(line), "") << "exactly a healthy line's rate is no warning";
+  line.line = {100, 2, 1, 2};
+  EXPECT_EQ(line_text(line), "line: 2 faults in 100 exchanges, 1 recovered (fault rate 2.00%)");
+  EXPECT_EQ(line_warning(line),
+            "the line's fault rate 2.00% is above a healthy line's 1.00%: check the cable, the adapter and the port settings; "
+            "failures on such a line may be the line's");
+}
+
+// The verdict of a run whose only trouble is vectors in error (exit 6) is
+// ERROR: neither PASS nor FAIL.
+TEST(Console, ARunExitingSixIsNeitherAPassNorAFailure) {
+  RunDocument d = sample();
+  d.summary->exit_code = harness::kLineErrorExitCode;
+  EXPECT_EQ(d.verdict(), "ERROR");
+  d.summary->exit_code = 1;
+  EXPECT_EQ(d.verdict(), "FAIL");
+}
+
 TEST(Json, RoundTripsEveryField) {
   RunDocument d = sample();
   d.vectors[0].quote = "the reply is 52 bytes";
@@ -168,14 +232,14 @@ TEST(Json, ReadsVersion1AndRejectsOtherDocuments) {
 // A count that is not a whole number of its type is an error naming the key,
 // not a cast (1e300) or a wrapped count (-1).
 // Version 4 adds the inconclusive outcome; a version 3 document (none of
-// its fields) still reads, and a version above 4 does not.
+// its fields) still reads, and so does one of version 4.
 TEST(Json, Version4CarriesInconclusiveAndVersion3StillReads) {
   RunDocument d = sample();
   d.vectors.push_back(vector("e-inconc", "inconclusive"));
   d.vectors.back().inconclusive_reason = "precondition not met (x): y";
   d.summary->inconclusive = 1;
   const nlohmann::json j = nlohmann::json::parse(json_text(d));
-  EXPECT_EQ(j["schema_version"], 4);
+  EXPECT_EQ(j["schema_version"], kSchemaVersion);
   EXPECT_EQ(j["summary"]["inconclusive"], 1);
   EXPECT_EQ(j["vectors"][4]["inconclusive_reason"], "precondition not met (x): y");
   EXPECT_EQ(j["vectors"][0]["inconclusive_reason"], "");
@@ -194,10 +258,72 @@ TEST(Json, Version4CarriesInconclusiveAndVersion3StillReads) {
   ASSERT_TRUE(old) << error;
   EXPECT_EQ(old->summary->inconclusive, 0u);
   EXPECT_EQ(old->vectors[0].inconclusive_reason, "");
-  nlohmann::json v5 = v3;
-  v5["schema_version"] = 5;
-  EXPECT_FALSE(from_json(v5, error));
-  EXPECT_NE(error.find("schema_version: 5 is not 1 to 4"), std::string::npos) << error;
+  nlohmann::json v4 = v3;
+  v4["schema_version"] = 4;
+  EXPECT_TRUE(from_json(v4, error)) << error;
+}
+
+// Version 5 adds the error outcome and the line counts, each vector's
+// always written (zeros when none was counted); a version 4 document (none
+// of its fields) still reads, with no vector in error and no exchange
+// counted, and a version above 5 does not.
+TEST(Json, Version5CarriesErrorsAndLineCountsAndVersion4StillReads) {
+  RunDocument d = sample();
+  d.vectors.push_back(vector("e-error", "error"));
+  d.vectors.back().error_reason = "step 1 (status): no clean reply in 2 tries: bad check byte";
+  d.vectors.back().line = {2, 2, 0, 1};
+  d.summary->errors = 1;
+  d.summary->line = {1412, 3, 1, 2};
+  const nlohmann::json j = nlohmann::json::parse(json_text(d));
+  EXPECT_EQ(j["schema_version"], 5);
+  EXPECT_EQ(j["summary"]["errors"], 1);
+  EXPECT_EQ(j["summary"]["line"], nlohmann::json::parse(R"({"exchanges":1412,"faults":3,"recovered":1,"repeats":2})"));
+  EXPECT_EQ(j["vectors"][4]["outcome"], "error");
+  EXPECT_EQ(j["vectors"][4]["error_reason"], "step 1 (status): no clean reply in 2 tries: bad check byte");
+  EXPECT_EQ(j["vectors"][4]["line"], nlohmann::json::parse(R"({"exchanges":2,"faults":2,"recovered":0,"repeats":1})"));
+  EXPECT_EQ(j["vectors"][0]["error_reason"], "");
+  EXPECT_EQ(j["vectors"][0]["line"], nlohmann::json::parse(R"({"exchanges":0,"faults":0,"recovered":0,"repeats":0})"))
+      << "written when nothing was counted";
+  std::string error;
+  const auto back = from_json(j, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->vectors[4].error_reason, "step 1 (status): no clean reply in 2 tries: bad check byte");
+  EXPECT_EQ(back->vectors[4].line.faults, 2u);
+  EXPECT_EQ(back->vectors[4].line.repeats, 1u);
+  EXPECT_EQ(back->summary->errors, 1u);
+  EXPECT_EQ(back->summary->line.exchanges, 1412u);
+  EXPECT_EQ(back->summary->line.recovered, 1u);
+  EXPECT_EQ(back->counts().errors, 1u);
+  EXPECT_EQ(back->counts().line.exchanges, 1412u) << "the run's, not the vectors' sum";
+  EXPECT_EQ(nlohmann::json::parse(json_text(*back)), j);
+
+  const auto v4 = nlohmann::json::parse(R"({"schema":"sabus-run","schema_version":4,"status":"complete",
+    "summary":{"passed":1,"failed":0,"skipped":0,"known":0,"unexpected":0,"inconclusive":0,"exit_code":0,"skipped_by_cause":{}},
+    "vectors":[{"id":"x","paragraph":"1","level":"must","outcome":"pass","failures":[],"inconclusive_reason":"","transcript":[]}]})");
+  const auto old = from_json(v4, error);
+  ASSERT_TRUE(old) << error;
+  EXPECT_EQ(old->summary->errors, 0u);
+  EXPECT_EQ(old->summary->line.exchanges, 0u);
+  EXPECT_EQ(old->vectors[0].error_reason, "");
+  EXPECT_EQ(old->vectors[0].line.exchanges, 0u);
+  EXPECT_EQ(line_text(old->counts()), "") << "no line figures for a run that counted none";
+  nlohmann::json v6 = v4;
+  v6["schema_version"] = 6;
+  EXPECT_FALSE(from_json(v6, error));
+  EXPECT_NE(error.find("schema_version: 6 is not 1 to 5"), std::string::npos) << error;
+}
+
+// A run that never ended (no summary) has the line counts of its vectors.
+TEST(Json, WithoutASummaryTheLineCountsAreTheVectorsTogether) {
+  RunDocument d = sample();
+  d.summary.reset();
+  d.vectors[0].line = {3, 1, 1, 1};
+  d.vectors[1].line = {4, 2, 0, 1};
+  const Summary c = d.counts();
+  EXPECT_EQ(c.line.exchanges, 7u);
+  EXPECT_EQ(c.line.faults, 3u);
+  EXPECT_EQ(c.line.recovered, 1u);
+  EXPECT_EQ(c.line.repeats, 2u);
 }
 
 TEST(Json, CountsAreWholeNumbersOfTheirType) {
@@ -485,6 +611,42 @@ TEST(Diff, MovesToAndFromInconclusiveAreShown) {
   EXPECT_TRUE(worse.regressed());
   ASSERT_EQ(worse.other_changes.size(), 1u);
   EXPECT_EQ(worse.other_changes[0].id, "a-pass") << "inconclusive -> pass";
+}
+
+// A vector in error was not judged: pass -> error and fail -> error are
+// other changes (not a regression, not a fix: nothing was learnt of the
+// device), with what the line did; error -> pass is an other change too
+// (not a fix of a failure), error -> fail a new failure (the device was
+// judged, and failed), as inconclusive -> fail is.
+TEST(Diff, MovesToAndFromErrorAreShown) {
+  const RunDocument a = sample();
+  RunDocument b = sample();
+  b.vectors[0] = vector("a-pass", "error");
+  b.vectors[0].error_reason = "step 1 (status): no clean reply in 2 tries: bad check byte";
+  b.vectors[1] = vector("b-fail", "error");
+  b.vectors[1].error_reason = "step 1 (status): no clean reply in 2 tries: cut short";
+  const RunDiff d = diff_runs(a, b, {});
+  EXPECT_FALSE(d.regressed());
+  EXPECT_TRUE(d.fixes.empty()) << "a failure now in error is not fixed";
+  EXPECT_TRUE(d.new_failures.empty());
+  ASSERT_EQ(d.other_changes.size(), 2u);
+  EXPECT_EQ(d.other_changes[0].id, "a-pass");
+  EXPECT_EQ(d.other_changes[0].old_outcome, "pass");
+  EXPECT_EQ(d.other_changes[0].new_outcome, "error");
+  EXPECT_EQ(d.other_changes[0].detail, "error: step 1 (status): no clean reply in 2 tries: bad check byte");
+  EXPECT_EQ(d.other_changes[1].id, "b-fail");
+  EXPECT_EQ(d.other_changes[1].old_outcome, "fail");
+  EXPECT_NE(diff_text(d).find("Other outcome changes (2):\n  a-pass §3.2 must: pass → error  error: step 1 (status)"),
+            std::string::npos)
+      << diff_text(d);
+  const RunDiff back = diff_runs(b, a, {});
+  ASSERT_EQ(back.new_failures.size(), 1u);
+  EXPECT_EQ(back.new_failures[0].id, "b-fail");
+  EXPECT_EQ(back.new_failures[0].old_outcome, "error");
+  EXPECT_TRUE(back.regressed());
+  EXPECT_TRUE(back.fixes.empty());
+  ASSERT_EQ(back.other_changes.size(), 1u);
+  EXPECT_EQ(back.other_changes[0].id, "a-pass") << "error -> pass";
 }
 
 TEST(Diff, WarnsWhenOptionsProfileOrSelectionDiffer) {

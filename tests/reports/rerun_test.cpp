@@ -24,7 +24,8 @@ class EarlierRunFile : public test::TempDirTest {
   RunDocument document() {
     RunDocument d = sample_header();
     for (const auto& [id, outcome] : std::vector<std::pair<std::string, std::string>>{
-             {"a", "pass"}, {"b", "fail"}, {"c", "unexpected pass"}, {"d", "known failure"}, {"e", "inconclusive"}, {"f", "skip"}})
+             {"a", "pass"}, {"b", "fail"}, {"c", "unexpected pass"}, {"d", "known failure"}, {"e", "inconclusive"}, {"f", "skip"},
+             {"g", "error"}})
       d.vectors.push_back(sample_vector(id, outcome));
     d.status = "complete";
     d.finished_at = "2024-01-01T00:00:01Z";
@@ -48,9 +49,10 @@ TEST_F(EarlierRunFile, AMissingOrBadFileIsAnErrorNamingIt) {
   EXPECT_EQ(error.rfind(path("other.json") + ": ", 0), 0u) << error;
 }
 
-// The run JSON as `sabus run` writes it, read back: the failures are the
-// vectors that failed the run (fail, unexpected pass), not the known
-// failures, inconclusive or skipped ones. A folder means its run.json.
+// The run JSON as `sabus run` writes it, read back: the vectors to run again
+// are those that failed the run (fail, unexpected pass) and those the line
+// left unjudged (error), not the known failures, inconclusive or skipped
+// ones. A folder means its run.json.
 TEST_F(EarlierRunFile, TheFailuresOfAWrittenRunAreReadBack) {
   std::string error;
   ASSERT_TRUE(write_run_json(path("run.json"), document(), error)) << error;
@@ -58,8 +60,8 @@ TEST_F(EarlierRunFile, TheFailuresOfAWrittenRunAreReadBack) {
     const auto run = read_earlier_run(given, error);
     ASSERT_TRUE(run) << error;
     EXPECT_EQ(run->file, path("run.json"));
-    EXPECT_EQ(run->vectors, 6u);
-    EXPECT_EQ(run->failed, (std::set<std::string>{"b", "c"}));
+    EXPECT_EQ(run->vectors, 7u);
+    EXPECT_EQ(run->failed, (std::set<std::string>{"b", "c", "g"}));
   }
 }
 
@@ -70,10 +72,11 @@ TEST_F(EarlierRunFile, TheJournalOfARunThatDidNotEndIsReadToo) {
   ASSERT_TRUE(w.open(path("run.journal.jsonl"), d)) << w.error();
   ASSERT_TRUE(w.append(sample_vector("a", "fail"))) << w.error();
   ASSERT_TRUE(w.append(sample_vector("b", "pass"))) << w.error();
+  ASSERT_TRUE(w.append(sample_vector("c", "error"))) << w.error();
   std::string error;
   const auto run = read_earlier_run(path("run.journal.jsonl"), error);
   ASSERT_TRUE(run) << error;
-  EXPECT_EQ(run->failed, (std::set<std::string>{"a"}));
+  EXPECT_EQ(run->failed, (std::set<std::string>{"a", "c"}));
 }
 
 }  // namespace

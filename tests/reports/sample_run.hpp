@@ -20,7 +20,8 @@ inline RunDocument sample_header() {
 
 // A §3.2 status poll vector of `outcome`, with what that outcome carries (a
 // failure its reason, a known issue its listing, an inconclusive vector why,
-// a skip its cause and no frames): a status poll sent, and its reply with one field described.
+// a vector in error what the line did and its line counts, a skip its cause
+// and no frames): a status poll sent, and its reply with one field described.
 inline VectorRecord sample_vector(std::string id, std::string outcome) {
   VectorRecord v;
   v.id = std::move(id);
@@ -48,6 +49,13 @@ inline VectorRecord sample_vector(std::string id, std::string outcome) {
   if (v.outcome == "inconclusive")
     v.inconclusive_reason = "precondition not met (the search is still running when the stop goes out): byte 45 current "
                             "mode: expected 0x26, got 0x20 (MANUAL_MODE)";
+  // One in error: the poll, and the poll again after a bad check byte,
+  // which got no clean reply either. (The others count no exchange, as
+  // documents before version 5 did.)
+  if (v.outcome == "error") {
+    v.error_reason = "step 1 (status): no clean reply in 2 tries: bad check byte: expected 0x04, got 0x05";
+    v.line = {2, 2, 0, 1};
+  }
   if (v.outcome == "skip") {
     v.skip_reason = "needs --allow-motion";
     v.skip_cause = "motion";

@@ -3,6 +3,7 @@
 // between two runs of the in-process controller.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "sabus/harness/runner.hpp"
 #include "sabus/reports/checks.hpp"
 #include "sabus/reports/document.hpp"
+#include "sabus/reports/journal.hpp"
 #include "temp_dir.hpp"
 
 namespace sabus::reports {
@@ -54,7 +56,7 @@ TEST_F(ReportsCli, EveryReportFromOneRunAndFromItsJson) {
 
   EXPECT_FALSE(fs::exists(dir_ / "run" / "run.journal.jsonl")) << "the JSON holds every vector: the journal is gone";
   const auto doc = nlohmann::json::parse(slurp(dir_ / "run/run.json"));
-  EXPECT_EQ(doc["schema_version"], 4);
+  EXPECT_EQ(doc["schema_version"], kSchemaVersion);
   EXPECT_EQ(doc["status"], "complete");
   EXPECT_FALSE(doc.contains("journal"));
   EXPECT_EQ(doc["identity"]["controller_type"], "3K");
@@ -163,7 +165,7 @@ TEST_F(ReportsCli, AnInconclusiveVectorInEveryReportAndInADiff) {
   const std::string json = slurp(dir_ / "inc/run.json");
   EXPECT_EQ(checks::run_json_problems(json), checks::Problems{});
   const auto j = nlohmann::json::parse(json);
-  EXPECT_EQ(j["schema_version"], 4);
+  EXPECT_EQ(j["schema_version"], kSchemaVersion);
   EXPECT_EQ(j["summary"]["inconclusive"], 1);
   EXPECT_EQ(j["summary"]["exit_code"], harness::kNothingRanExitCode);
   EXPECT_EQ(j["vectors"][0]["outcome"], "inconclusive");
@@ -179,7 +181,7 @@ TEST_F(ReportsCli, AnInconclusiveVectorInEveryReportAndInADiff) {
   EXPECT_EQ(checks::html_problems(html, *doc), checks::Problems{});
   EXPECT_NE(html.find("<p class=\"inconclusive\">inconclusive: " + why), std::string::npos);
   EXPECT_EQ(checks::markdown_problems(md, *doc), checks::Problems{});
-  EXPECT_NE(md.find("| must | 0 | 0 | 0 | 1 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| must | 0 | 0 | 0 | 0 | 1 | 0 |"), std::string::npos) << md;
   EXPECT_NE(md.find("**Inconclusive**\n\n- `3.17-search-stop` §3.17 must: " + why), std::string::npos) << md;
 
   const Output diff = shell(kSabus + " diff " + path("pass.json") + " " + path("inc/run.json"));
@@ -196,6 +198,95 @@ TEST_F(ReportsCli, AnInconclusiveVectorInEveryReportAndInADiff) {
   const Output back = shell(kSabus + " diff " + path("fail.json") + " " + path("inc/run.json"));
   EXPECT_EQ(back.out.find("Fixed"), std::string::npos) << "a failure now inconclusive is not fixed:\n" << back.out;
   EXPECT_NE(back.out.find("3.17-search-stop §3.17 must: fail → inconclusive"), std::string::npos) << back.out;
+}
+
+// A run of §3.2 on the reference controller whose two vectors that the
+// short-status fault fails are recorded as the line leaving them unjudged
+// (as the runner records a reply a repeat could not get clean; the engine is
+// tested on its own): the reports `sabus report` makes from that JSON name
+// them and the line figures, each read back by its parser; `sabus diff`
+// shows pass -> error as a change and error -> fail as a new failure;
+// `sabus run --last-failed` runs exactly those two again.
+TEST_F(ReportsCli, VectorsInErrorInEveryReportInADiffAndInALastFailedRun) {
+  const Output clean = shell(kSabus + " run --sim --paragraph 3.2 --json " + path("pass.json") + " 2>&1");
+  ASSERT_EQ(clean.status, 0) << clean.out;
+  const Output faulty = shell(kSabus + " run --sim --fault short-status --paragraph 3.2 --json " + path("fail.json") + " 2>&1");
+  ASSERT_EQ(faulty.status, 1) << faulty.out;
+  std::string error;
+  const auto failed = read_run_file(path("fail.json"), error);
+  ASSERT_TRUE(failed) << error;
+  auto doc = read_run_file(path("pass.json"), error);
+  ASSERT_TRUE(doc) << error;
+  std::vector<std::string> erred;
+  for (const auto& f : failed->vectors)
+    if (f.is_failure() && erred.size() < 2) erred.push_back(f.id);
+  ASSERT_EQ(erred.size(), 2u) << "the fault fails two vectors of §3.2 at least";
+  const std::string why = "step 1 (status): no clean reply in 2 tries: bad check byte: expected 0x04, got 0x05";
+  for (auto& v : doc->vectors)
+    if (std::find(erred.begin(), erred.end(), v.id) != erred.end()) {
+      v.outcome = "error";
+      v.error_reason = why;
+      v.line = {2, 2, 0, 1};
+      --doc->summary->passed;
+      ++doc->summary->errors;
+    }
+  // The run's figures: its vectors' (on a clean line, the exchanges the
+  // runner counted, none faulty, and the two above) and 200 exchanges of no
+  // vector (liveness, backup) with one fault; 3 of the 5 faults recovered.
+  harness::LineFaultCounts vectors_line;
+  for (const auto& v : doc->vectors) vectors_line += v.line;
+  ASSERT_EQ(vectors_line.faults, 4u) << "a clean in-process line has no fault";
+  doc->summary->line = vectors_line;
+  doc->summary->line += harness::LineFaultCounts{200, 1, 3, 1};
+  doc->summary->exit_code = harness::kLineErrorExitCode;
+  ASSERT_TRUE(write_run_json(path("err.json"), *doc, error)) << error;
+  ASSERT_EQ(checks::run_json_problems(slurp(dir_ / "err.json")), checks::Problems{});
+
+  const Output report = shell(kSabus + " report " + path("err.json") + " --html " + path("err.html") + " --junit " +
+                              path("err.xml") + " --md " + path("err.md"));
+  EXPECT_EQ(report.status, 0) << report.out;
+  EXPECT_EQ(report.out.rfind("ERROR: ", 0), 0u) << report.out;
+  EXPECT_NE(report.out.find(", 2 errors (complete)\n" + harness::describe(doc->summary->line) + " (fault rate "), std::string::npos)
+      << report.out;
+  EXPECT_EQ(harness::describe(doc->summary->line).rfind("line: 5 faults in ", 0), 0u);
+  EXPECT_NE(harness::describe(doc->summary->line).find(" exchanges, 3 recovered"), std::string::npos);
+  const std::string xml = slurp(dir_ / "err.xml"), html = slurp(dir_ / "err.html"), md = slurp(dir_ / "err.md");
+  EXPECT_EQ(checks::junit_problems(xml, *doc), checks::Problems{});
+  EXPECT_NE(xml.find("<error message=\"" + why + "\" type=\"line error\">"), std::string::npos) << xml;
+  EXPECT_EQ(checks::html_problems(html, *doc), checks::Problems{});
+  EXPECT_NE(html.find("<p class=\"error\">error: " + why + "</p>"), std::string::npos);
+  EXPECT_NE(html.find("<p id=\"line\">" + harness::describe(doc->summary->line) + " (fault rate "), std::string::npos);
+  EXPECT_EQ(checks::markdown_problems(md, *doc), checks::Problems{});
+  EXPECT_NE(md.find("**Errors**\n\n- `" + erred[0] + "` §3.2 must: " + why + "\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("**Line errors**: 2 vectors ended in error"), std::string::npos) << md;
+
+  const Output diff = shell(kSabus + " diff " + path("pass.json") + " " + path("err.json"));
+  EXPECT_EQ(diff.status, 0) << diff.out;
+  EXPECT_NE(diff.out.find("Other outcome changes (2):\n  " + erred[0] + " §3.2 must: pass → error  error: " + why),
+            std::string::npos)
+      << diff.out;
+  const Output worse = shell(kSabus + " diff " + path("err.json") + " " + path("fail.json"));
+  EXPECT_EQ(worse.status, 1) << worse.out;
+  EXPECT_NE(worse.out.find("  " + erred[0] + " §3.2 must: error → fail"), std::string::npos) << worse.out;
+  // The failures the fault made that passed now are fixed; the two now in
+  // error are not: an other change, with what the line did.
+  const Output back = shell(kSabus + " diff " + path("fail.json") + " " + path("err.json"));
+  const auto other = back.out.find("Other outcome changes (2):\n");
+  ASSERT_NE(other, std::string::npos) << back.out;
+  for (const auto& id : erred) {
+    EXPECT_NE(back.out.find("  " + id + " §3.2 must: fail → error  error: " + why, other), std::string::npos) << back.out;
+    EXPECT_EQ(back.out.find("  " + id + " §3.2 must: fail → pass"), std::string::npos) << "not fixed:\n" << back.out;
+  }
+
+  const Output again = shell(kSabus + " run --sim --last-failed " + path("err.json") + " --json " + path("again.json") + " 2>&1");
+  EXPECT_EQ(again.status, 0) << again.out;
+  const auto rerun = read_run_file(path("again.json"), error);
+  ASSERT_TRUE(rerun) << error;
+  std::vector<std::string> ran;
+  for (const auto& v : rerun->vectors) ran.push_back(v.id);
+  std::sort(ran.begin(), ran.end());
+  std::sort(erred.begin(), erred.end());
+  EXPECT_EQ(ran, erred) << "only the vectors in error ran again";
 }
 
 // The vector records in a run's journal so far.

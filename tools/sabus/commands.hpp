@@ -28,10 +28,9 @@ inline constexpr int kExitStopped = 4;
 // Nothing was checked: no vector selected, or every selected vector skipped.
 // pytest's "no tests ran" is 5 too, so a CI set up for either reads it the same.
 inline constexpr int kExitNothingRan = 5;
-// No vector failed, but the line left some unjudged (the error outcome): the
-// firmware is neither accepted nor rejected. Beside 4: the bench, not the
-// firmware, decided the code.
-inline constexpr int kExitLineErrors = 6;
+// No vector failed, but some ended in error: the line, not the firmware,
+// left them unjudged (harness::kLineErrorExitCode). The next free code.
+inline constexpr int kExitLineError = 6;
 
 // --reading of sabus sim, run --sim and fuzz --sim (readings.hpp).
 inline constexpr const char* kReadingHelp =

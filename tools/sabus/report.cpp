@@ -58,8 +58,10 @@ int run_report(const ReportOptions& o) {
       ok = false;
     }
   }
-  (to_stdout ? std::cerr : std::cout) << doc->verdict() << ": " << reports::summary_line(doc->counts()) << " ("
-                                       << doc->status << ")\n";
+  std::ostream& out = to_stdout ? std::cerr : std::cout;
+  const reports::Summary counts = doc->counts();
+  out << doc->verdict() << ": " << reports::summary_line(counts) << " (" << doc->status << ")\n";
+  if (const std::string line = reports::line_text(counts); !line.empty()) out << line << "\n";
   return ok ? kExitOk : kExitFailed;
 }
 

@@ -144,8 +144,9 @@ class Console {
     progress_.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0_);
     const bool every = verbose() || (!tty_ && !quiet());
     // An inconclusive vector's reason is shown as a failure's is: the bench
-    // learns which test purposes this device did not reach.
-    if (v.is_failure() || v.is_inconclusive() || every) line(reports::verdict_line(v, colour_));
+    // learns which test purposes this device did not reach; and a vector in
+    // error's, which exchange the line left unjudged.
+    if (v.is_failure() || v.is_inconclusive() || v.is_error() || every) line(reports::verdict_line(v, colour_));
     if (tty_ && !quiet()) {
       out_ << "\r\033[K" << reports::progress_line(progress_) << std::flush;
       drawn_ = true;
@@ -311,8 +312,15 @@ int finish_console(Console& console, const RunResult& run, const reports::RunDoc
   for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
   if (run.aborted) console.line((run.stopped_by.empty() ? "ABORTED: " : "STOPPED: ") + run.abort_reason);
   console.line(reports::summary_line(*doc.summary));
-  if (run.line.exchanges > 0 && (run.line.faults > 0 || !quiet())) console.line(harness::describe(run.line));
+  // The line figures whenever exchanges were counted: a bench engineer
+  // reads a clean line's zero as much as a noisy line's count.
+  if (const std::string line = reports::line_text(*doc.summary); !line.empty()) console.line(line);
+  if (const std::string warning = reports::line_warning(*doc.summary); !warning.empty())
+    console.line(std::string(console.colour() ? "\033[33mWARNING\033[0m: " : "WARNING: ") + warning);
   const int status = run.exit_code();
+  if (status == kExitLineError)
+    console.line(std::string(console.colour() ? "\033[1;34mLINE ERRORS\033[0m: " : "LINE ERRORS: ") +
+                 reports::line_error_text(*doc.summary) + "; the firmware is neither accepted nor rejected (exit 6)");
   if (status == kExitNothingRan)
     console.line(std::string(console.colour() ? "\033[33mNOTHING RAN\033[0m: " : "NOTHING RAN: ") +
                  reports::nothing_ran_reason(*doc.summary) + "; a run that checked nothing is not a success (exit 5)");
@@ -396,7 +404,7 @@ int run_run(RunCliOptions o) {
 
 static_assert(kExitNothingRan == harness::kNothingRanExitCode);
 static_assert(kExitStopped == harness::kStoppedExitCode);
-static_assert(kExitLineErrors == harness::kLineErrorExitCode);
+static_assert(kExitLineError == harness::kLineErrorExitCode);
 
 constexpr const char* kRunExitStatus = R"(Exit status:
   0  every must-level vector that ran passed (with --strict every should-level one too), and at least one ran
@@ -412,9 +420,9 @@ constexpr const char* kRunExitStatus = R"(Exit status:
      why, by cause) or ended inconclusive (a precondition step did not hold, so its test purpose was not
      reached); a run that checked nothing is not a success, and 5 is pytest's code for it too.
      An inconclusive vector never makes the code 1
-  6  no vector failed, but some ended in error: the line garbled an exchange and its repeats (--retries)
-     did not get a clean one, so the vector was not judged; the firmware is neither accepted nor rejected.
-     The summary gives the line's faults; run again on a better line, or with --retries higher
+  6  no vector failed, but some ended in error: the line (not the firmware) left them unjudged (a garbled
+     exchange whose repeats, --retries, got no clean reply); see the line figures. The firmware is neither
+     accepted nor rejected: run those vectors again on a sound line (--last-failed takes them)
 )";
 
 }  // namespace

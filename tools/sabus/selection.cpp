@@ -16,10 +16,11 @@ void add_selection_options(CLI::App* sub, SelectionOptions& o) {
                   "Only the K-th of N stable slices of the selection (by vector id), for a CI matrix or several benches")
       ->type_name("K/N");
   auto* last = sub->add_option("--last-failed", o.last_failed,
-                               "Only the vectors that failed in this earlier run (its run.json, a journal, or its report folder)")
+                               "Only the vectors that failed or ended in error in this earlier run (its run.json, a journal, or its "
+                               "report folder)")
                    ->type_name("RUN.json");
   auto* first = sub->add_option("--failed-first", o.failed_first,
-                                "The vectors that failed in this earlier run first, then the rest")
+                                "The vectors that failed or ended in error in this earlier run first, then the rest")
                     ->type_name("RUN.json");
   last->excludes(first);
   first->excludes(last);

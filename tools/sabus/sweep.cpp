@@ -138,6 +138,10 @@ ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed,
     if (v.verdict == Verdict::kPass) ++o.passed;
     else if (v.verdict == Verdict::kInconclusive && reference_sides) o.failures.push_back(v.id + ": inconclusive: " + v.inconclusive_reason);
     else if (v.verdict == Verdict::kInconclusive) o.inconclusive.push_back(v.id + ": " + v.inconclusive_reason);
+    // A vector in error (the line left it unjudged) cannot happen on the
+    // in-process controller, which has no line to garble: it is the
+    // harness's fault, counted as a failure of the profile with its reason.
+    else if (v.verdict == Verdict::kError) o.failures.push_back(v.id + ": error: " + v.error_reason);
     else o.failures.push_back(v.id + ": " + (v.failures.empty() ? std::string(to_string(v.verdict)) : v.failures.front()));
   }
   return o;

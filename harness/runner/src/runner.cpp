@@ -304,7 +304,7 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
   const TimePoint t0 = s.transport.now();
   const LineFaultCounts before = s.line;
   try {
-    std::size_t faults_before = s.line.faults;
+    std::size_t faults_before = s.line.faults, recovered_before = s.line.recovered, silent_before = s.silent_repeats;
     Attempt a = attempt(s, v, r.transcript);
     // The line: an attempt the line left unjudged (an error), or one that
     // failed after a line fault (a repeat also shifts the timing a vector
@@ -314,17 +314,22 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
     // the setup puts the device back where the vector starts. (Under
     // --strict-line a line fault is the failure: nothing runs again.)
     for (int again = 1; again <= s.options.retries && !s.options.strict_line; ++again) {
-      const bool touched = !a.error.empty() || (!a.failures.empty() && s.line.faults > faults_before);
+      const bool touched =
+          !a.error.empty() || (!a.failures.empty() && (s.line.faults > faults_before || s.silent_repeats > silent_before));
       if (!touched) break;
       if (s.options.record_transcripts)
         r.transcript.push_back({s.t_ms(), false, {}, "the line touched this attempt (" +
                                     (a.error.empty() ? a.failures.front() : a.error) + "): the vector runs again from its setup",
                                 {}, ""});
       faults_before = s.line.faults;
+      recovered_before = s.line.recovered;
+      silent_before = s.silent_repeats;
       a = attempt(s, v, r.transcript);
     }
-    // A clean attempt settled the faults of the ones before it.
-    if (a.error.empty() && s.line.faults == faults_before) s.line.recovered += (s.line.faults - before.faults) - (s.line.recovered - before.recovered);
+    // An attempt that ended with every fault of its own recovered settled
+    // those of the attempts before it.
+    if (a.error.empty() && s.line.faults - faults_before == s.line.recovered - recovered_before)
+      s.line.recovered = before.recovered + (s.line.faults - before.faults);
     r.failures = std::move(a.failures);
     r.inconclusive_reason = std::move(a.inconclusive);
     r.error_reason = std::move(a.error);

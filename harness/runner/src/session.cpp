@@ -4,6 +4,7 @@
 // checks, the 'X' stop after motion, the reads of the stored-data backup.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <variant>
 
 #include "session.hpp"
@@ -126,6 +127,10 @@ std::string Session::last_fault(bool reply_due) const {
     return s;
   }
   if (reply_due && frames_.empty()) return "no reply";
+  // Silence was due: a reply means the device took the frame for another
+  // one, which a line that drops or adds a byte makes of a frame it must
+  // ignore (an overrun one byte shorter is a frame of a wrong length).
+  if (silence_due_ && !frames_.empty()) return "a reply where silence was due";
   // A reply for another command is a late or stray frame (a request the
   // line cut in two can be answered after the next one went out).
   if (frames_.size() == 1 && command != 0 && frames_[0].command != command && !is_offline_reply(frames_[0]))
@@ -144,11 +149,16 @@ std::string Session::last_fault(bool reply_due) const {
 
 bool Session::read_back() {
   const Bytes poll = encode_request(StatusPoll{}, profile.address);
+  const bool silence_due = std::exchange(silence_due_, false);
   for (int i = 0; i <= options.retries; ++i) {
     if (i > 0) transport.pause(silence_window());
     const auto replies = exchange(poll, {}, reply_timeout(poll.size()));
-    if (last_fault(true).empty() && replies.size() == 1 && replies[0].command == 0x31) return true;
+    if (last_fault(true).empty() && replies.size() == 1 && replies[0].command == 0x31) {
+      silence_due_ = silence_due;
+      return true;
+    }
   }
+  silence_due_ = silence_due;
   return false;
 }
 
@@ -160,8 +170,9 @@ bool Session::read_back() {
 // device's answer, not the line's: it is judged as one (except for a frame
 // that is never sent again: its silence may be a request the line lost).
 Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window,
-                                         bool reply_due, bool must_not_act) {
+                                         bool reply_due, bool must_not_act, bool silence_due) {
   Judged j;
+  silence_due_ = silence_due;
   j.replies = exchange(chars, m, window);
   j.fault = last_fault(reply_due);
   if (j.fault.empty()) return j;
@@ -208,6 +219,7 @@ Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m,
   // Silence on every try is the device's own answer, unless the frame was
   // not sent again: a request lost on the line leaves the same silence.
   if (!garbled && (rule != Resend::kNever || retries == 0)) {
+    if (tries > 1) ++silent_repeats;  // the vector may run again (runner.cpp): a lost request looks the same
     j.fault.clear();
     return j;
   }

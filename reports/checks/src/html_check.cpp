@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sabus/reports/checks.hpp"
+#include "sabus/reports/writers.hpp"
 
 namespace sabus::reports::checks {
 namespace {
@@ -95,14 +96,17 @@ std::string in_dom(std::string_view s) {
   return out;
 }
 
-// The strings the page must show: every vector's id; for an inconclusive
-// one why; for a failing vector its failures, its frames' notes and its
+// The strings the page must show: the run's line figures when it counted
+// any; every vector's id; for an inconclusive one why; for one in error what
+// the line did; for a failing vector its failures, its frames' notes and its
 // replies' fields.
 std::vector<std::string> strings_shown(const RunDocument& doc) {
   std::vector<std::string> out;
+  if (const std::string line = line_text(doc.counts()); !line.empty()) out.push_back(line);
   for (const auto& v : doc.vectors) {
     out.push_back(v.id);
     if (v.is_inconclusive()) out.push_back("inconclusive: " + v.inconclusive_reason);
+    if (v.is_error()) out.push_back("error: " + v.error_reason);
     if (!v.has_failed_steps()) continue;
     for (const auto& f : v.failures) out.push_back(f);
     for (const auto& f : v.transcript) {

@@ -74,18 +74,41 @@ std::string as_attribute(std::string_view text) {
 struct Testcases {
   // What each vector's testcase says of it: "fail", "error", "skip" or "pass".
   std::map<std::string, std::string> vectors;
-  // The message of each skipped testcase's <skipped>.
-  std::map<std::string, std::string> skip_messages;
+  // The message of each skipped testcase's <skipped>, and of each erring
+  // one's <error>.
+  std::map<std::string, std::string> skip_messages, error_messages;
   // The error messages of the run's own testcase (kJunitRunClassname): one
   // for a run that did not reach its end, none otherwise.
   std::vector<std::string> run_errors;
   int run_testcases = 0;
 };
 
+// A count attribute as a number; -1 when it is not one.
+long count_attribute(xmlNode* node, const char* name) {
+  const std::string text = attribute(node, name);
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) return -1;
+  return std::stol(text);
+}
+
+// A testsuite's (or the testsuites') counts against its testcases: what a CI
+// shows first is the counts, so they must be the testcases' own.
+void check_counts(xmlNode* node, const std::string& what, long tests, long failures, long errors, long skipped,
+                  Problems& problems) {
+  const std::pair<const char*, long> counts[] = {{"tests", tests}, {"failures", failures}, {"errors", errors}, {"skipped", skipped}};
+  for (const auto& [name, n] : counts) {
+    if (std::string_view(name) == "skipped" && attribute(node, name).empty() && named(node, "testsuites")) continue;
+    if (count_attribute(node, name) != n)
+      problems.push_back("JUnit: " + what + " says " + name + "=\"" + attribute(node, name) + "\", its testcases have " +
+                         std::to_string(n));
+  }
+}
+
 Testcases testcases(xmlNode* root, Problems& problems) {
   Testcases out;
+  long all_tests = 0, all_failures = 0, all_errors = 0;
   for (xmlNode* suite = root->children; suite; suite = suite->next) {
     if (!named(suite, "testsuite")) continue;
+    long tests = 0, failures = 0, erring = 0, skipped = 0;
     for (xmlNode* test = suite->children; test; test = test->next) {
       if (!named(test, "testcase")) continue;
       std::string verdict = "pass";
@@ -102,6 +125,10 @@ Testcases testcases(xmlNode* root, Problems& problems) {
           errors.push_back(attribute(c, "message"));
         }
       }
+      ++tests;
+      failures += verdict == "fail";
+      erring += verdict == "error";
+      skipped += verdict == "skip";
       if (attribute(test, "classname") == kJunitRunClassname) {
         ++out.run_testcases;
         out.run_errors.insert(out.run_errors.end(), errors.begin(), errors.end());
@@ -110,8 +137,14 @@ Testcases testcases(xmlNode* root, Problems& problems) {
       const std::string name = attribute(test, "name");
       if (!out.vectors.emplace(name, verdict).second) problems.push_back("JUnit: testcase \"" + name + "\" twice");
       if (verdict == "skip") out.skip_messages[name] = skip_message;
+      if (verdict == "error" && !errors.empty()) out.error_messages[name] = errors.front();
     }
+    check_counts(suite, "testsuite \"" + attribute(suite, "name") + "\"", tests, failures, erring, skipped, problems);
+    all_tests += tests;
+    all_failures += failures;
+    all_errors += erring;
   }
+  check_counts(root, "testsuites", all_tests, all_failures, all_errors, 0, problems);
   return out;
 }
 
@@ -152,8 +185,10 @@ Problems junit_problems(std::string_view xml, const RunDocument& doc) {
     problems.push_back("JUnit: the run's error says \"" + all.run_errors.front() + "\", not why the run ended: \"" +
                        as_attribute(shown(unfinished)) + "\"");
   for (const auto& v : doc.vectors) {
-    const std::string want =
-        v.lost_device() ? "error" : v.is_failure() ? "fail" : v.is_skip() || v.is_inconclusive() ? "skip" : "pass";
+    const std::string want = v.lost_device() || v.is_error()         ? "error"
+                             : v.is_failure()                        ? "fail"
+                             : v.is_skip() || v.is_inconclusive()    ? "skip"
+                                                                     : "pass";
     const auto it = cases.find(shown(v.id));
     if (it == cases.end()) problems.push_back("JUnit: no testcase for " + v.id);
     else if (it->second != want) problems.push_back("JUnit: testcase " + v.id + " is a " + it->second + ", the vector a " + want);
@@ -161,6 +196,10 @@ Problems junit_problems(std::string_view xml, const RunDocument& doc) {
     else if (v.is_inconclusive() && all.skip_messages.at(shown(v.id)) != as_attribute(shown("inconclusive: " + v.inconclusive_reason)))
       problems.push_back("JUnit: the skipped testcase " + v.id + " says \"" + all.skip_messages.at(shown(v.id)) +
                          "\", not \"inconclusive: " + v.inconclusive_reason + "\"");
+    // A vector in error is an <error> whose message is what the line did.
+    else if (v.is_error() && all.error_messages.at(shown(v.id)) != as_attribute(shown(v.error_reason)))
+      problems.push_back("JUnit: the error of testcase " + v.id + " says \"" + all.error_messages.at(shown(v.id)) + "\", not \"" +
+                         v.error_reason + "\"");
   }
   return problems;
 }

@@ -49,7 +49,7 @@ std::string one_line(std::string_view s) {
 }
 
 struct Parsed {
-  std::vector<std::string> headings, items;
+  std::vector<std::string> headings, items, paragraphs;
   std::vector<std::vector<std::string>> rows;  // the table's, header first
   std::vector<std::string> markup;             // node types a string could have made
   std::vector<std::string> strong;             // the text of each strong emphasis
@@ -71,6 +71,7 @@ Parsed parse(std::string_view md) {
     cmark_node* n = cmark_iter_get_node(it);
     const std::string type = type_of(n);
     if (type == "heading") p.headings.push_back(plain(n));
+    else if (type == "paragraph" && type_of(cmark_node_parent(n)) == "document") p.paragraphs.push_back(plain(n));
     else if (type == "item") p.items.push_back(plain(n));
     else if (type == "table_row" || type == "table_header") {
       auto& row = p.rows.emplace_back();
@@ -94,25 +95,32 @@ Problems markdown_problems(std::string_view md, const RunDocument& doc) {
   Problems problems;
   const Parsed p = parse(md);
   for (const auto& m : p.markup) problems.push_back("Markdown: markup the summary does not write: " + m);
-  // The summary's own emphasis: the verdict, and two labels.
+  // The summary's own emphasis: the verdict, and its labels.
   for (const auto& s : p.strong)
-    if (s != doc.verdict() && s != "Failures" && s != "Inconclusive" && s != "Nothing ran") problems.push_back("Markdown: strong emphasis the summary does not write: " + s);
+    if (s != doc.verdict() && s != "Failures" && s != "Errors" && s != "Inconclusive" && s != "Nothing ran" &&
+        s != "Warning" && s != "Line errors")
+      problems.push_back("Markdown: strong emphasis the summary does not write: " + s);
+  // The line figures, when exchanges were counted, as a paragraph of their own.
+  const Summary counts = doc.counts();
+  if (const std::string line = line_text(counts);
+      !line.empty() && std::find(p.paragraphs.begin(), p.paragraphs.end(), one_line(line)) == p.paragraphs.end())
+    problems.push_back("Markdown: no paragraph reads \"" + line + "\"");
   if (p.headings.empty() || p.headings.front() != "SAbus conformance: " + doc.verdict())
     problems.push_back("Markdown: the heading is not \"SAbus conformance: " + doc.verdict() + "\"");
 
   // The per-level table: a header and a row per level that has vectors.
   std::map<std::string, Tally> levels;
   for (const auto& v : doc.vectors) levels[v.level].add(v);
-  std::vector<std::vector<std::string>> want = {{"Level", "passed", "failed", "known", "inconclusive", "skipped"}};
+  std::vector<std::vector<std::string>> want = {{"Level", "passed", "failed", "known", "errors", "inconclusive", "skipped"}};
   for (const char* level : {"must", "should", "informative"})
     if (auto t = levels.find(level); t != levels.end())
       want.push_back({level, std::to_string(t->second.passed), std::to_string(t->second.failed),
-                      std::to_string(t->second.known), std::to_string(t->second.inconclusive),
-                      std::to_string(t->second.skipped)});
+                      std::to_string(t->second.known), std::to_string(t->second.errors),
+                      std::to_string(t->second.inconclusive), std::to_string(t->second.skipped)});
   if (p.rows != want) problems.push_back("Markdown: the per-level table is not the vectors' counts");
 
-  // The failures, then the inconclusive vectors, each as one item with the
-  // document's text.
+  // The failures, then the vectors in error, then the inconclusive ones,
+  // each as one item with the document's text.
   std::vector<std::string> items;
   constexpr std::size_t kListed = 25;
   const auto list = [&](bool (VectorRecord::*listed)() const, std::string (*why)(const VectorRecord&)) {
@@ -127,12 +135,13 @@ Problems markdown_problems(std::string_view md, const RunDocument& doc) {
     if (n > kListed) items.push_back("… and " + std::to_string(n - kListed) + " more");
   };
   list(&VectorRecord::is_failure, [](const VectorRecord& v) { return v.difference(); });
+  list(&VectorRecord::is_error, [](const VectorRecord& v) { return v.error_reason; });
   list(&VectorRecord::is_inconclusive, [](const VectorRecord& v) { return v.inconclusive_reason; });
   std::vector<std::string> got;
   for (const auto& item : p.items) got.push_back(rstrip(item));
   if (got.size() != items.size()) {
     problems.push_back("Markdown: " + std::to_string(got.size()) + " list items for " + std::to_string(items.size()) +
-                       " failures and inconclusive vectors listed");
+                       " failures, vectors in error and inconclusive vectors listed");
   } else {
     for (std::size_t i = 0; i < items.size(); ++i)
       if (got[i] != items[i]) problems.push_back("Markdown: failure item " + std::to_string(i + 1) + " reads \"" + got[i] +

@@ -101,9 +101,24 @@ bool hex_text(std::string_view hex) {
   return true;
 }
 
-// What the schema cannot say of one vector: each frame's hex is bytes, and
-// each field's bytes lie within its frame, in order.
+// A "line" object's counts, as the schema let them through.
+harness::LineFaultCounts line_counts(const json& line) {
+  return {line["exchanges"].get<std::size_t>(), line["faults"].get<std::size_t>(), line["recovered"].get<std::size_t>(),
+          line["repeats"].get<std::size_t>()};
+}
+
+// Line counts that cannot be what a run counted (line_counts_problem, the
+// readers' own rule).
+void check_line(const json& line, Problems& problems, const std::string& what) {
+  if (const std::string why = line_counts_problem(line_counts(line)); !why.empty())
+    problems.push_back(what + ": line: " + why);
+}
+
+// What the schema cannot say of one vector: each frame's hex is bytes, each
+// field's bytes lie within its frame, in order, and its line counts are
+// possible.
 void check_vector(const json& v, Problems& problems, const std::string& what) {
+  check_line(v["line"], problems, what + ": at /line");
   const auto& transcript = v["transcript"];
   for (std::size_t i = 0; i < transcript.size(); ++i) {
     const auto& frame = transcript[i];
@@ -130,7 +145,9 @@ void check_run(const json& run, const std::vector<const json*>& vectors, Problem
     problems.push_back(what + ": at /identity/reply_hex: not bytes as hex");
   std::set<std::string> ids;
   std::map<std::string, std::uint64_t> outcomes, causes;
+  harness::LineFaultCounts line;  // the vectors' together
   for (const auto* v : vectors) {
+    line += line_counts((*v)["line"]);
     const std::string& id = (*v)["id"].get_ref<const std::string&>();
     if (!ids.insert(id).second) problems.push_back(what + ": vector id \"" + id + "\" twice");
     const std::string& outcome = (*v)["outcome"].get_ref<const std::string&>();
@@ -142,11 +159,30 @@ void check_run(const json& run, const std::vector<const json*>& vectors, Problem
   const std::pair<const char*, const char*> counts[] = {
       {"passed", "pass"},         {"failed", "fail"},
       {"skipped", "skip"},        {"known", "known failure"},
-      {"unexpected", "unexpected pass"}, {"inconclusive", "inconclusive"}};
+      {"unexpected", "unexpected pass"}, {"inconclusive", "inconclusive"},
+      {"errors", "error"}};
   for (const auto& [key, outcome] : counts)
     if (s[key].get<std::uint64_t>() != outcomes[outcome])
       problems.push_back(what + ": summary." + key + " is " + s[key].dump() + ", the vectors have " +
                          std::to_string(outcomes[outcome]) + " " + outcome);
+  // The run's line counts are the vectors' and those of the exchanges of no
+  // vector (liveness probes, the stored-data backup): at least the vectors'.
+  check_line(s["line"], problems, what + ": summary");
+  const harness::LineFaultCounts run_line = line_counts(s["line"]);
+  const std::pair<const char*, std::size_t harness::LineFaultCounts::*> figures[] = {
+      {"exchanges", &harness::LineFaultCounts::exchanges},
+      {"faults", &harness::LineFaultCounts::faults},
+      {"recovered", &harness::LineFaultCounts::recovered},
+      {"repeats", &harness::LineFaultCounts::repeats}};
+  for (const auto& [key, figure] : figures)
+    if (run_line.*figure < line.*figure)
+      problems.push_back(what + ": summary.line." + key + " is " + std::to_string(run_line.*figure) + ", less than the vectors' " +
+                         std::to_string(line.*figure));
+  // A run with a vector in error and no failure exits 6; one without any
+  // never does.
+  const int exit_code = s["exit_code"].get<int>();
+  if (exit_code == harness::kLineErrorExitCode && outcomes["error"] == 0)
+    problems.push_back(what + ": summary.exit_code is 6 (some vector in error), but no vector ended in error");
   for (const auto& [cause, n] : s["skipped_by_cause"].items())
     if (n.get<std::uint64_t>() != causes[cause])
       problems.push_back(what + ": summary.skipped_by_cause." + cause + " is " + n.dump() + ", the vectors have " +

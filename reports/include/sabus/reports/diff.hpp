@@ -36,10 +36,13 @@ struct RunDiff {
   std::vector<DiffEntry> new_failures;     // not failing before, failing now (regression)
   std::vector<DiffEntry> now_missing;      // passed before, absent now (regression)
   std::vector<DiffEntry> must_now_skipped; // a must vector passed before and is skipped now (regression)
-  std::vector<DiffEntry> fixes;            // failing before, passing now (not inconclusive)
+  std::vector<DiffEntry> fixes;            // failing before, passing now (not inconclusive, not in error)
   std::vector<DiffEntry> added;            // not in OLD
   // Any other change of outcome: pass -> inconclusive, fail -> inconclusive
-  // and back (an inconclusive vector neither passes nor fails), skips.
+  // and back (an inconclusive vector neither passes nor fails); pass ->
+  // error, fail -> error and back (the line left it unjudged: nothing was
+  // learnt of the device); skips. (inconclusive -> fail and error -> fail
+  // are new failures.)
   std::vector<DiffEntry> other_changes;
   std::vector<DiffEntry> replies_changed;  // passes in both, but a reply differs
   std::vector<DiffEntry> timing_shifts;    // ran in both, duration moved beyond the threshold

@@ -3,7 +3,7 @@
 // appended to the run's journal, journal.hpp) and writes the run JSON once at
 // the end; `sabus report` and `sabus diff` read the JSON (or a journal) back
 // into it. The JSON is the source of truth; its schema is reports/SCHEMA.md
-// ("sabus-run", version 4).
+// ("sabus-run", version 5).
 #pragma once
 
 #include <cstddef>
@@ -17,7 +17,7 @@
 
 namespace sabus::reports {
 
-inline constexpr int kSchemaVersion = 4;
+inline constexpr int kSchemaVersion = 5;
 inline constexpr const char* kSchemaName = "sabus-run";
 
 // One named field of a frame with its byte range (protocol describe_frame).
@@ -48,6 +48,14 @@ struct VectorRecord {
   // VectorResult::inconclusive_reason): "precondition not met (...): ...".
   // "" when it was, and in documents of versions 1 to 3.
   std::string inconclusive_reason;
+  // Why the line left the vector unjudged (v5; harness
+  // VectorResult::error_reason): "step 2 (41h): no clean reply in 2 tries:
+  // ...". "" when it did not, and in documents of versions 1 to 4.
+  std::string error_reason;
+  // The vector's exchanges and the line faults among them (v5; harness
+  // VectorResult::line). All zero when none was counted: a skipped vector,
+  // a document of versions 1 to 4.
+  harness::LineFaultCounts line;
   std::string skip_reason, known_issue, quote, comment;
   std::string skip_cause;                // harness to_string(SkipCause): "motion", "profile", ...; "" when not skipped
   double duration_ms = 0;                // transport clock: virtual in-process, real on a line
@@ -60,14 +68,18 @@ struct VectorRecord {
   // Ran, but its test purpose was not reached (TTCN-3 `inconc`): neither a
   // pass nor a failure.
   bool is_inconclusive() const { return outcome == "inconclusive"; }
+  // Ran, but the line left it unjudged (TTCN-3 `error`): neither a pass nor
+  // a failure, and nothing of the device.
+  bool is_error() const { return outcome == "error"; }
   // A failure that is the bench's: the device was lost while the vector ran
   // (harness::kDeviceLostFailure). JUnit shows it as an error.
   bool lost_device() const;
   // A step failed (fail, known failure): the reports show its frames field by field.
   bool has_failed_steps() const { return outcome == "fail" || outcome == "known failure"; }
   // The decoded difference in one line: the first failure, why an
-  // unexpected pass fails the run, or for an inconclusive vector
-  // "inconclusive: " and why its purpose was not reached.
+  // unexpected pass fails the run, for an inconclusive vector
+  // "inconclusive: " and why its purpose was not reached, for a vector in
+  // error "error: " and what the line did.
   std::string difference() const;
 };
 
@@ -94,7 +106,19 @@ struct Summary {
   // Vectors that ended inconclusive (v4; 0 in documents of versions 1 to 3).
   // Last, so that the counts above keep their places.
   std::size_t inconclusive = 0;
+  // Vectors that ended in error (v5; 0 in documents of versions 1 to 4).
+  std::size_t errors = 0;
+  // The whole run's exchanges and line faults, liveness and backup included
+  // (v5; harness RunResult::line); all zero when none was counted.
+  harness::LineFaultCounts line = {};
 };
+
+// Why line counts cannot be what a run counted, or "": a fault is an
+// exchange, a recovered fault a fault, a repeat an exchange
+// (harness::LineFaultCounts). The readers and the checker ask it.
+std::string line_counts_problem(const harness::LineFaultCounts& c);
+// The share of exchanges that showed a line fault; 0 for none counted.
+double line_fault_rate(const harness::LineFaultCounts& c);
 
 struct RunDocument {
   int schema_version = kSchemaVersion;
@@ -116,7 +140,9 @@ struct RunDocument {
   std::vector<std::string> restore;
   nlohmann::json traffic = nlohmann::json::object();
 
-  // Counts from the vectors (the summary may be absent in an aborted run).
+  // Counts from the vectors (the summary may be absent in an aborted run);
+  // the line counts the summary's, or without one the vectors' summed (a
+  // run killed before its end).
   Summary counts() const;
   // Stopped by the bench before its end: SIGINT, SIGTERM or a lost device
   // (exit code 4, harness::kStoppedExitCode).
@@ -125,8 +151,9 @@ struct RunDocument {
   // reason, or that a run with no end record was killed; "" for a complete run.
   std::string unfinished_reason() const;
   // "PASS", "FAIL", "NOTHING RAN" (exit code 5: every vector skipped or
-  // inconclusive, or none selected), or "STOPPED" (exit code 4) / "ABORTED"
-  // / "INCOMPLETE".
+  // inconclusive, or none selected), "ERROR" (exit code 6: no failure, but
+  // the line left some vector unjudged), or "STOPPED" (exit code 4) /
+  // "ABORTED" / "INCOMPLETE".
   std::string verdict() const;
 };
 
@@ -149,6 +176,9 @@ void compact_for_reports(VectorRecord& v);
 // Members in the order of reports/SCHEMA.md; a vector's JSON is vector_json
 // (journal.hpp).
 nlohmann::ordered_json header_json(const RunDocument& doc);  // everything except "vectors"
+// A "line" member, the vector's and the summary's: {exchanges, faults,
+// recovered, repeats}.
+nlohmann::ordered_json line_json(const harness::LineFaultCounts& c);
 // A string of the document as its JSON holds it: UTF-8, each byte that is not
 // replaced by U+FFFD (valid_utf8, writers.hpp), the same replacement every
 // report makes, so that the reports `sabus report` makes from the JSON are
@@ -158,11 +188,12 @@ nlohmann::ordered_json json_string(std::string_view s);
 nlohmann::ordered_json json_value(const nlohmann::json& j);
 
 // Reads a run document; on a bad document sets `error` (what and where) and
-// returns nullopt. Accepts schema versions 1 to 4 (each lacks the fields the
-// next one added).
+// returns nullopt. Accepts schema versions 1 to 5 (each lacks the fields the
+// next one added); line counts that line_counts_problem refuses are an error.
 std::optional<RunDocument> from_json(const nlohmann::json& j, std::string& error);
 // Reads one member of "vectors" (or of a journal's vector record); throws
-// nlohmann::json::exception on a missing id or outcome or a field of the wrong type.
+// nlohmann::json::exception on a missing id or outcome, a field of the wrong
+// type, or line counts that line_counts_problem refuses.
 VectorRecord vector_from_json(const nlohmann::json& v);
 std::optional<RunDocument> read_run_file(const std::string& path, std::string& error);
 

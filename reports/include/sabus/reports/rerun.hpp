@@ -1,5 +1,6 @@
 // An earlier run read back for a re-run (`sabus run --last-failed FILE`,
-// `--failed-first FILE`): the ids of the vectors that failed in it.
+// `--failed-first FILE`): the ids of the vectors that failed or ended in
+// error in it.
 #pragma once
 
 #include <optional>
@@ -10,7 +11,9 @@ namespace sabus::reports {
 
 struct EarlierRun {
   std::string file;              // the file read (DIR/run.json for a folder)
-  std::set<std::string> failed;  // VectorRecord::is_failure(): fail, unexpected pass (a lost device's is a fail)
+  // VectorRecord::is_failure() (fail, unexpected pass; a lost device's is a
+  // fail) or is_error() (the line left it unjudged)
+  std::set<std::string> failed;
   std::size_t vectors = 0;       // vectors it holds
 };
 

@@ -34,20 +34,34 @@ std::string progress_line(const Progress& p, std::size_t width = 100);
 // "FAIL 3.2-status-length §3.2 must: expected 52 bytes, got 51"
 std::string failure_line(const VectorRecord& v);
 // "PASS", "FAIL" (a failure or an unexpected pass), "SKIP", "KNOWN" (a known
-// failure) or "INCONCLUSIVE" (its test purpose was not reached).
+// failure), "INCONCLUSIVE" (its test purpose was not reached) or "ERROR"
+// (the line left it unjudged).
 std::string_view verdict_word(const VectorRecord& v);
 // One line a vector as it finishes: "PASS 3.1-x §3.1 must", the failure line
 // for a failure, "SKIP 3.4-x §3.4 must: <skip reason>", "KNOWN 3.2-x §3.2
 // must: <difference> (known issue: <reason>)", "INCONCLUSIVE 3.7-x §3.7
-// must: precondition not met (...): ...". With `colour`, the first word in
+// must: precondition not met (...): ...", "ERROR 3.4-x §3.4 must: step 2
+// (41h): no clean reply in 2 tries: ...". With `colour`, the first word in
 // ANSI colour.
 std::string verdict_line(const VectorRecord& v, bool colour = false);
 // The skipped vectors by cause: "98 need another profile, 113 need
 // --allow-motion, 68 need --allow-destructive"; "" when none is recorded.
 std::string skip_causes_text(const Summary& s);
 // "N passed, N failed, N skipped (the skips by cause)" (and ", N known
-// failures", ", N inconclusive" when there are any).
+// failures", ", N inconclusive", ", N errors" when there are any).
 std::string summary_line(const Summary& s);
+// The run's line figures: "line: 3 faults in 1,412 exchanges, all recovered
+// (fault rate 0.21%)" (harness::describe); "" when no exchange was counted
+// (a document of versions 1 to 4, a transport that counts none).
+std::string line_text(const Summary& s);
+// Why the line's fault rate is a warning, when it is above a healthy line's
+// (harness::kHealthyLineFaultRate); "" when it is not.
+std::string line_warning(const Summary& s);
+// What the vectors in error mean for the run (exit code 6): "2 vectors
+// ended in error: the line, not the firmware, left them unjudged", or when
+// every vector that ran did, "nothing was judged: all 3 vectors that ran
+// ended in error (...)"; "" when none did.
+std::string line_error_text(const Summary& s);
 // Why a run checked nothing (exit code 5): "all 34 vectors selected were
 // skipped (34 need --allow-motion)", "no vector was selected", "the one
 // vector that ran ended inconclusive (its test purpose was not reached)".
@@ -129,8 +143,9 @@ namespace sabus::reports {
 struct Tally {
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0;  // failed counts unexpected passes
   std::size_t inconclusive = 0;
+  std::size_t errors = 0;  // the line left them unjudged
   void add(const VectorRecord& v);
-  std::size_t total() const { return passed + failed + skipped + known + inconclusive; }
+  std::size_t total() const { return passed + failed + skipped + known + inconclusive + errors; }
 };
 
 // Per spec paragraph (in paragraph order: "3.2" before "3.10"), per level.

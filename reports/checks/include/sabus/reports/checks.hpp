@@ -33,20 +33,23 @@ Problems journal_problems(std::string_view text);
 
 // ---- the reports of a document ---------------------------------------------------
 
-// JUnit XML: well-formed, valid against reports/junit.xsd, and a testcase per
-// vector of `doc` with its failure or skip (an inconclusive vector a skip
-// whose message is "inconclusive: " and why).
+// JUnit XML: well-formed, valid against reports/junit.xsd, a testcase per
+// vector of `doc` with its failure, error or skip (an inconclusive vector a
+// skip whose message is "inconclusive: " and why, a vector in error an
+// error whose message is what the line did), and each testsuite's counts
+// (tests, failures, errors, skipped) its testcases'.
 Problems junit_problems(std::string_view xml, const RunDocument& doc);
 // The HTML report: parsed by an HTML5 parser without a parse error; only the
 // elements and attributes the writer uses (one script, no event handler
 // attribute, links within the page only); and every string of `doc` that
-// came from the device or the vectors (ids, failures, inconclusive reasons,
-// notes, the fields of failing vectors' replies) shown as text, never as
-// markup.
+// came from the device or the vectors (ids, failures, inconclusive and error
+// reasons, notes, the fields of failing vectors' replies) and the run's line
+// figures shown as text, never as markup.
 Problems html_problems(std::string_view html, const RunDocument& doc);
 // The Markdown summary, parsed as GitHub Flavored Markdown: no raw HTML,
-// the verdict in the heading, the per-level table's counts, and each listed
-// failure's and inconclusive vector's text as the document has it.
+// the verdict in the heading, the line figures, the per-level table's
+// counts, and each listed failure's, vector in error's and inconclusive
+// vector's text as the document has it.
 Problems markdown_problems(std::string_view md, const RunDocument& doc);
 
 // The Markdown of a diff of two runs (`sabus diff --md`), parsed as GitHub
