@@ -5,6 +5,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -109,6 +110,8 @@ struct LivenessResult {
   std::string detail;
 };
 
+struct StoredDataBackup;
+
 struct RunOptions {
   bool allow_motion = false;
   bool allow_destructive = false;
@@ -142,6 +145,12 @@ struct RunOptions {
   // false: no backup and no restore, for a device that does not outlive the
   // run (the in-process reference controller).
   bool backup_stored_data = true;
+  // `sabus run --resume`: the vectors a stopped run finished, counted first
+  // as this run's own (they are not run again), and the stored-data backup
+  // it took, which the restore at the end writes back instead of a new one
+  // (the device may hold what the stopped run's vectors wrote).
+  std::vector<VectorResult> kept;
+  std::shared_ptr<const StoredDataBackup> backup;
 };
 
 // The controller's stored data as read back through the protocol before the
@@ -158,6 +167,9 @@ struct StoredDataBackup {
   // "signposts": {"slot": "hex of the reply's data"} (empty slots left out),
   // "navigation": "hex" or null (no reply)}.
   std::string to_json() const;
+  // The backup file read back (to_json's form); nullopt with `error` saying
+  // what is wrong. `file` and `taken` are left for the caller.
+  static std::optional<StoredDataBackup> from_json(const std::string& text, std::string& error);
 };
 
 // A poll for rest is a poll whose `until` names an axis's movement status
