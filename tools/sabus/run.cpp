@@ -388,23 +388,10 @@ int finish_console(Console& console, const RunResult& run, const reports::RunDoc
 
 int run_run(RunCliOptions o, const CLI::App& sub) {
   // --resume: the stopped run read first, its options the command's.
-  std::optional<reports::StoppedRun> stopped;
-  std::shared_ptr<const StoredDataBackup> stopped_backup_taken;
+  std::optional<Resume> resume;
   if (!o.resume.empty()) {
-    if (const std::string why = resume_option_conflicts(sub); !why.empty()) {
-      std::cerr << "sabus run: " << why << "\n";
-      return kExitUsage;
-    }
-    std::string error;
-    stopped = reports::read_stopped_run(o.resume, error);
-    std::optional<std::shared_ptr<const StoredDataBackup>> backup;
-    if (stopped) backup = stopped_backup(stopped->doc, error);
-    if (!backup) {
-      std::cerr << "sabus run: --resume " << error << "\n";
-      return kExitUsage;
-    }
-    stopped_backup_taken = *backup;
-    o = options_of_stopped_run(o, *stopped);
+    if (!(resume = read_resume(o.resume, sub))) return kExitUsage;
+    o = options_of_stopped_run(o, resume->stopped);
   }
   const auto level = parse_level(o.level);
   std::set<std::string> ids;
@@ -424,13 +411,7 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
     return kExitNothingRan;
   }
   std::optional<std::vector<Vector>> left;  // --resume: the vectors the stopped run did not finish
-  if (stopped) {
-    std::string error;
-    if (!(left = vectors_left(selection.vectors, *stopped, error))) {
-      std::cerr << "sabus run: --resume " << stopped->json << ": " << error << "\n";
-      return kExitUsage;
-    }
-  }
+  if (resume && !(left = vectors_left(selection.vectors, *resume))) return kExitUsage;
   const std::vector<Vector>& to_run = left ? *left : selection.vectors;
   if (!o.known_issues.empty()) {
     auto known = harness::read_known_issues(o.known_issues, ids);
@@ -438,7 +419,7 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
     if (!known.errors.empty()) return kExitUsage;
     ro.known_issues = std::move(known.reasons);
   }
-  const auto paths = report_paths(o, stopped.has_value());
+  const auto paths = report_paths(o, resume.has_value());
   if (!paths) return kExitUsage;
 
   OpenedDevice device = open_device("run", o.device);
@@ -458,33 +439,17 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
   else if (!quiet())
     console.line("device: controller " + doc.identity.controller_type + ", firmware " + doc.identity.firmware_version);
   // --resume: the same device, checked before a file is written.
-  if (stopped)
-    if (const int status = check_same_device(stopped->doc.identity, doc.identity, stopped->json); status != kExitOk)
-      return status;
+  if (resume)
+    if (const int status = check_same_device(*resume, doc.identity); status != kExitOk) return status;
   if (ro.pace.count() > 0) transport.pause(ro.pace);  // §4 pacing before the runner's first command
 
+  // --resume: one run, whose journal starts with the vectors it kept.
+  if (resume) resume_document(doc, *resume);
   RunJournal journal;
-  if (stopped) {
-    // One run: its start, its earlier stops and this one, the vectors it
-    // finished (counted by the runner as its own), the backup it took.
-    doc.started_at = stopped->doc.started_at;
-    doc.resumptions = stopped->doc.resumptions;
-    doc.resumptions.push_back(stopped->stop);
-    doc.resumptions.back().resumed_at = reports::utc_now();
-    journal.open(*paths, doc, &stopped->doc.vectors);
-    for (const auto& v : stopped->doc.vectors) {
-      ro.kept.push_back(reports::kept_result(v));
-      doc.vectors.push_back(v);
-      reports::compact_for_reports(doc.vectors.back());
-    }
-    ro.backup = stopped_backup_taken;
-    if (!quiet())
-      console.line(fmt::format("resuming {}, stopped by {} at {}: {} vector(s) kept, {} vector(s) to run{}", stopped->json,
-                               stopped->stop.stopped_by, stopped->stop.stopped_at, stopped->doc.vectors.size(), to_run.size(),
-                               stopped->rerun.empty() ? std::string()
-                                                      : " (" + stopped->rerun.front() + " again: the device was lost in it)"));
-  } else {
-    journal.open(*paths, doc);
+  journal.open(*paths, doc, resume ? &resume->stopped.doc.vectors : nullptr);
+  if (resume) {
+    keep_vectors(doc, ro, *resume);
+    if (!quiet()) console.line(resume_line(*resume, to_run.size()));
   }
   auto last_result = std::chrono::steady_clock::now();
   ro.on_result = [&](const VectorResult& r) {
@@ -506,7 +471,7 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
   last_result = std::chrono::steady_clock::now();
   RunResult run = runner.run(to_run);
   reports::finish(doc, run, reports::utc_now());
-  if (stopped) reports::add_stopped_run(doc, stopped->doc);
+  if (resume) reports::add_stopped_run(doc, resume->stopped.doc);
   journal.close(*paths, doc);
   write_reports(*paths, doc);
   return finish_console(console, run, doc);
