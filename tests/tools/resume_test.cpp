@@ -6,7 +6,8 @@
 // killed; resumed against a new one on another port), each resumed: the
 // same verdicts, reports and console summary as an uninterrupted run, and
 // the same stored data once it has restored it, from the backup taken
-// before the stop.
+// before the stop. A run killed outright is resumed from its journal, and
+// refused when a destructive vector had run (its backup is not named).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -279,6 +280,57 @@ TEST_F(Resume, ResumedAfterALostDeviceItIsTheUninterruptedRun) {
     finished += v["failures"].empty() || v["failures"][0].get<std::string>().rfind(harness::kDeviceLostFailure, 0) != 0;
   EXPECT_LT(finished, stopped["vectors"].size()) << "the device was lost in a vector";
   EXPECT_EQ(json::parse(slurp(dir_ / "res/run.json"))["resumptions"][0]["kept"], finished);
+}
+
+// A run killed outright (SIGKILL: no end record, its JSON still says
+// "running") is resumed from its journal, which the resumed run replaces
+// with one holding the kept vectors first: the uninterrupted run's verdicts.
+TEST_F(Resume, AKilledRunIsResumedFromItsJournal) {
+  const std::vector<std::string> reads = {"--paragraph", "3.1", "--paragraph", "3.11", "--pace", "50"};
+  Sim sim;
+  ASSERT_FALSE(sim.address.empty());
+  auto args = [&](const std::string& dir) {
+    std::vector<std::string> a = {kSabus, "run", "--tcp", sim.address, "--report-dir", path(dir)};
+    a.insert(a.end(), reads.begin(), reads.end());
+    return a;
+  };
+  {
+    Process run(args("res"));
+    for (int i = 0; i < 600 && journaled_vectors(dir_ / "res/run.journal.jsonl") < 4; ++i) std::this_thread::sleep_for(20ms);
+  }  // SIGKILL
+  ASSERT_EQ(json::parse(slurp(dir_ / "res/run.json"))["status"], "running");
+  const std::size_t journaled = journaled_vectors(dir_ / "res/run.journal.jsonl");
+  ASSERT_GE(journaled, 4u);
+  const auto resumed = shell(kSabus + " run --resume " + path("res/run.journal.jsonl") + " 2>&1");
+  ASSERT_EQ(resumed.status, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("resuming " + path("res/run.json") + ", killed at "), std::string::npos) << resumed.out;
+  Process ref(args("ref"));
+  ASSERT_EQ(ref.wait_exit_for(60s), 0);
+  const json res = json::parse(slurp(dir_ / "res/run.json")), uninterrupted = json::parse(slurp(dir_ / "ref/run.json"));
+  EXPECT_EQ(checks::run_json_problems(slurp(dir_ / "res/run.json")), checks::Problems{});
+  EXPECT_EQ(verdicts(res), verdicts(uninterrupted));
+  EXPECT_EQ(res["summary"], uninterrupted["summary"]);
+  EXPECT_EQ(res["resumptions"][0]["stopped_by"], "killed");
+  EXPECT_EQ(res["resumptions"][0]["kept"], journaled);
+  EXPECT_FALSE(fs::exists(dir_ / "res/run.journal.jsonl"));
+}
+
+// Killed after a destructive vector ran: the journal does not say where the
+// backup taken before it is, so the restore at the end could not be
+// complete; refused, and the journal left as it was.
+TEST_F(Resume, AKilledRunAfterADestructiveVectorIsRefused) {
+  Sim sim;
+  ASSERT_FALSE(sim.address.empty());
+  {
+    Process run(run_args(sim, "res"));
+    wait_for("res", 9);
+  }  // SIGKILL
+  const std::string journal = slurp(dir_ / "res/run.journal.jsonl");
+  const auto r = shell(kSabus + " run --resume " + path("res/run.json") + " 2>&1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("the run was killed after a destructive vector (3.10-"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("its journal does not name the stored-data backup"), std::string::npos) << r.out;
+  EXPECT_EQ(slurp(dir_ / "res/run.journal.jsonl"), journal);
 }
 
 }  // namespace

@@ -143,8 +143,9 @@ void keep_vectors(reports::RunDocument& doc, harness::RunOptions& ro, const Resu
 
 std::string resume_line(const Resume& r, std::size_t to_run) {
   const reports::StoppedRun& s = r.stopped;
-  return fmt::format("resuming {}, stopped by {} at {}: {} vector(s) kept, {} vector(s) to run{}", s.json, s.stop.stopped_by,
-                     s.stop.stopped_at, s.doc.vectors.size(), to_run,
+  const std::string how = s.stop.stopped_by == "killed" ? "killed" : "stopped by " + s.stop.stopped_by;
+  return fmt::format("resuming {}, {} at {}: {} vector(s) kept, {} vector(s) to run{}", s.json, how, s.stop.stopped_at,
+                     s.doc.vectors.size(), to_run,
                      s.rerun.empty() ? std::string() : " (" + s.rerun.front() + " again: the device was lost in it)");
 }
 

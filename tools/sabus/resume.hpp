@@ -54,7 +54,8 @@ void resume_document(reports::RunDocument& doc, const Resume& r);
 // document (compacted for the reports), and for the runner to count as its
 // own (RunOptions::kept), with the backup to restore (RunOptions::backup).
 void keep_vectors(reports::RunDocument& doc, harness::RunOptions& ro, const Resume& r);
-// The console's line: "resuming F, stopped by SIGINT at T: 9 vector(s) kept, 14 vector(s) to run".
+// The console's line: "resuming F, stopped by SIGINT at T: 9 vector(s) kept, 14 vector(s) to run"
+// ("resuming F, killed at T: ..." for a run killed outright).
 std::string resume_line(const Resume& r, std::size_t to_run);
 
 }  // namespace sabus::cli
