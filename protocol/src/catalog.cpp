@@ -11,7 +11,6 @@ constexpr Effects kNone{};
 constexpr Effects kMoves{.moves_antenna = true};
 constexpr Effects kStores{.changes_stored_data = true};
 constexpr Effects kMovesAgain{.moves_antenna = true, .acts_again = true};
-constexpr Effects kStoresAgain{.changes_stored_data = true, .acts_again = true};
 
 constexpr FormInfo kSingle[] = {{"", "", "the only form", kNone}};
 constexpr FormInfo kSingleStores[] = {{"", "", "the only form", kStores}};
@@ -62,8 +61,12 @@ constexpr FormInfo kLocateForms[] = {
     {"data", "", "LOCATE a satellite given by name, longitude, inclination and band", kMovesAgain},
 };
 constexpr FormInfo kStoreForms[] = {
-    {"preset", "", "STORE a satellite of the preset list", kStoresAgain},
-    {"data", "", "STORE a satellite given by its data", kStoresAgain},
+    // §3.19 "If a particular satellite name has already been STOREd, it's
+    // data will be overwritten": a second STORE of the same record leaves
+    // the list as one does (but pol selection 'C', which needs a LOCATE
+    // right before it: the runner's resend_rule).
+    {"preset", "", "STORE a satellite of the preset list", kStores},
+    {"data", "", "STORE a satellite given by its data", kStores},
 };
 
 using RK = ReplyKind;

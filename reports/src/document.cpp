@@ -183,6 +183,8 @@ void compact_for_reports(VectorRecord& v) {
 void finish(RunDocument& doc, const harness::RunResult& run, std::string finished_at) {
   doc.status = run.aborted ? "aborted" : "complete";
   doc.abort_reason = run.abort_reason;
+  doc.stopped_by = run.stopped_by;
+  doc.backup = run.backup.file;
   doc.finished_at = std::move(finished_at);
   doc.summary = Summary{run.passed, run.failed, run.skipped, run.known, run.unexpected, run.exit_code(), {}, run.inconclusive,
                         run.errors, run.line};
@@ -212,6 +214,7 @@ ordered_json header_json(const RunDocument& d) {
                     {"finished_at", text(d.finished_at)},
                     {"status", text(d.status)},
                     {"abort_reason", text(d.abort_reason)}};
+  if (!d.stopped_by.empty()) j["stopped_by"] = text(d.stopped_by);
   if (!d.journal.empty()) j["journal"] = text(d.journal);
   j["device"] = text(d.device);
   j["identity"] = {{"ok", d.identity.ok},
@@ -225,7 +228,25 @@ ordered_json header_json(const RunDocument& d) {
   for (const auto& f : d.faults) faults.push_back(text(f));
   j["faults"] = std::move(faults);
   j["options"] = json_value(d.options);
+  if (const auto& i = d.invocation)
+    j["invocation"] = {{"profile", text(i->profile)}, {"port", text(i->port)},
+                       {"tcp", text(i->tcp)},         {"baud", i->baud},
+                       {"line", text(i->line)},       {"serial_backend", text(i->serial_backend)},
+                       {"reading", text(i->reading)}, {"json", text(i->json)},
+                       {"junit", text(i->junit)},     {"html", text(i->html)},
+                       {"md", text(i->md)},           {"report_dir", text(i->report_dir)}};
   j["planned"] = d.planned;
+  if (!d.resumptions.empty()) {
+    ordered_json stops = ordered_json::array();
+    for (const auto& r : d.resumptions) {
+      ordered_json restore = ordered_json::array();
+      for (const auto& n : r.restore) restore.push_back(text(n));
+      stops.push_back({{"stopped_at", text(r.stopped_at)}, {"stopped_by", text(r.stopped_by)},
+                       {"abort_reason", text(r.abort_reason)}, {"resumed_at", text(r.resumed_at)},
+                       {"kept", r.kept}, {"restore", std::move(restore)}});
+    }
+    j["resumptions"] = std::move(stops);
+  }
   if (d.summary) {
     ordered_json causes = ordered_json::object();
     for (const auto& [cause, n] : d.summary->skipped_by_cause) causes[valid_utf8(cause)] = n;
@@ -241,6 +262,7 @@ ordered_json header_json(const RunDocument& d) {
   ordered_json restore = ordered_json::array();
   for (const auto& r : d.restore) restore.push_back(text(r));
   j["restore"] = std::move(restore);
+  if (!d.backup.empty()) j["backup"] = text(d.backup);
   j["traffic"] = json_value(d.traffic);
   return j;
 }
@@ -344,6 +366,7 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
     d.finished_at = get<std::string>(j, "finished_at", "");
     d.status = get<std::string>(j, "status", "running");
     d.abort_reason = get<std::string>(j, "abort_reason", "");
+    d.stopped_by = get<std::string>(j, "stopped_by", "");
     d.journal = get<std::string>(j, "journal", "");
     d.device = get<std::string>(j, "device", "");
     if (auto it = j.find("identity"); it != j.end() && it->is_object()) {
@@ -361,7 +384,32 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
     d.address = get<int>(j, "address", 0);
     d.faults = get<std::vector<std::string>>(j, "faults", {});
     d.options = get<json>(j, "options", json::object());
+    if (auto it = j.find("invocation"); it != j.end() && !it->is_null()) {
+      where = "invocation";
+      Invocation i;
+      i.profile = get<std::string>(*it, "profile", "");
+      i.port = get<std::string>(*it, "port", "");
+      i.tcp = get<std::string>(*it, "tcp", "");
+      i.baud = get<int>(*it, "baud", 0);
+      i.line = get<std::string>(*it, "line", "");
+      i.serial_backend = get<std::string>(*it, "serial_backend", "");
+      i.reading = get<std::string>(*it, "reading", "");
+      i.json = get<std::string>(*it, "json", "");
+      i.junit = get<std::string>(*it, "junit", "");
+      i.html = get<std::string>(*it, "html", "");
+      i.md = get<std::string>(*it, "md", "");
+      i.report_dir = get<std::string>(*it, "report_dir", "");
+      d.invocation = std::move(i);
+      where = "header";
+    }
     d.planned = get<std::size_t>(j, "planned", 0);
+    for (const auto& r : get<json>(j, "resumptions", json::array())) {
+      where = "resumptions";
+      d.resumptions.push_back({get<std::string>(r, "stopped_at", ""), get<std::string>(r, "stopped_by", ""),
+                               get<std::string>(r, "abort_reason", ""), get<std::string>(r, "resumed_at", ""),
+                               get<std::size_t>(r, "kept", 0), get<std::vector<std::string>>(r, "restore", {})});
+    }
+    where = "header";
     if (auto it = j.find("summary"); it != j.end() && it->is_object()) {
       where = "summary";
       d.summary = Summary{get<std::size_t>(*it, "passed", 0), get<std::size_t>(*it, "failed", 0),
@@ -376,6 +424,7 @@ std::optional<RunDocument> from_json(const json& j, std::string& error) {
       d.liveness.push_back({get<std::string>(l, "when", ""), get<bool>(l, "alive", true), get<std::string>(l, "detail", "")});
     }
     d.restore = get<std::vector<std::string>>(j, "restore", {});
+    d.backup = get<std::string>(j, "backup", "");
     d.traffic = get<json>(j, "traffic", json::object());
     if (const auto vectors = j.find("vectors"); vectors != j.end() && !vectors->is_null()) {
       where = "vectors";

@@ -38,6 +38,22 @@ bool JournalWriter::open(const std::string& path, const RunDocument& header) {
   return write_text(journal_record_json("header", header));
 }
 
+bool JournalWriter::open(const std::string& path, const RunDocument& header, const std::vector<VectorRecord>& earlier) {
+  const std::string tmp = path + ".tmp";
+  if (!open(tmp, header)) return false;
+  for (const auto& v : earlier)
+    if (!append(v)) return false;
+  if (::fsync(fd_) != 0 || ::rename(tmp.c_str(), path.c_str()) != 0) {
+    error_ = path + ": cannot write: " + std::strerror(errno);
+    ::close(fd_);
+    fd_ = -1;
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  path_ = path;  // the descriptor follows the rename
+  return true;
+}
+
 bool JournalWriter::append(const VectorRecord& v) { return write_text(vector_json(v)); }
 
 bool JournalWriter::close(const RunDocument& finished) {

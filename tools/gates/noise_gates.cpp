@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -51,8 +52,10 @@ NoisyRun run_suite(const Profile& profile, const std::vector<Vector>& vectors, F
   RunOptions o;
   o.allow_motion = true;
   o.allow_destructive = true;
-  o.keep_transcripts = false;
-  o.record_transcripts = false;
+  // SABUS_NOISE_EXPLAIN=1: the transcripts are kept, and a problem's shown.
+  const bool explain = std::getenv("SABUS_NOISE_EXPLAIN") != nullptr;
+  o.keep_transcripts = explain;
+  o.record_transcripts = explain;
   o.retries = retries;
   const TimePoint t0 = transport->now();
   NoisyRun r;
@@ -135,6 +138,7 @@ int main(int argc, char** argv) {
         if (n.id != kSurvey && n.line.recovered != n.line.faults) {
           ++unrecovered;
           problems.push_back(fmt::format("UNRECOVERED {}: {} of {} faults", n.id, n.line.faults - n.line.recovered, n.line.faults));
+          for (const auto& e : n.transcript) problems.back() += fmt::format("\n      {} {}", e.sent ? ">" : "<", e.note);
         }
       }
       if (noisy.result.vectors.size() != clean.vectors.size())

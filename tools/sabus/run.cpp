@@ -16,6 +16,7 @@
 
 #include "commands.hpp"
 #include "device.hpp"
+#include "resume.hpp"
 #include "selection.hpp"
 #include "version.hpp"
 #include "sabus/harness/controller.hpp"
@@ -26,6 +27,7 @@
 #include "sabus/harness/vector_loader.hpp"
 #include "sabus/reports/document.hpp"
 #include "sabus/reports/journal.hpp"
+#include "sabus/reports/resume.hpp"
 #include "sabus/reports/writers.hpp"
 
 namespace sabus::cli {
@@ -52,6 +54,7 @@ struct RunCliOptions {
   DeviceOptions device;
   SelectionOptions selection;
   std::string level = "informative", junit, json, html, md, report_dir, known_issues;
+  std::string resume;  // --resume: the stopped run's JSON or journal
   std::vector<std::string> vectors;
   int repeat = 0;
   long pace_ms = -1;
@@ -77,9 +80,10 @@ struct ReportPaths {
 // run never ends in "cannot write": one report at most on standard output
 // ("-"), no two on the same file, no directory, device, pipe or link to one
 // (reports::output_path_problem), and no journal of an earlier run that did
-// not end beside the JSON (it holds that run's results). An error names
-// the option; nullopt then.
-std::optional<ReportPaths> report_paths(const RunCliOptions& o) {
+// not end beside the JSON (it holds that run's results), unless `resuming`
+// that run (it is read, and kept in the new journal). An error names the
+// option; nullopt then.
+std::optional<ReportPaths> report_paths(const RunCliOptions& o, bool resuming = false) {
   ReportPaths r{o.json, o.junit, o.html, o.md};
   auto fail = [](const std::string& why) -> std::optional<ReportPaths> {
     std::cerr << "sabus run: " << why << "\n";
@@ -102,7 +106,7 @@ std::optional<ReportPaths> report_paths(const RunCliOptions& o) {
   if (const std::string why = reports::report_paths_problem({{"--json", r.json}, {"--junit", r.junit}, {"--html", r.html}, {"--md", r.md}});
       !why.empty())
     return fail(why);
-  if (!r.json.empty() && r.json != "-") {
+  if (!r.json.empty() && r.json != "-" && !resuming) {
     const std::string journal = reports::journal_path_for(r.json);
     if (fs::exists(fs::symlink_status(journal)))
       return fail(fmt::format("{} exists: the journal of a run that did not end, with its results; make its JSON with "
@@ -241,8 +245,83 @@ reports::RunDocument start_document(const RunCliOptions& o, const RunOptions& ro
                  {"shard", o.selection.shard},       {"last_failed", o.selection.last_failed},
                  {"failed_first", o.selection.failed_first}, {"exit_first", o.exit_first},
                  {"known_issues", o.known_issues}, {"vectors", o.vectors}};
+  doc.invocation = reports::Invocation{.profile = o.device.profile,
+                                       .port = o.device.port,
+                                       .tcp = o.device.tcp,
+                                       .line = o.device.line,
+                                       .serial_backend = o.device.serial_backend,
+                                       .reading = o.device.reading,
+                                       .baud = o.device.baud,
+                                       .json = o.json,
+                                       .junit = o.junit,
+                                       .html = o.html,
+                                       .md = o.md,
+                                       .report_dir = o.report_dir};
   doc.planned = planned;
   return doc;
+}
+
+// --resume: the command line of the stopped run, read back from what
+// start_document recorded (its `options`, `faults`, `address` and
+// `invocation`). Where the device is now may be given (`given`'s --port,
+// --tcp, --sim, --serial-backend): an adapter that came back as another
+// port. The reports are the stopped run's, where it wrote them, when the JSON
+// it recorded is the file resumed (the command runs in the folder the
+// stopped run was started in); the file resumed alone otherwise.
+RunCliOptions options_of_stopped_run(const RunCliOptions& given, const reports::StoppedRun& stopped) {
+  const reports::RunDocument& d = stopped.doc;
+  const nlohmann::json& op = d.options;
+  const reports::Invocation& inv = *d.invocation;
+  RunCliOptions o;
+  o.resume = given.resume;
+  o.level = op.value("level", o.level);
+  o.allow_motion = op.value("allow_motion", false);
+  o.allow_destructive = op.value("allow_destructive", false);
+  o.seed = op.value("seed", std::uint64_t{0});
+  o.repeat = op.value("repeat", 0);
+  o.pace_ms = op.value("pace_ms", -1L);
+  o.strict = op.value("strict", false);
+  o.exit_first = op.value("exit_first", false);
+  o.retries = op.value("retries", -1);
+  o.strict_line = op.value("strict_line", false);
+  o.max_line_fault_rate = op.value("max_line_fault_rate", 0.1);
+  o.device.line_faults = op.value("line_faults", "");
+  o.known_issues = op.value("known_issues", "");
+  o.vectors = op.value("vectors", std::vector<std::string>{});
+  o.selection.filters = op.value("filters", std::vector<std::string>{});
+  o.selection.excludes = op.value("excludes", std::vector<std::string>{});
+  o.selection.paragraphs = op.value("paragraphs", std::vector<std::string>{});
+  o.selection.shard = op.value("shard", "");
+  o.selection.last_failed = op.value("last_failed", "");
+  o.selection.failed_first = op.value("failed_first", "");
+  o.device.faults = d.faults;
+  o.device.address = std::to_string(d.address);
+  o.device.profile = inv.profile;
+  o.device.baud = inv.baud;
+  o.device.line = inv.line.empty() ? o.device.line : inv.line;
+  o.device.reading = inv.reading;
+  o.device.serial_backend = given.device.serial_backend != "auto" || inv.serial_backend.empty() ? given.device.serial_backend
+                                                                                                  : inv.serial_backend;
+  const bool moved = given.device.sim || !given.device.port.empty() || !given.device.tcp.empty();
+  o.device.sim = moved && given.device.sim;
+  o.device.port = moved ? given.device.port : inv.port;
+  o.device.tcp = moved ? given.device.tcp : inv.tcp;
+  const std::string recorded_json =
+      !inv.json.empty() || inv.report_dir.empty() ? inv.json : (fs::path(inv.report_dir) / "run.json").string();
+  std::error_code ec;
+  if (recorded_json != "-" && !recorded_json.empty() && fs::equivalent(recorded_json, stopped.json, ec)) {
+    o.json = inv.json;
+    o.junit = inv.junit;
+    o.html = inv.html;
+    o.md = inv.md;
+    o.report_dir = inv.report_dir;
+  } else {
+    o.json = stopped.json;
+    if (!quiet() && (!inv.junit.empty() || !inv.html.empty() || !inv.md.empty() || !inv.report_dir.empty()))
+      std::cerr << "sabus run: --resume " << stopped.json << ": only the run JSON is written: the stopped run wrote its "
+                << "other reports from another folder (`sabus report " << stopped.json << "` makes them)\n";
+  }
+  return o;
 }
 
 // The journal takes each vector as it finishes (reports/journal.hpp); the
@@ -254,7 +333,9 @@ struct RunJournal {
   reports::JournalWriter writer;
   std::optional<TempFolder> folder;
 
-  void open(const ReportPaths& paths, reports::RunDocument& doc) {
+  // `earlier`: a resumed run's kept vectors, in the journal before the first
+  // vector it runs (JournalWriter::open with them).
+  void open(const ReportPaths& paths, reports::RunDocument& doc, const std::vector<reports::VectorRecord>* earlier = nullptr) {
     if (paths.json.empty()) return;
     const bool json_file = paths.json != "-";
     std::string journal_path, error;
@@ -265,7 +346,7 @@ struct RunJournal {
       folder.emplace();
       journal_path = (folder->path / "run.journal.jsonl").string();
     }
-    if (!writer.open(journal_path, doc)) std::cerr << "sabus run: " << writer.error() << "\n";
+    if (!(earlier ? writer.open(journal_path, doc, *earlier) : writer.open(journal_path, doc))) std::cerr << "sabus run: " << writer.error() << "\n";
     else if (json_file && !reports::write_run_json(paths.json, doc, error)) std::cerr << "sabus run: " << error << "\n";
   }
 
@@ -327,7 +408,13 @@ int finish_console(Console& console, const RunResult& run, const reports::RunDoc
   return status;
 }
 
-int run_run(RunCliOptions o) {
+int run_run(RunCliOptions o, const CLI::App& sub) {
+  // --resume: the stopped run read first, its options the command's.
+  std::optional<Resume> resume;
+  if (!o.resume.empty()) {
+    if (!(resume = read_resume(o.resume, sub))) return kExitUsage;
+    o = options_of_stopped_run(o, resume->stopped);
+  }
   const auto level = parse_level(o.level);
   std::set<std::string> ids;
   const auto all = load_suite(o, ids);
@@ -345,13 +432,16 @@ int run_run(RunCliOptions o) {
               << " vectors loaded; `sabus vectors list --filter GLOB` previews a selection)\n";
     return kExitNothingRan;
   }
+  std::optional<std::vector<Vector>> left;  // --resume: the vectors the stopped run did not finish
+  if (resume && !(left = vectors_left(selection.vectors, *resume))) return kExitUsage;
+  const std::vector<Vector>& to_run = left ? *left : selection.vectors;
   if (!o.known_issues.empty()) {
     auto known = harness::read_known_issues(o.known_issues, ids);
     for (const auto& e : known.errors) std::cerr << "sabus run: --known-issues " << e << "\n";
     if (!known.errors.empty()) return kExitUsage;
     ro.known_issues = std::move(known.reasons);
   }
-  const auto paths = report_paths(o);
+  const auto paths = report_paths(o, resume.has_value());
   if (!paths) return kExitUsage;
 
   o.device.line_fault_seed = o.seed;
@@ -363,7 +453,7 @@ int run_run(RunCliOptions o) {
   // A report on standard output keeps it to itself: the console goes to
   // standard error then.
   std::ostream& out = paths->to_stdout() ? std::cerr : std::cout;
-  Console console(out, paths->to_stdout() ? STDERR_FILENO : STDOUT_FILENO, selection.vectors.size());
+  Console console(out, paths->to_stdout() ? STDERR_FILENO : STDOUT_FILENO, to_run.size());
 
   reports::RunDocument doc = start_document(o, ro, device, selection.vectors.size());
   // §3.1: who answers, asked once before the first vector.
@@ -371,10 +461,19 @@ int run_run(RunCliOptions o) {
   if (!doc.identity.ok) std::cerr << "sabus run: device identity: " << doc.identity.error << "\n";
   else if (!quiet())
     console.line("device: controller " + doc.identity.controller_type + ", firmware " + doc.identity.firmware_version);
+  // --resume: the same device, checked before a file is written.
+  if (resume)
+    if (const int status = check_same_device(*resume, doc.identity); status != kExitOk) return status;
   if (ro.pace.count() > 0) transport.pause(ro.pace);  // §4 pacing before the runner's first command
 
+  // --resume: one run, whose journal starts with the vectors it kept.
+  if (resume) resume_document(doc, *resume);
   RunJournal journal;
-  journal.open(*paths, doc);
+  journal.open(*paths, doc, resume ? &resume->stopped.doc.vectors : nullptr);
+  if (resume) {
+    keep_vectors(doc, ro, *resume);
+    if (!quiet()) console.line(resume_line(*resume, to_run.size()));
+  }
   auto last_result = std::chrono::steady_clock::now();
   ro.on_result = [&](const VectorResult& r) {
     reports::VectorRecord record = reports::vector_record(r);
@@ -393,10 +492,11 @@ int run_run(RunCliOptions o) {
 
   Runner runner(transport, device.profile, ro);
   last_result = std::chrono::steady_clock::now();
-  RunResult run = runner.run(selection.vectors);
+  RunResult run = runner.run(to_run);
   if (device.injected_faults && !quiet())
     console.line("emulated line (--line-faults): " + harness::describe(device.injected_faults()));
   reports::finish(doc, run, reports::utc_now());
+  if (resume) reports::add_stopped_run(doc, resume->stopped.doc);
   journal.close(*paths, doc);
   write_reports(*paths, doc);
   return finish_console(console, run, doc);
@@ -411,7 +511,8 @@ constexpr const char* kRunExitStatus = R"(Exit status:
   1  a must-level vector failed (with --strict a should-level one too), a listed known issue passed, a
      liveness check failed, or the device stopped answering during the run
   2  usage: a bad option or value, a profile, vector or known-issues file that does not load, an unknown id
-     in --known-issues, a report path that cannot be written
+     in --known-issues, a report path that cannot be written; with --resume, a run that is not a stopped one
+     (it ran to its end) or a device that is not the one it stopped on (another type or firmware in 30h)
   3  the device could not be reached: the port or socket does not open, or nothing answers
   4  the run was stopped before its end by SIGINT, SIGTERM or a lost device (the port or socket went away):
      the reports hold every vector finished before it, the JSON is marked aborted and the JUnit has an error
@@ -463,7 +564,14 @@ Command add_run_command(CLI::App& app) {
   sub->add_option("--html", o->html, "Write the HTML report (- : standard output)");
   sub->add_option("--md", o->md, "Write the Markdown summary (- : standard output)");
   sub->add_option("--report-dir", o->report_dir, "Write run.json, junit.xml, report.html and summary.md into DIR");
-  return {sub, [o] { return run_run(*o); }};
+  sub->add_option("--resume", o->resume,
+                  "Continue a run stopped by SIGINT, SIGTERM or a lost device (exit 4), or killed: its run.json, its "
+                  "journal or its report folder. The same options and selection; the vectors it finished are kept, the "
+                  "rest run on the same device (its 30h identity is checked first); its backup is restored at the end. It "
+                  "rewrites that run's JSON and reports, where they were written, as one run; only --port, --tcp, --sim "
+                  "and --serial-backend may be given with it")
+      ->type_name("RUN.json");
+  return {sub, [o, sub] { return run_run(*o, *sub); }};
 }
 
 }  // namespace sabus::cli

@@ -147,3 +147,40 @@ std::string StoredDataBackup::to_json() const {
 }
 
 }  // namespace sabus::harness
+
+namespace sabus::harness {
+
+std::optional<StoredDataBackup> StoredDataBackup::from_json(const std::string& text, std::string& error) {
+  using json = nlohmann::json;
+  const json doc = json::parse(text, nullptr, false);
+  if (!doc.is_object()) {
+    error = "not a JSON object";
+    return std::nullopt;
+  }
+  StoredDataBackup b;
+  std::string where = "store_names";
+  auto bytes = [&](const json& hex) {
+    auto parsed = parse_hex(hex.get<std::string>());
+    if (!parsed) throw std::invalid_argument("not hex: " + hex.get<std::string>());
+    return parsed.value();
+  };
+  try {
+    b.store_names = doc.at("store_names").get<std::vector<std::string>>();
+    for (const auto& [key, slots] : {std::pair{"presets", &b.presets}, std::pair{"tles", &b.tles}, std::pair{"signposts", &b.signposts}}) {
+      where = key;
+      for (const auto& [slot, hex] : doc.at(key).items()) {
+        const int index = std::stoi(slot);
+        if (index < 1 || index > 255 || std::to_string(index) != slot) throw std::invalid_argument("slot \"" + slot + "\"");
+        (*slots)[static_cast<std::uint8_t>(index)] = bytes(hex);
+      }
+    }
+    where = "navigation";
+    if (const json& nav = doc.at("navigation"); !nav.is_null()) b.navigation = bytes(nav);
+  } catch (const std::exception& e) {
+    error = where + ": " + e.what();
+    return std::nullopt;
+  }
+  return b;
+}
+
+}  // namespace sabus::harness

@@ -405,6 +405,8 @@ std::vector<std::reference_wrapper<const Vector>> run_order(const std::vector<Ve
 RunResult Runner::run(const std::vector<Vector>& vectors) {
   RunResult result;
   result.strict = options_.strict;
+  for (const VectorResult& r : options_.kept) journal(result, r, RunOptions{});  // counted, not handed on
+  if (options_.backup) result.backup = *options_.backup;
   Session s(transport_, profile_, options_);
 
   // A device that sends bytes is reachable, however wrong they are: its

@@ -232,9 +232,25 @@ Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m,
   return j;
 }
 
+// The runner's own requests (liveness, the stop, the backup) belong to no
+// vector that could run again: up to kSettleRounds rounds of
+// exchange_judged's repeats.
+Session::Judged Session::exchange_settled(const Bytes& chars) {
+  constexpr std::size_t kSettleRounds = 3;
+  Judged j;
+  for (std::size_t round = 0; round < kSettleRounds; ++round) {
+    j = exchange_judged(chars, {}, reply_timeout(chars.size()), true);
+    if (!j.error) {
+      line.recovered += round;  // the rounds before, each an unrecovered fault
+      break;
+    }
+  }
+  return j;
+}
+
 std::optional<Bytes> Session::ask(const Request& request) {
   const Bytes cmd = encode_request(request, profile.address);
-  const auto replies = exchange_judged(cmd, {}, reply_timeout(cmd.size()), true).replies;
+  const auto replies = exchange_settled(cmd).replies;
   if (replies.size() != 1 || replies[0].kind != FrameKind::kAck || is_offline_reply(replies[0])) return std::nullopt;
   return replies[0].data;
 }
@@ -248,7 +264,7 @@ LivenessResult Session::liveness(std::string when) {
   for (std::uint8_t code : {std::uint8_t{0x30}, std::uint8_t{0x31}}) {
     const Bytes cmd = encode_frame({FrameKind::kCommand, profile.address, code, {}});
     try {
-      const auto replies = exchange_judged(cmd, {}, reply_timeout(cmd.size()), true).replies;
+      const auto replies = exchange_settled(cmd).replies;
       const bool answered = replies.size() == 1 && replies[0].command == code;
       if (!answered) {
         l.alive = false;
@@ -290,8 +306,10 @@ void Session::stop_motion() {
     return;
   }
   const Bytes x = encode_request(Jog{{'X', 'S', 0}}, profile.address);
+  // The antenna may be moving: a stop the line garbles is sent again (a
+  // second 'X' stops what one does) until it is settled.
   try {
-    exchange_judged(x, {}, reply_timeout(x.size()), true);
+    exchange_settled(x);
   } catch (const TransportLost&) {
   }
 }
@@ -303,6 +321,11 @@ Resend resend_rule(ByteView frame) {
       info->form_selector_offset && frame.size() > *info->form_selector_offset ? info->form_for_selector(frame[*info->form_selector_offset]) : nullptr;
   const Effects e = form ? form->effects : info->effects();  // an unknown form: what any form may do
   if (e.acts_again) return Resend::kNever;
+  // §3.19 pol selection 'C' (byte 29) needs "a LOCATE function ...
+  // immediately prior to the Remote Store" (the scan is garbled there): a
+  // second one, after the status poll, no longer follows it.
+  constexpr std::size_t kStorePolSelection = 29;
+  if (info->code == 0x42 && (frame.size() <= kStorePolSelection || frame[kStorePolSelection] == 'C')) return Resend::kNever;
   if (e.moves_antenna || e.changes_stored_data) return Resend::kAfterReadBack;
   return Resend::kAtOnce;
 }

@@ -81,6 +81,9 @@ class Session : public ReceiverSink {
   std::chrono::milliseconds reply_timeout(std::size_t request_bytes) const;
   std::chrono::milliseconds silence_window() const;
   std::chrono::microseconds stated_turnaround() const;
+  // exchange_judged, in rounds until one is not an error (at most three):
+  // for the runner's own requests, which no vector runs again.
+  Judged exchange_settled(const Bytes& chars);
   // One request outside any vector (liveness, backup): the data of its single
   // ACK reply, or nullopt (NAK, offline reply, silence).
   std::optional<Bytes> ask(const Request& request);

@@ -38,8 +38,7 @@ struct Effects {
   bool changes_stored_data = false;
   // A second identical frame acts again rather than leaving the device as
   // the first did: a jog restarts its duration (§3.4), a LOCATE, a search or
-  // a peak starts over, a key is pressed twice, a STORE may add a second
-  // entry. After a line fault the runner sends a command again only when
+  // a peak starts over, a key is pressed twice. After a line fault the runner sends a command again only when
   // this is false (RunOptions::retries).
   bool acts_again = false;
 };

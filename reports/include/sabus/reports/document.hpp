@@ -120,12 +120,37 @@ std::string line_counts_problem(const harness::LineFaultCounts& c);
 // The share of exchanges that showed a line fault; 0 for none counted.
 double line_fault_rate(const harness::LineFaultCounts& c);
 
+// One stop of a run that `sabus run --resume` continued (tools/sabus/resume.cpp).
+struct Resumption {
+  std::string stopped_at;    // UTC, ISO 8601: the stopped run's finished_at (a killed run: its journal's last write)
+  std::string stopped_by;    // "SIGINT", "SIGTERM", "lost device", or "killed" (the journal had no end record)
+  std::string abort_reason;  // the stopped run's, "" for a killed run
+  std::string resumed_at;    // UTC, ISO 8601
+  std::size_t kept = 0;      // vectors finished before the stop, kept as they were
+  std::vector<std::string> restore;  // what the stopped run restored of the stored data when it stopped
+};
+
+// Where the device was reached and which reports were asked for, as given on
+// the command line: what `sabus run --resume` needs besides `options` (which
+// say what is checked, and which `sabus diff` compares). Absent in documents
+// written before it was added.
+struct Invocation {
+  std::string profile;  // --profile as given, "" for the default
+  std::string port, tcp, line, serial_backend, reading;
+  int baud = 0;         // --baud, 0: the profile's
+  std::string json, junit, html, md, report_dir;  // the report options as given, "" when not
+  bool operator==(const Invocation&) const = default;
+};
+
 struct RunDocument {
   int schema_version = kSchemaVersion;
   std::string generator = "sabus";
   std::string started_at, finished_at;   // UTC, ISO 8601
   std::string status = "running";        // running, complete, aborted
   std::string abort_reason;
+  // Why the bench stopped the run (harness RunResult::stopped_by): "SIGINT",
+  // "SIGTERM", "lost device"; "" when it was not.
+  std::string stopped_by;
   std::string journal;                   // while running: the journal file beside the JSON (v3)
   std::string device;                    // the transport ("in-process reference controller", a port)
   Identity identity;
@@ -133,11 +158,16 @@ struct RunDocument {
   int address = 0;
   std::vector<std::string> faults;
   nlohmann::json options = nlohmann::json::object();
+  std::optional<Invocation> invocation;
   std::size_t planned = 0;               // vectors selected for the run
+  std::vector<Resumption> resumptions;   // each stop `sabus run --resume` continued after, in order
   std::vector<VectorRecord> vectors;
   std::optional<Summary> summary;        // set when the run ends
   std::vector<Liveness> liveness;
   std::vector<std::string> restore;
+  // The stored-data backup file the runner wrote before the first
+  // destructive vector (harness StoredDataBackup::file); "" when none was taken.
+  std::string backup;
   nlohmann::json traffic = nlohmann::json::object();
 
   // Counts from the vectors (the summary may be absent in an aborted run);

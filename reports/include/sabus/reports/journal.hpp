@@ -73,6 +73,12 @@ class JournalWriter {
   ~JournalWriter();
   // Creates (or truncates) the file and writes the header record.
   bool open(const std::string& path, const RunDocument& header);
+  // The journal of a resumed run (`sabus run --resume`): the header record
+  // and the vectors the stopped run finished, written to PATH.tmp, fsynced
+  // and renamed over PATH, so that a journal already at PATH (a killed
+  // run's, which may be where those vectors come from) is replaced only by
+  // one that holds them all. The file stays open for append.
+  bool open(const std::string& path, const RunDocument& header, const std::vector<VectorRecord>& earlier);
   bool append(const VectorRecord& v);
   // Writes the end record (the finished header: status, summary, ...),
   // fsyncs and closes the file.

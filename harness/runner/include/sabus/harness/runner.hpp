@@ -5,6 +5,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -141,6 +142,8 @@ struct LivenessResult {
   std::string detail;
 };
 
+struct StoredDataBackup;
+
 struct RunOptions {
   bool allow_motion = false;
   bool allow_destructive = false;
@@ -187,8 +190,14 @@ struct RunOptions {
   // one a repeat recovered.
   bool strict_line = false;
   // --max-line-fault-rate: the share of garbled replies a line survey
-  // (Step::Kind::kLineSurvey) accepts before it fails the device.
+  // (Step::Kind::kSurvey) accepts before it fails the device.
   double max_line_fault_rate = 0.1;
+  // `sabus run --resume`: the vectors a stopped run finished, counted first
+  // as this run's own (they are not run again), and the stored-data backup
+  // it took, which the restore at the end writes back instead of a new one
+  // (the device may hold what the stopped run's vectors wrote).
+  std::vector<VectorResult> kept;
+  std::shared_ptr<const StoredDataBackup> backup;
 };
 
 // The controller's stored data as read back through the protocol before the
@@ -205,6 +214,9 @@ struct StoredDataBackup {
   // "signposts": {"slot": "hex of the reply's data"} (empty slots left out),
   // "navigation": "hex" or null (no reply)}.
   std::string to_json() const;
+  // The backup file read back (to_json's form); nullopt with `error` saying
+  // what is wrong. `file` and `taken` are left for the caller.
+  static std::optional<StoredDataBackup> from_json(const std::string& text, std::string& error);
 };
 
 // A poll for rest is a poll whose `until` names an axis's movement status

@@ -51,7 +51,13 @@ class InProcessTransport final : public Transport {
   TimePoint now() const override { return clock_.now(); }
 
   bool in_process() const override { return true; }
-  std::optional<std::vector<std::string>> take_nak_rules() override { return bus_.take_nak_rules(); }
+  // Over an emulated noisy line (set_line_faults) nullopt, as on a real
+  // line: the line may have changed the frame the controller judged.
+  std::optional<std::vector<std::string>> take_nak_rules() override {
+    auto rules = bus_.take_nak_rules();
+    if (to_device_) return std::nullopt;
+    return rules;
+  }
   bool can_send_parity_errors() const override { return true; }
   bool parity_in_bit7() const override { return true; }
   int baud() const override { return 0; }
