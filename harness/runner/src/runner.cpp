@@ -304,18 +304,21 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
   const TimePoint t0 = s.transport.now();
   const LineFaultCounts before = s.line;
   try {
-    std::size_t faults_before = s.line.faults, recovered_before = s.line.recovered, silent_before = s.silent_repeats;
+    std::size_t faults_before = s.line.faults, recovered_before = s.line.recovered, silent_before = s.unsure_repeats;
     Attempt a = attempt(s, v, r.transcript);
     // The line: an attempt the line left unjudged (an error), or one that
     // failed after a line fault (a repeat also shifts the timing a vector
     // may rest on), says nothing sure of the device. The vector runs again
-    // from its setup, up to RunOptions::retries times, and the first attempt
+    // from its setup, up to RunOptions::retries + 1 times, and the first attempt
     // the line left alone decides; its commands are not sent twice blindly,
     // the setup puts the device back where the vector starts. (Under
     // --strict-line a line fault is the failure: nothing runs again.)
-    for (int again = 1; again <= s.options.retries && !s.options.strict_line; ++again) {
+    // One run more than the exchange's repeats: a vector of fifty STOREs
+    // meets the line fifty times.
+    const int reruns = s.options.retries > 0 ? s.options.retries + 1 : 0;
+    for (int again = 1; again <= reruns && !s.options.strict_line; ++again) {
       const bool touched =
-          !a.error.empty() || (!a.failures.empty() && (s.line.faults > faults_before || s.silent_repeats > silent_before));
+          !a.error.empty() || (!a.failures.empty() && (s.line.faults > faults_before || s.unsure_repeats > silent_before));
       if (!touched) break;
       if (s.options.record_transcripts)
         r.transcript.push_back({s.t_ms(), false, {}, "the line touched this attempt (" +
@@ -323,7 +326,7 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
                                 {}, ""});
       faults_before = s.line.faults;
       recovered_before = s.line.recovered;
-      silent_before = s.silent_repeats;
+      silent_before = s.unsure_repeats;
       a = attempt(s, v, r.transcript);
     }
     // An attempt that ended with every fault of its own recovered settled

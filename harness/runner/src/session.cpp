@@ -131,6 +131,13 @@ std::string Session::last_fault(bool reply_due) const {
   // one, which a line that drops or adds a byte makes of a frame it must
   // ignore (an overrun one byte shorter is a frame of a wrong length).
   if (silence_due_ && !frames_.empty()) return "a reply where silence was due";
+  // One frame is answered with one reply (§1); a second is a frame the line
+  // made of the bytes of the first (an overrun one byte short is a frame).
+  if (reply_due && frames_.size() > 1) return std::to_string(frames_.size()) + " replies to one frame";
+  // An ACK (or the offline reply) was due and a NAK came: a request the line
+  // shortened by two equal bytes (an XOR check byte does not see them go)
+  // is NAKed for its length.
+  if (ack_due_ && frames_.size() == 1 && frames_[0].kind == FrameKind::kNak) return "a NAK where an ACK was due";
   // A reply for another command is a late or stray frame (a request the
   // line cut in two can be answered after the next one went out).
   if (frames_.size() == 1 && command != 0 && frames_[0].command != command && !is_offline_reply(frames_[0]))
@@ -149,16 +156,18 @@ std::string Session::last_fault(bool reply_due) const {
 
 bool Session::read_back() {
   const Bytes poll = encode_request(StatusPoll{}, profile.address);
-  const bool silence_due = std::exchange(silence_due_, false);
+  const bool silence_due = std::exchange(silence_due_, false), ack_due = std::exchange(ack_due_, false);
   for (int i = 0; i <= options.retries; ++i) {
     if (i > 0) transport.pause(silence_window());
     const auto replies = exchange(poll, {}, reply_timeout(poll.size()));
     if (last_fault(true).empty() && replies.size() == 1 && replies[0].command == 0x31) {
       silence_due_ = silence_due;
+      ack_due_ = ack_due;
       return true;
     }
   }
   silence_due_ = silence_due;
+  ack_due_ = ack_due;
   return false;
 }
 
@@ -170,9 +179,10 @@ bool Session::read_back() {
 // device's answer, not the line's: it is judged as one (except for a frame
 // that is never sent again: its silence may be a request the line lost).
 Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window,
-                                         bool reply_due, bool must_not_act, bool silence_due) {
+                                         bool reply_due, bool must_not_act, bool silence_due, bool ack_due) {
   Judged j;
   silence_due_ = silence_due;
+  ack_due_ = ack_due;
   j.replies = exchange(chars, m, window);
   j.fault = last_fault(reply_due);
   if (j.fault.empty()) return j;
@@ -180,7 +190,10 @@ Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m,
   // offline reply or silence) does nothing on a conforming device, however
   // often it comes: it is sent again like a read. On a device that acts on
   // it the vector fails anyway.
-  const Resend rule = must_not_act ? Resend::kAtOnce : resend_rule(chars);
+  // A NAK says the command was not executed (§3): sending it again cannot
+  // make it act twice.
+  const bool naked = j.fault == "a NAK where an ACK was due";
+  const Resend rule = must_not_act || naked ? Resend::kAtOnce : resend_rule(chars);
   const std::string first_fault = j.fault;
   bool garbled = j.fault != "no reply";  // bytes came back that were not a clean reply
   int tries = 1;
@@ -210,6 +223,7 @@ Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m,
     // The same bytes again: a line does not garble twice alike, so the
     // device sent them; its reply is judged as it is.
     if (!raw_.empty() && raw_ == before) {
+      ++unsure_repeats;  // a line can drop any one of ten blanks alike: the vector may run again
       note("the repeat got the same bytes: the device's reply, not the line's");
       j.fault += " (the same bytes on a repeat: the device's, not the line's)";
       return j;
@@ -219,7 +233,7 @@ Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m,
   // Silence on every try is the device's own answer, unless the frame was
   // not sent again: a request lost on the line leaves the same silence.
   if (!garbled && (rule != Resend::kNever || retries == 0)) {
-    if (tries > 1) ++silent_repeats;  // the vector may run again (runner.cpp): a lost request looks the same
+    if (tries > 1) ++unsure_repeats;  // the vector may run again (runner.cpp): a lost request looks the same
     j.fault.clear();
     return j;
   }

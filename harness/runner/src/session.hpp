@@ -43,9 +43,10 @@ class Session : public ReceiverSink {
   // its failure is then an error's reason (Verdict::kError), not the device's.
   bool line_error = false;
   bool measuring = false;  // a survey runs: no exchange is repeated, the faults are what it counts
-  // Exchanges where a reply was due and every try, repeats included, was
-  // silent: judged as the device's silence, but the vector may run again.
-  std::size_t silent_repeats = 0;
+  // Exchanges judged as the device's answer after a repeat (every try
+  // silent, or the same bytes twice) that a line could still have made:
+  // the vector may run again (runner.cpp).
+  std::size_t unsure_repeats = 0;
   LineFaultCounts line;  // the run's exchanges and line faults so far
   TurnaroundMeter turnaround;  // request end on the wire -> first reply byte
   std::size_t bytes_sent = 0, bytes_received = 0;
@@ -70,9 +71,11 @@ class Session : public ReceiverSink {
   };
   // `must_not_act`: the step expects the device to refuse or ignore the
   // frame (a NAK, the offline reply, silence).
-  // `silence_due`: the step expects silence, so a reply is a fault to try again.
+  // `silence_due`: the step expects silence, so a reply is a fault to try
+  // again; `ack_due`: it expects an ACK or the offline reply, so a NAK is (a NAKed command did
+  // nothing, so any frame may be sent again).
   Judged exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window, bool reply_due,
-                         bool must_not_act = false, bool silence_due = false);
+                         bool must_not_act = false, bool silence_due = false, bool ack_due = false);
   bool track_governs();
   // The frames of the last exchange.
   const std::vector<Frame>& last_replies() const { return frames_; }
@@ -136,7 +139,8 @@ class Session : public ReceiverSink {
   std::vector<std::string> ignored_;
   Bytes raw_;  // the bytes of the last exchange's replies, as received
   std::uint8_t last_command_ = 0;
-  bool silence_due_ = false;  // the exchange being judged expects silence  // the code of the frame the device acts on in the last exchange (0: none)
+  bool silence_due_ = false;  // the exchange being judged expects silence
+  bool ack_due_ = false;      // the exchange being judged expects an ACK  // the code of the frame the device acts on in the last exchange (0: none)
 };
 
 // The frame of a send that the device acts on, as a device's receiver reads

@@ -230,7 +230,11 @@ std::optional<std::string> Session::run_send(const Step& step) {
                          return a.expect.kind == K::kNak || a.expect.kind == K::kOffline || a.expect.kind == K::kSilence;
                        });
   const Judged judged = exchange_judged(wire, s.modifiers, window, !silence && s.expect.kind != K::kAny, refused,
-                                       silence && s.expect.readings.empty());
+                                       silence && s.expect.readings.empty(),
+                                       (s.expect.kind == K::kAck || s.expect.kind == K::kOffline) &&
+                                           std::all_of(s.expect.readings.begin(), s.expect.readings.end(), [](const ReadingAlternative& a) {
+                                             return a.expect.kind == K::kAck || a.expect.kind == K::kOffline;
+                                           }));
   const auto& replies = judged.replies;
   expect.clear();
   const auto nak_rules = transport.take_nak_rules();
