@@ -385,7 +385,10 @@ void write_reports(const ReportPaths& paths, const reports::RunDocument& doc) {
 
 // The lines after the last vector: liveness, backup, restore, abort, summary;
 // the exit status.
-int finish_console(Console& console, const RunResult& run, const reports::RunDocument& doc) {
+// `on_a_line`: the device is reached over a line, a real one or one emulated
+// with --line-faults; the in-process controller's own exchanges never fault,
+// so its figures would only push the summary off the last line.
+int finish_console(Console& console, const RunResult& run, const reports::RunDocument& doc, bool on_a_line) {
   console.end();
   for (const auto& l : run.liveness)
     if (!l.alive) console.line(fmt::format("LIVENESS {}: {}", l.when, l.detail));
@@ -393,9 +396,10 @@ int finish_console(Console& console, const RunResult& run, const reports::RunDoc
   for (const auto& n : run.restore_notes) console.line("RESTORE " + n);
   if (run.aborted) console.line((run.stopped_by.empty() ? "ABORTED: " : "STOPPED: ") + run.abort_reason);
   console.line(reports::summary_line(*doc.summary));
-  // The line figures whenever exchanges were counted: a bench engineer
-  // reads a clean line's zero as much as a noisy line's count.
-  if (const std::string line = reports::line_text(*doc.summary); !line.empty()) console.line(line);
+  // The line figures over a line: a bench engineer reads a clean line's
+  // zero as much as a noisy line's count.
+  if (const std::string line = reports::line_text(*doc.summary); !line.empty() && (on_a_line || run.line.faults > 0))
+    console.line(line);
   if (const std::string warning = reports::line_warning(*doc.summary); !warning.empty())
     console.line(std::string(console.colour() ? "\033[33mWARNING\033[0m: " : "WARNING: ") + warning);
   const int status = run.exit_code();
@@ -499,7 +503,7 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
   if (resume) reports::add_stopped_run(doc, resume->stopped.doc);
   journal.close(*paths, doc);
   write_reports(*paths, doc);
-  return finish_console(console, run, doc);
+  return finish_console(console, run, doc, !transport.in_process() || device.injected_faults != nullptr);
 }
 
 static_assert(kExitNothingRan == harness::kNothingRanExitCode);

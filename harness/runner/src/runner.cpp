@@ -347,6 +347,7 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
   r.duration_ms = std::chrono::duration<double, std::milli>(s.transport.now() - t0).count();
   r.line = {s.line.exchanges - before.exchanges, s.line.faults - before.faults, s.line.recovered - before.recovered,
             s.line.repeats - before.repeats};
+  if (!s.transport.is_a_line()) r.line = {};  // no line, no line figures: every fault was the device's
   set_verdict(r, s.options);
 }
 
@@ -486,6 +487,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
   result.silence_listened = s.silence_listened;
   result.silence_windows = s.silence_windows;
   result.line = s.line;
+  if (!transport_.is_a_line()) result.line = {};  // no line, no line figures: every fault was the device's
   return result;
 }
 

@@ -260,7 +260,9 @@ std::optional<std::string> Session::run_send(const Step& step) {
   auto failure = s.expect.readings.empty() ? check_reply(s.expect, got) : check_sides(s.expect, got);
   // With no repeat allowed (--retries 0) a line fault is judged as the reply
   // it left; the failure says what the line did, for whoever reads it.
-  if (failure && !judged.fault.empty()) *failure += " (the reply showed a line fault: " + judged.fault + ")";
+  // (Without a line the failure's own words say what the reply was.)
+  if (failure && !judged.fault.empty() && transport.is_a_line())
+    *failure += " (the reply showed a line fault: " + judged.fault + ")";
   return failure;
 }
 

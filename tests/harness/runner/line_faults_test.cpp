@@ -44,7 +44,9 @@ Outcome run_with(const std::vector<Vector>& vectors, FaultSet faults, RunOptions
              std::optional<LineFaultSpec> line = std::nullopt) {
   const Profile p = reference_profile();
   auto t = make_in_process_transport({p}, faults);
-  if (line) t->set_line_faults(*line);
+  // A line, clean unless `line` says: without one the runner counts no line
+  // faults (every fault is the device's), and these tests count them.
+  t->set_line_faults(line.value_or(LineFaultSpec{0, kAllLineFaultKinds, 1}));
   t->bus().set_transcript(true);
   Outcome r;
   r.result = Runner(*t, p, o).run(vectors);
@@ -147,6 +149,7 @@ class GarblingTransport final : public Transport {
   void pause(std::chrono::milliseconds d) override { inner_.pause(d); }
   TimePoint now() const override { return inner_.now(); }
   bool in_process() const override { return true; }
+  bool is_a_line() const override { return true; }
   bool can_send_parity_errors() const override { return true; }
   int baud() const override { return 0; }
   std::string describe() const override { return "a line that garbles every reply to one command"; }
@@ -207,6 +210,21 @@ TEST(LineFaults, TheSameGarbledBytesOnARepeatAreTheDevicesReplyAndFail) {
   // so the vector runs again, and fails each time.
   EXPECT_EQ(v.line.repeats, 4u);
   EXPECT_EQ(v.line.faults, 0u) << "not the line's";
+}
+
+// Without a line (the in-process controller, no --line-faults) a garbled
+// reply is the device's own: no line fault is counted, and the failure does
+// not name a line.
+TEST(LineFaults, WithoutALineNoLineFaultIsCounted) {
+  const Profile p = reference_profile();
+  auto t = make_in_process_transport({p}, {Fault::kGarblesReplies});
+  const RunResult r = Runner(*t, p, retries(0)).run({vector_with("poll", {status()})});
+  const VectorResult& v = r.vectors.at(0);
+  ASSERT_EQ(v.verdict, Verdict::kFail);
+  EXPECT_EQ(v.failures.at(0).find("line fault"), std::string::npos) << v.failures[0];
+  EXPECT_EQ(v.line.faults, 0u);
+  EXPECT_EQ(r.line.faults, 0u);
+  EXPECT_EQ(r.line.exchanges, 0u) << "no line figures at all";
 }
 
 TEST(LineFaults, ANoisyLineGivesTheVerdictsOfACleanOne) {

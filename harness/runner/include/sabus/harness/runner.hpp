@@ -270,7 +270,9 @@ struct RunResult {
   std::size_t passed = 0, failed = 0, skipped = 0, known = 0, unexpected = 0;
   std::size_t inconclusive = 0;  // Verdict::kInconclusive: ran, checked nothing
   std::size_t errors = 0;        // Verdict::kError: ran, the line left it unjudged
-  LineFaultCounts line;          // the whole run's exchanges, liveness and backup included
+  // The whole run's exchanges, liveness and backup included; all zero
+  // without a line (Transport::is_a_line: the in-process controller).
+  LineFaultCounts line;
   std::map<SkipCause, std::size_t> skipped_by_cause;
   // 0: every must-level vector that ran passed; 1: otherwise (a liveness
   // check failed on a device that sends bytes, too); 3: the device could not

@@ -51,6 +51,11 @@ class Transport {
   virtual TimePoint now() const = 0;
 
   virtual bool in_process() const { return false; }
+  // Whether bytes cross a line that can garble them: every real line, and
+  // the in-process controller behind an emulated noisy one. Without a line
+  // every fault of a reply is the device's own: the runner gives no line
+  // figures (RunResult::line all zero).
+  virtual bool is_a_line() const { return !in_process(); }
   // The names of the NAK rules (nak_rules.hpp) the device applied since the
   // last call, oldest first; nullopt when the device cannot tell (every real
   // line). The reference controller knows why it NAKs.

@@ -51,6 +51,7 @@ class InProcessTransport final : public Transport {
   TimePoint now() const override { return clock_.now(); }
 
   bool in_process() const override { return true; }
+  bool is_a_line() const override { return to_device_.has_value(); }
   // Over an emulated noisy line (set_line_faults) nullopt, as on a real
   // line: the line may have changed the frame the controller judged.
   std::optional<std::vector<std::string>> take_nak_rules() override {
