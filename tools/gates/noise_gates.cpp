@@ -117,7 +117,6 @@ int main(int argc, char** argv) {
       const RunResult& clean = clean_runs[i].result;
       t.clean_s += clean_runs[i].virtual_s;
       const NoisyRun noisy = run_suite(p, vectors, {}, LineFaultSpec{rate, kAllLineFaultKinds, seed + i}, 1);
-      std::size_t false_failures = 0, changed = 0, unrecovered = 0;
       std::vector<std::string> problems;
       for (std::size_t k = 0; k < noisy.result.vectors.size() && k < clean.vectors.size(); ++k) {
         const VectorResult& n = noisy.result.vectors[k];
@@ -128,15 +127,12 @@ int main(int argc, char** argv) {
         }
         if (n.verdict == Verdict::kError) continue;
         if (n.verdict == Verdict::kFail && c.verdict != Verdict::kFail) {
-          ++false_failures;
           problems.push_back(fmt::format("FALSE FAILURE {}: {}", n.id, first_words(n)));
         } else if (n.verdict != c.verdict) {
-          ++changed;
           problems.push_back(fmt::format("CHANGED {}: {} -> {}: {}", n.id, to_string(c.verdict), to_string(n.verdict),
                                          first_words(n)));
         }
         if (n.id != kSurvey && n.line.recovered != n.line.faults) {
-          ++unrecovered;
           problems.push_back(fmt::format("UNRECOVERED {}: {} of {} faults", n.id, n.line.faults - n.line.recovered, n.line.faults));
           for (const auto& e : n.transcript) problems.back() += fmt::format("\n      {} {}", e.sent ? ">" : "<", e.note);
         }
