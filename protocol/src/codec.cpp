@@ -10,7 +10,7 @@
 namespace sabus {
 namespace {
 
-constexpr std::size_t kDataStart = 3;  // byte 3 is the first data byte of every frame
+constexpr std::size_t kDataStart = kFrameDataStart;
 
 // A field's width on the wire; an Opaque field of width 0 takes the rest.
 template <class C, class T>

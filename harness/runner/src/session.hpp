@@ -58,9 +58,18 @@ class Session : public ReceiverSink {
   // that come back within `window`, stopping early once a frame arrived and
   // the line went quiet. Paces commands (RunOptions::pace). Throws TransportLost.
   std::vector<Frame> exchange(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window);
+  // What a step expects of the device, as far as telling the line's faults
+  // from the device's answer goes (due_of in steps.cpp derives it from the
+  // step's Expectation).
+  struct Due {
+    bool reply = true;           // a reply is due: a silence may be a request the line lost
+    bool must_not_act = false;   // the device must refuse or ignore the frame (a NAK, the offline reply, silence)
+    bool silence = false;        // silence is due: a reply is a fault to try again
+    bool ack = false;            // an ACK or the offline reply is due: a NAK is a fault (a NAKed command did nothing)
+    bool header_judges = false;  // an ACK is due and the step checks no more than its header (start, address, command)
+  };
   // exchange(), repeated after a line fault as RunOptions::retries and the
-  // frame's resend rule allow (resend_rule). `reply_due`: a reply is due (a
-  // silence then may be a lost request); false for an ignore path.
+  // frame's resend rule allow (resend_rule).
   struct Judged {
     std::vector<Frame> replies;
     // The line fault the replies still show ("" when clean): with retries
@@ -68,14 +77,11 @@ class Session : public ReceiverSink {
     // exchange could not be judged.
     std::string fault;
     bool error = false;
+    // The reply the line garbled after its header, which showed the device
+    // took the frame (accepted_header): `replies` holds that header alone.
+    bool header_only = false;
   };
-  // `must_not_act`: the step expects the device to refuse or ignore the
-  // frame (a NAK, the offline reply, silence).
-  // `silence_due`: the step expects silence, so a reply is a fault to try
-  // again; `ack_due`: it expects an ACK or the offline reply, so a NAK is (a NAKed command did
-  // nothing, so any frame may be sent again).
-  Judged exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window, bool reply_due,
-                         bool must_not_act = false, bool silence_due = false, bool ack_due = false);
+  Judged exchange_judged(const Bytes& chars, const Modifiers& m, std::chrono::milliseconds window, const Due& due);
   bool track_governs();
   // The frames of the last exchange.
   const std::vector<Frame>& last_replies() const { return frames_; }
@@ -106,6 +112,7 @@ class Session : public ReceiverSink {
     const std::vector<Frame>& replies;
     const std::optional<std::vector<std::string>>& nak_rules;  // the reference controller's, when it says
     std::uint8_t address = 0, command = 0;                    // the frame the device acted on
+    bool header_only = false;                                 // the line garbled the reply after its header (Judged)
   };
   std::optional<std::string> check_reply(const Expectation& e, const Reply& got);
   // check_reply against each side of the open points `e.readings` names.
@@ -126,9 +133,15 @@ class Session : public ReceiverSink {
   void send_in_chunks(const Bytes& chars, const Modifiers& m);
   std::optional<std::string> check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers);
   std::chrono::milliseconds poll_timeout(const Step& s, const FrameDescription& first_reply);
-  // The line fault the last exchange showed: what the master's receiver
-  // discarded, or no reply where one was due; "" when clean.
-  std::string last_fault(bool reply_due) const;
+  // The line fault the last exchange showed, for a step that expects `due`:
+  // what the master's receiver discarded, or no reply where one was due; ""
+  // when clean.
+  std::string last_fault(const Due& due) const;
+  // The ACK header the garbled reply of the last exchange starts with, when
+  // it is the device's answer to the frame sent (its address and command),
+  // each byte a well-formed character: the device took the frame. nullopt
+  // otherwise.
+  std::optional<Frame> accepted_header() const;
   // A status poll after a line fault, before a command that changes state is
   // sent again: the device answers cleanly again. False when it does not.
   bool read_back();
@@ -138,9 +151,8 @@ class Session : public ReceiverSink {
   std::vector<Frame> frames_;
   std::vector<std::string> ignored_;
   Bytes raw_;  // the bytes of the last exchange's replies, as received
-  std::uint8_t last_command_ = 0;
-  bool silence_due_ = false;  // the exchange being judged expects silence
-  bool ack_due_ = false;      // the exchange being judged expects an ACK  // the code of the frame the device acts on in the last exchange (0: none)
+  std::uint8_t last_command_ = 0;  // the code of the frame the device acts on in the last exchange (0: none)
+  std::uint8_t last_address_ = 0;  // and its address
 };
 
 // The frame of a send that the device acts on, as a device's receiver reads

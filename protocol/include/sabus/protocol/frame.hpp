@@ -22,6 +22,10 @@ struct Frame {
   bool operator==(const Frame&) const = default;
 };
 
+// Bytes 0-2 are the header (start, address, command); byte 3 is the first
+// data byte of every frame (§1 Message Format).
+inline constexpr std::size_t kFrameDataStart = 3;
+
 // 7-bit characters, STX/ACK/NAK through the check byte.
 Bytes encode_frame(const Frame& frame, LrcRule rule = LrcRule::kFromByte0);
 
