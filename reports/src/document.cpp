@@ -35,11 +35,15 @@ std::string line_counts_problem(const harness::LineFaultCounts& c) {
     return std::to_string(c.recovered) + " recovered of " + std::to_string(c.faults) + " faults: a recovered fault is a fault";
   if (c.repeats > c.exchanges)
     return std::to_string(c.repeats) + " repeats in " + std::to_string(c.exchanges) + " exchanges: a repeat is an exchange";
+  if (c.faults + c.surveyed > c.exchanges)
+    return std::to_string(c.faults) + " faults and " + std::to_string(c.surveyed) + " surveyed in " + std::to_string(c.exchanges) +
+           " exchanges: each is an exchange";
   return "";
 }
 
 double line_fault_rate(const harness::LineFaultCounts& c) {
-  return c.exchanges == 0 ? 0.0 : static_cast<double>(c.faults) / static_cast<double>(c.exchanges);
+  // Every garbled reply seen, the survey's too: the line's rate, not the recoveries'.
+  return c.exchanges == 0 ? 0.0 : static_cast<double>(c.faults + c.surveyed) / static_cast<double>(c.exchanges);
 }
 
 Summary RunDocument::counts() const {
@@ -202,13 +206,14 @@ void finish(RunDocument& doc, const harness::RunResult& run, std::string finishe
 // ---- JSON ------------------------------------------------------------------------
 
 ordered_json line_json(const harness::LineFaultCounts& c) {
-  return {{"exchanges", c.exchanges}, {"faults", c.faults}, {"recovered", c.recovered}, {"repeats", c.repeats}};
+  return {{"exchanges", c.exchanges}, {"faults", c.faults}, {"recovered", c.recovered}, {"repeats", c.repeats},
+          {"surveyed", c.surveyed}};
 }
 
 ordered_json header_json(const RunDocument& d) {
   const auto text = [](const std::string& s) { return json_string(s); };
   ordered_json j = {{"schema", kSchemaName},
-                    {"schema_version", d.schema_version},
+                    {"schema_version", kSchemaVersion},  // the layout written is this version's, whatever was read
                     {"generator", text(d.generator)},
                     {"started_at", text(d.started_at)},
                     {"finished_at", text(d.finished_at)},
@@ -288,9 +293,9 @@ T get(const json& j, const char* key, T fallback) {
   return it->get<T>();
 }
 
-// "line" {exchanges, faults, recovered, repeats} (v5): all zero when absent,
-// as in documents of versions 1 to 4; counts line_counts_problem refuses
-// are an error naming them.
+// "line" {exchanges, faults, recovered, repeats} (v5), surveyed (v6): zero
+// when absent, as in documents of older versions; counts
+// line_counts_problem refuses are an error naming them.
 harness::LineFaultCounts line_from_json(const json& j) {
   harness::LineFaultCounts c;
   const json line = get<json>(j, "line", json::object());
@@ -299,6 +304,7 @@ harness::LineFaultCounts line_from_json(const json& j) {
   c.faults = get<std::size_t>(line, "faults", 0);
   c.recovered = get<std::size_t>(line, "recovered", 0);
   c.repeats = get<std::size_t>(line, "repeats", 0);
+  c.surveyed = get<std::size_t>(line, "surveyed", 0);
   if (const std::string why = line_counts_problem(c); !why.empty())
     throw json::other_error::create(501, "line: " + why, &line);
   return c;

@@ -267,7 +267,7 @@ TEST(Json, Version4CarriesInconclusiveAndVersion3StillReads) {
 // always written (zeros when none was counted); a version 4 document (none
 // of its fields) still reads, with no vector in error and no exchange
 // counted, and a version above 5 does not.
-TEST(Json, Version5CarriesErrorsAndLineCountsAndVersion4StillReads) {
+TEST(Json, ErrorsAndLineCountsAreWrittenAndVersion4StillReads) {
   RunDocument d = sample();
   d.vectors.push_back(vector("e-error", "error"));
   d.vectors.back().error_reason = "step 1 (status): no clean reply in 2 tries: bad check byte";
@@ -275,14 +275,14 @@ TEST(Json, Version5CarriesErrorsAndLineCountsAndVersion4StillReads) {
   d.summary->errors = 1;
   d.summary->line = {1412, 3, 1, 2};
   const nlohmann::json j = nlohmann::json::parse(json_text(d));
-  EXPECT_EQ(j["schema_version"], 5);
+  EXPECT_EQ(j["schema_version"], kSchemaVersion);
   EXPECT_EQ(j["summary"]["errors"], 1);
-  EXPECT_EQ(j["summary"]["line"], nlohmann::json::parse(R"({"exchanges":1412,"faults":3,"recovered":1,"repeats":2})"));
+  EXPECT_EQ(j["summary"]["line"], nlohmann::json::parse(R"({"exchanges":1412,"faults":3,"recovered":1,"repeats":2,"surveyed":0})"));
   EXPECT_EQ(j["vectors"][4]["outcome"], "error");
   EXPECT_EQ(j["vectors"][4]["error_reason"], "step 1 (status): no clean reply in 2 tries: bad check byte");
-  EXPECT_EQ(j["vectors"][4]["line"], nlohmann::json::parse(R"({"exchanges":2,"faults":2,"recovered":0,"repeats":1})"));
+  EXPECT_EQ(j["vectors"][4]["line"], nlohmann::json::parse(R"({"exchanges":2,"faults":2,"recovered":0,"repeats":1,"surveyed":0})"));
   EXPECT_EQ(j["vectors"][0]["error_reason"], "");
-  EXPECT_EQ(j["vectors"][0]["line"], nlohmann::json::parse(R"({"exchanges":0,"faults":0,"recovered":0,"repeats":0})"))
+  EXPECT_EQ(j["vectors"][0]["line"], nlohmann::json::parse(R"({"exchanges":0,"faults":0,"recovered":0,"repeats":0,"surveyed":0})"))
       << "written when nothing was counted";
   std::string error;
   const auto back = from_json(j, error);
@@ -307,10 +307,46 @@ TEST(Json, Version5CarriesErrorsAndLineCountsAndVersion4StillReads) {
   EXPECT_EQ(old->vectors[0].error_reason, "");
   EXPECT_EQ(old->vectors[0].line.exchanges, 0u);
   EXPECT_EQ(line_text(old->counts()), "") << "no line figures for a run that counted none";
-  nlohmann::json v6 = v4;
-  v6["schema_version"] = 6;
-  EXPECT_FALSE(from_json(v6, error));
-  EXPECT_NE(error.find("schema_version: 6 is not 1 to 5"), std::string::npos) << error;
+  nlohmann::json v7 = v4;
+  v7["schema_version"] = 7;
+  EXPECT_FALSE(from_json(v7, error));
+  EXPECT_NE(error.find("schema_version: 7 is not 1 to 6"), std::string::npos) << error;
+}
+
+// Version 6: the line survey's garbled replies are counted apart
+// (`surveyed`), so a run whose faults were all recovered says so; a
+// document read from an older version is written in this version's layout,
+// with this version's number.
+TEST(Json, Version6CountsTheSurveysGarbledRepliesApartAndOlderDocumentsAreWrittenAsVersion6) {
+  std::string error;
+  // the failing paths first: counts no run could have counted
+  for (const auto& [line, why] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"exchanges":10,"faults":6,"recovered":6,"repeats":0,"surveyed":5})", "6 faults and 5 surveyed in 10 exchanges"},
+           {R"({"exchanges":10,"faults":0,"recovered":0,"repeats":0,"surveyed":-1})", "surveyed"},
+           {R"({"exchanges":10,"faults":0,"recovered":0,"repeats":0,"surveyed":"2"})", "surveyed"}}) {
+    auto doc = nlohmann::json::parse(R"({"schema":"sabus-run","schema_version":6,"status":"complete",
+      "vectors":[{"id":"x","paragraph":"1","level":"must","outcome":"pass","failures":[],"transcript":[]}]})");
+    doc["vectors"][0]["line"] = nlohmann::json::parse(line);
+    EXPECT_FALSE(from_json(doc, error)) << line;
+    EXPECT_NE(error.find(why), std::string::npos) << line << ": " << error;
+  }
+  RunDocument d = sample();
+  d.summary->line = {900, 31, 31, 20, 2};
+  const nlohmann::json j = nlohmann::json::parse(json_text(d));
+  EXPECT_EQ(j["summary"]["line"]["surveyed"], 2);
+  const auto back = from_json(j, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->summary->line.surveyed, 2u);
+  EXPECT_EQ(line_text(back->counts()),
+            "line: 31 faults in 900 exchanges, all recovered; 2 garbled replies counted by the line survey (fault rate 3.67%)");
+  nlohmann::json v5 = j;
+  v5["schema_version"] = 5;
+  v5["summary"]["line"].erase("surveyed");
+  const auto old = from_json(v5, error);
+  ASSERT_TRUE(old) << error;
+  EXPECT_EQ(old->summary->line.surveyed, 0u);
+  EXPECT_EQ(nlohmann::json::parse(json_text(*old))["schema_version"], kSchemaVersion)
+      << "the layout written is this version's: its number is too";
 }
 
 // A run that never ended (no summary) has the line counts of its vectors.

@@ -3,10 +3,16 @@
 // uses) against the reference controller, with motion and destructive
 // vectors allowed, on every shipped profile:
 //  1. at a byte error rate of 1e-3 with the runner's line default (one
-//     repeat, RunOptions::retries = 1): no vector fails that passes on a clean
-//     line, every vector that is not in error has its clean verdict, and
-//     every line fault outside the line survey (which counts them, and never
-//     repeats) was recovered;
+//     repeat, RunOptions::retries = 1): every vector has its clean line's
+//     verdict (none fails, none is in error) and every line fault was
+//     recovered, the runner's own exchanges' too (the line survey's garbled
+//     replies are its measure, counted apart: LineFaultCounts::surveyed).
+//     On the fixed seed: a vector in error is a legal outcome on a noisy
+//     line, and over 40 seeds 9 of 262,600 vectors ended in error (a key or
+//     jog whose every attempt met a fault the header does not settle: a
+//     silence, or a reply garbled in its header or in the data the step
+//     reads): the gate runs the fixed seed, and `noise_gates SEED` measures
+//     another;
 //  2. the same line with --retries 0: the run fails, and says the faults
 //     were the line's;
 //  3. mutation under noise: every injected fault (faults.hpp) still fails a
@@ -35,9 +41,6 @@ namespace {
 
 using namespace sabus::harness;
 namespace fs = std::filesystem;
-
-// The line survey: it measures the line and never repeats an exchange.
-constexpr std::string_view kSurvey = "framing-status-replies-not-garbled";
 
 struct NoisyRun {
   RunResult result;
@@ -75,7 +78,7 @@ std::string first_words(const VectorResult& v) {
 }
 
 struct Totals {
-  std::size_t exchanges = 0, injected = 0, seen = 0, recovered = 0, errors = 0, vectors = 0;
+  std::size_t exchanges = 0, injected = 0, seen = 0, recovered = 0, surveyed = 0, errors = 0, vectors = 0;
   double clean_s = 0, noisy_s = 0;
 };
 
@@ -125,18 +128,28 @@ int main(int argc, char** argv) {
           problems.push_back("the runs ran different vectors: " + n.id + " / " + c.id);
           break;
         }
-        if (n.verdict == Verdict::kError) continue;
+        if (n.verdict == Verdict::kError) {
+          // The same verdicts as a clean line: at the gated rate an error is
+          // a verdict the clean line did not give.
+          if (gated) problems.push_back(fmt::format("ERROR {}: {}", n.id, n.error_reason));
+          continue;
+        }
         if (n.verdict == Verdict::kFail && c.verdict != Verdict::kFail) {
           problems.push_back(fmt::format("FALSE FAILURE {}: {}", n.id, first_words(n)));
         } else if (n.verdict != c.verdict) {
           problems.push_back(fmt::format("CHANGED {}: {} -> {}: {}", n.id, to_string(c.verdict), to_string(n.verdict),
                                          first_words(n)));
         }
-        if (n.id != kSurvey && n.line.recovered != n.line.faults) {
+        if (n.line.recovered != n.line.faults) {
           problems.push_back(fmt::format("UNRECOVERED {}: {} of {} faults", n.id, n.line.faults - n.line.recovered, n.line.faults));
           for (const auto& e : n.transcript) problems.back() += fmt::format("\n      {} {}", e.sent ? ">" : "<", e.note);
         }
       }
+      // The runner's own exchanges (liveness, the stop after motion, the
+      // backup reads) too.
+      if (noisy.result.line.recovered != noisy.result.line.faults)
+        problems.push_back(fmt::format("UNRECOVERED in the run: {} of {} faults", noisy.result.line.faults - noisy.result.line.recovered,
+                                       noisy.result.line.faults));
       if (noisy.result.vectors.size() != clean.vectors.size())
         problems.push_back(fmt::format("{} vectors ran, {} on a clean line{}", noisy.result.vectors.size(), clean.vectors.size(),
                                        noisy.result.aborted ? ": " + noisy.result.abort_reason : ""));
@@ -146,6 +159,7 @@ int main(int argc, char** argv) {
       t.injected += noisy.injected.total();
       t.seen += noisy.result.line.faults;
       t.recovered += noisy.result.line.recovered;
+      t.surveyed += noisy.result.line.surveyed;
       t.errors += noisy.result.errors;
       t.vectors += noisy.result.vectors.size();
       t.noisy_s += noisy.virtual_s;
@@ -154,12 +168,13 @@ int main(int argc, char** argv) {
                                pass ? "" : gated ? "  FAIL" : "");
       for (std::size_t k = 0; k < problems.size() && k < 8; ++k) std::cout << "    " << problems[k] << "\n";
       for (const auto& v : noisy.result.vectors)
-        if (v.verdict == Verdict::kError) std::cout << fmt::format("    error {}: {}\n", v.id, v.error_reason);
+        if (v.verdict == Verdict::kError && !gated) std::cout << fmt::format("    error {}: {}\n", v.id, v.error_reason);
     }
     std::cout << fmt::format(
-        "rate {:g}: {} exchanges, {} faults injected, {} exchanges with a fault seen, {} recovered, {} vectors of {} in error; "
+        "rate {:g}: {} exchanges, {} faults injected, {} exchanges with a fault seen, {} recovered, {} garbled replies counted "
+        "by the line survey, {} vectors of {} in error; "
         "{:.0f} s on the controller's clock against {:.0f} s on a clean line ({:+.1f}%)\n",
-        rate, t.exchanges, t.injected, t.seen, t.recovered, t.errors, t.vectors, t.noisy_s, t.clean_s,
+        rate, t.exchanges, t.injected, t.seen, t.recovered, t.surveyed, t.errors, t.vectors, t.noisy_s, t.clean_s,
         t.clean_s > 0 ? 100.0 * (t.noisy_s - t.clean_s) / t.clean_s : 0.0);
   }
 

@@ -73,9 +73,11 @@ std::string grouped(std::size_t n) {
 std::string describe(const LineFaultCounts& c) {
   std::string s = "line: " + grouped(c.faults) + (c.faults == 1 ? " fault" : " faults") + " in " + grouped(c.exchanges) +
                   (c.exchanges == 1 ? " exchange" : " exchanges");
-  if (c.faults == 0) return s;
-  if (c.recovered == c.faults) return s + (c.faults == 1 ? ", recovered" : ", all recovered");
-  return s + ", " + grouped(c.recovered) + " recovered";
+  if (c.faults > 0)
+    s += c.recovered == c.faults ? (c.faults == 1 ? ", recovered" : ", all recovered") : ", " + grouped(c.recovered) + " recovered";
+  if (c.surveyed > 0)
+    s += "; " + grouped(c.surveyed) + (c.surveyed == 1 ? " garbled reply" : " garbled replies") + " counted by the line survey";
+  return s;
 }
 
 Runner::Runner(Transport& transport, const Profile& profile, RunOptions options)
@@ -346,7 +348,7 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
   }
   r.duration_ms = std::chrono::duration<double, std::milli>(s.transport.now() - t0).count();
   r.line = {s.line.exchanges - before.exchanges, s.line.faults - before.faults, s.line.recovered - before.recovered,
-            s.line.repeats - before.repeats};
+            s.line.repeats - before.repeats, s.line.surveyed - before.surveyed};
   if (!s.transport.is_a_line()) r.line = {};  // no line, no line figures: every fault was the device's
   set_verdict(r, s.options);
 }

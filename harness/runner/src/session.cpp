@@ -263,7 +263,8 @@ Session::Judged Session::exchange_judged(const Bytes& chars, const Modifiers& m,
     j.fault.clear();
     return j;
   }
-  ++line.faults;
+  // A survey counts what it measures apart (LineFaultCounts::surveyed).
+  ++(measuring ? line.surveyed : line.faults);
   if (retries == 0) return j;  // judged as it came; the failure names the fault
   j.error = true;
   const bool took_it = rule == Resend::kNever && accepted_header().has_value();

@@ -104,7 +104,7 @@ bool hex_text(std::string_view hex) {
 // A "line" object's counts, as the schema let them through.
 harness::LineFaultCounts line_counts(const json& line) {
   return {line["exchanges"].get<std::size_t>(), line["faults"].get<std::size_t>(), line["recovered"].get<std::size_t>(),
-          line["repeats"].get<std::size_t>()};
+          line["repeats"].get<std::size_t>(), line.value("surveyed", std::size_t{0})};
 }
 
 // Line counts that cannot be what a run counted (line_counts_problem, the
@@ -173,7 +173,8 @@ void check_run(const json& run, const std::vector<const json*>& vectors, Problem
       {"exchanges", &harness::LineFaultCounts::exchanges},
       {"faults", &harness::LineFaultCounts::faults},
       {"recovered", &harness::LineFaultCounts::recovered},
-      {"repeats", &harness::LineFaultCounts::repeats}};
+      {"repeats", &harness::LineFaultCounts::repeats},
+      {"surveyed", &harness::LineFaultCounts::surveyed}};
   for (const auto& [key, figure] : figures)
     if (run_line.*figure < line.*figure)
       problems.push_back(what + ": summary.line." + key + " is " + std::to_string(run_line.*figure) + ", less than the vectors' " +

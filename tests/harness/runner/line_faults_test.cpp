@@ -100,22 +100,6 @@ TEST(LineFaults, StrictLineFailsAFaultThatARepeatRecovered) {
   EXPECT_NE(v.failures.at(0).find("--strict-line"), std::string::npos) << v.failures[0];
 }
 
-// 48h: a key pressed twice is not a key pressed once (catalog acts_again):
-// it is not sent again in its attempt; the vector runs again from its
-// setup, and the attempt the line left alone decides.
-TEST(LineFaults, ACommandThatActsAgainIsNotSentTwiceTheVectorRunsAgain) {
-  const Outcome r = run_with({vector_with("key", {send("keypress", "", {{"key code", "0x35"}})})}, {Fault::kGarblesReplies}, retries(1));
-  const VectorResult& v = r.result.vectors.at(0);
-  ASSERT_EQ(v.verdict, Verdict::kPass) << v.error_reason << (v.failures.empty() ? "" : v.failures[0]);
-  // liveness 30h 31h, the key (garbled, the attempt ends), the key of the second attempt
-  ASSERT_GE(r.commands.size(), 4u);
-  EXPECT_EQ(std::vector<std::uint8_t>(r.commands.begin(), r.commands.begin() + 4),
-            (std::vector<std::uint8_t>{0x30, 0x31, 0x48, 0x48}));
-  EXPECT_EQ(v.line.faults, 1u);
-  EXPECT_EQ(v.line.recovered, 1u) << "the clean attempt settled it";
-  EXPECT_EQ(v.line.repeats, 0u) << "no exchange was sent again";
-}
-
 // 33h 'X' changes state, and a second one leaves the device as one does: it
 // is sent again, but only after a status poll read the device back.
 TEST(LineFaults, AStopIsSentAgainOnlyAfterAStatusPoll) {
@@ -130,20 +114,30 @@ TEST(LineFaults, AStopIsSentAgainOnlyAfterAStatusPoll) {
   EXPECT_EQ(r.commands, want);
 }
 
-// A line that flips a bit of the check byte of every reply to one command
-// (3Fh) and of no other: each time another bit, as a line would, or each
-// time the same, as a device that garbles its own reply would.
+// A line that flips a bit of every reply to one command and of no other:
+// each time another bit, as a line would, or each time the same, as a
+// device that garbles its own reply would. The bit is in the check byte
+// (after the header, which still shows the device took the frame) or in
+// byte 0 (the header: the reply says nothing sure); `times` replies at most.
+enum class Where : std::uint8_t { kCheckByte, kHeader };
 class GarblingTransport final : public Transport {
  public:
-  GarblingTransport(Transport& inner, std::uint8_t garbled, bool same_each_time)
-      : inner_(inner), garbled_(garbled), same_(same_each_time) {}
+  GarblingTransport(Transport& inner, std::uint8_t garbled, bool same_each_time, Where where = Where::kCheckByte,
+                    unsigned times = ~0u)
+      : inner_(inner), garbled_(garbled), same_(same_each_time), where_(where), times_(times) {}
   void send(ByteView chars, std::span<const std::size_t> wrong_parity) override {
     last_ = chars.size() > 2 ? chars[2] : 0;
+    first_ = true;
     inner_.send(chars, wrong_parity);
   }
   std::size_t receive(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
     const std::size_t n = inner_.receive(buf, timeout);
-    if (n > 0 && last_ == garbled_) buf[n - 1] ^= static_cast<std::uint8_t>(1u << (same_ ? 0 : flips_++ % 7));
+    const bool whole = where_ == Where::kCheckByte || first_;
+    if (n > 0 && last_ == garbled_ && whole && flips_ < times_) {
+      buf[where_ == Where::kHeader ? 0 : n - 1] ^= static_cast<std::uint8_t>(1u << (same_ ? 0 : flips_ % 7));
+      ++flips_;
+    }
+    if (n > 0) first_ = false;
     return n;
   }
   void pause(std::chrono::milliseconds d) override { inner_.pause(d); }
@@ -158,13 +152,98 @@ class GarblingTransport final : public Transport {
   Transport& inner_;
   std::uint8_t garbled_, last_ = 0;
   bool same_;
+  Where where_;
+  unsigned times_;
   unsigned flips_ = 0;
+  bool first_ = false;
 };
+
+// What the controller acted on, from its bus log (run_with's reading).
+std::vector<std::uint8_t> commands_in(InProcessTransport& device) {
+  std::vector<std::uint8_t> out;
+  const std::string log = device.bus().take_log();
+  for (std::size_t at = log.find("command 02 "); at != std::string::npos; at = log.find("command 02 ", at + 1))
+    out.push_back(static_cast<std::uint8_t>(std::stoi(log.substr(at + 14, 2), nullptr, 16)));
+  return out;
+}
+
+// 48h: a key pressed twice is not a key pressed once (catalog acts_again).
+// Its reply garbled after the header (here the check byte) still shows the
+// device took the key: a step that checks no more than the header is judged
+// by it, the key is not sent again, and nothing runs again.
+TEST(LineFaults, AGarbledReplyWhoseHeaderShowsTheDeviceTookAKeyJudgesIt) {
+  const Profile p = reference_profile();
+  auto device = make_in_process_transport({p});
+  device->bus().set_transcript(true);
+  GarblingTransport line(*device, 0x48, false);
+  RunOptions o = retries(1);
+  o.record_transcripts = true;
+  const RunResult r = Runner(line, p, o).run({vector_with("key", {send("keypress", "", {{"key code", "0x35"}})})});
+  const VectorResult& v = r.vectors.at(0);
+  ASSERT_EQ(v.verdict, Verdict::kPass) << v.error_reason << (v.failures.empty() ? "" : v.failures[0]);
+  const std::vector<std::uint8_t> commands = commands_in(*device);
+  EXPECT_EQ(std::count(commands.begin(), commands.end(), 0x48), 1) << "the key was pressed once";
+  EXPECT_EQ(v.line.faults, 1u);
+  EXPECT_EQ(v.line.recovered, 1u);
+  EXPECT_EQ(v.line.repeats, 0u);
+  const bool noted = std::any_of(v.transcript.begin(), v.transcript.end(), [](const TranscriptEntry& e) {
+    return e.note.find("the reply's header shows the device took the frame") != std::string::npos;
+  });
+  EXPECT_TRUE(noted) << "the transcript says how it was judged";
+}
+
+// With --retries 0 nothing is judged but the reply as it came.
+TEST(LineFaults, WithNoRetriesAGarbledKeyReplyIsJudgedAsItCame) {
+  const Profile p = reference_profile();
+  auto device = make_in_process_transport({p});
+  GarblingTransport line(*device, 0x48, false);
+  const RunResult r = Runner(line, p, retries(0)).run({vector_with("key", {send("keypress", "", {{"key code", "0x35"}})})});
+  const VectorResult& v = r.vectors.at(0);
+  ASSERT_EQ(v.verdict, Verdict::kFail) << v.error_reason;
+  EXPECT_NE(v.failures.at(0).find("the reply showed a line fault"), std::string::npos) << v.failures[0];
+}
+
+// A header the line garbled says nothing sure (a NAK made into an ACK would
+// look alike): the key is not sent again in its attempt; the vector runs
+// again from its setup, and the attempt the line left alone decides.
+TEST(LineFaults, ACommandThatActsAgainIsNotSentTwiceTheVectorRunsAgain) {
+  const Profile p = reference_profile();
+  auto device = make_in_process_transport({p});
+  device->bus().set_transcript(true);
+  GarblingTransport line(*device, 0x48, false, Where::kHeader, 1);
+  const RunResult r = Runner(line, p, retries(1)).run({vector_with("key", {send("keypress", "", {{"key code", "0x35"}})})});
+  const VectorResult& v = r.vectors.at(0);
+  ASSERT_EQ(v.verdict, Verdict::kPass) << v.error_reason << (v.failures.empty() ? "" : v.failures[0]);
+  // liveness 30h 31h, the key (garbled, the attempt ends), the key of the second attempt
+  const std::vector<std::uint8_t> commands = commands_in(*device);
+  ASSERT_GE(commands.size(), 4u);
+  EXPECT_EQ(std::vector<std::uint8_t>(commands.begin(), commands.begin() + 4), (std::vector<std::uint8_t>{0x30, 0x31, 0x48, 0x48}));
+  EXPECT_EQ(v.line.faults, 1u);
+  EXPECT_EQ(v.line.recovered, 1u) << "the clean attempt settled it";
+  EXPECT_EQ(v.line.repeats, 0u) << "no exchange was sent again";
+}
+
+// A jog step that reads the azimuth of its status reply (§3.4) cannot be
+// judged by the header alone: with the data garbled it is left unjudged,
+// and the reason says the device took it.
+TEST(LineFaults, AStepThatChecksTheDataIsNotJudgedByTheHeader) {
+  const Profile p = reference_profile();
+  auto device = make_in_process_transport({p});
+  GarblingTransport line(*device, 0x33, false);
+  Step jog = send("jog", "W", {{"speed", "S"}, {"duration", "0"}});
+  jog.expect.fields.push_back(FieldMatcher{"azimuth", FieldMatcher::Kind::kAny, {}, 0, 0, "$from"});
+  const RunResult r = Runner(line, p, retries(1)).run({vector_with("jog", {jog})});
+  const VectorResult& v = r.vectors.at(0);
+  ASSERT_EQ(v.verdict, Verdict::kError) << (v.failures.empty() ? "" : v.failures[0]);
+  EXPECT_NE(v.error_reason.find("its header shows the device took it, and the step checks the data the line garbled"),
+            std::string::npos)
+      << v.error_reason;
+}
 
 TEST(LineFaults, ACommandThatActsAgainAndIsGarbledEveryTimeEndsInError) {
   const Profile p = reference_profile();
   auto device = make_in_process_transport({p});
-  GarblingTransport line(*device, 0x48, false);
+  GarblingTransport line(*device, 0x48, false, Where::kHeader);
   const RunResult r = Runner(line, p, retries(1)).run({vector_with("key", {send("keypress", "", {{"key code", "0x35"}})})});
   ASSERT_EQ(r.vectors.size(), 1u) << r.abort_reason;
   const VectorResult& v = r.vectors[0];

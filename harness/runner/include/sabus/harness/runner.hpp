@@ -98,15 +98,21 @@ struct LineFaultCounts {
   std::size_t faults = 0;     // exchanges that showed a line fault
   std::size_t recovered = 0;  // faults a repeat or a read-back settled
   std::size_t repeats = 0;    // exchanges sent again after a fault
+  // Garbled replies a line survey counted (§4; a survey sends each frame
+  // once: what it counts is its measure, not a fault to recover); not in
+  // `faults`.
+  std::size_t surveyed = 0;
   LineFaultCounts& operator+=(const LineFaultCounts& o) {
     exchanges += o.exchanges;
     faults += o.faults;
     recovered += o.recovered;
     repeats += o.repeats;
+    surveyed += o.surveyed;
     return *this;
   }
 };
-// "line: 3 faults in 1,412 exchanges, all recovered" (every report's words).
+// "line: 3 faults in 1,412 exchanges, all recovered" (every report's words),
+// and "; 2 garbled replies counted by the line survey" when one counted any.
 std::string describe(const LineFaultCounts& c);
 
 struct VectorResult {
