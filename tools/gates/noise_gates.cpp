@@ -37,6 +37,8 @@
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
 
+#include "shipped.hpp"
+
 namespace {
 
 using namespace sabus::harness;
@@ -86,26 +88,12 @@ struct Totals {
 
 int main(int argc, char** argv) {
   const std::uint64_t seed = argc > 1 ? std::stoull(argv[1]) : 1;
-  LoadResult suite = load_vectors({default_vectors_dir()});
-  auto lint_errors = lint(suite.files);
-  suite.errors.insert(suite.errors.end(), lint_errors.begin(), lint_errors.end());
-  for (const auto& e : suite.errors) std::cerr << e.text() << "\n";
-  if (!suite.ok()) return 2;
-  std::vector<Vector> vectors;
-  for (const auto& f : suite.files) vectors.insert(vectors.end(), f.vectors.begin(), f.vectors.end());
-  std::vector<fs::path> paths;
-  for (const auto& e : fs::directory_iterator(fs::path(default_profile_path()).parent_path()))
-    if (e.path().extension() == ".yaml") paths.push_back(e.path());
-  std::sort(paths.begin(), paths.end());
-  std::vector<Profile> profiles;
-  for (const auto& p : paths) {
-    ProfileResult loaded = load_profile_file(p.string());
-    if (!loaded) {
-      std::cerr << loaded.error->text() << "\n";
-      return 2;
-    }
-    profiles.push_back(*loaded.profile);
-  }
+  const auto suite = sabus::gates::load_linted_suite(default_vectors_dir());
+  if (!suite) return 2;
+  const std::vector<Vector>& vectors = *suite;
+  const auto shipped = sabus::gates::load_profiles(fs::path(default_profile_path()).parent_path());
+  if (!shipped) return 2;
+  const std::vector<Profile>& profiles = *shipped;
 
   bool ok = true;
   std::vector<NoisyRun> clean_runs;  // each profile's suite on a clean line

@@ -39,6 +39,8 @@
 #include "sabus/reports/journal.hpp"
 #include "sabus/reports/writers.hpp"
 
+#include "shipped.hpp"
+
 namespace {
 
 using namespace sabus::harness;
@@ -110,31 +112,14 @@ int main(int argc, char** argv) {
   const std::string vectors_dir = argc > 1 ? argv[1] : default_vectors_dir();
   const fs::path profiles_dir = argc > 2 ? fs::path(argv[2]) : fs::path(default_profile_path()).parent_path();
 
-  LoadResult suite = load_vectors({vectors_dir});
-  auto lint_errors = lint(suite.files);
-  suite.errors.insert(suite.errors.end(), lint_errors.begin(), lint_errors.end());
-  for (const auto& e : suite.errors) std::cerr << e.text() << "\n";
-  if (!suite.ok()) return 2;
-  std::vector<Vector> vectors;
-  for (const auto& f : suite.files) vectors.insert(vectors.end(), f.vectors.begin(), f.vectors.end());
-
+  const auto suite = sabus::gates::load_linted_suite(vectors_dir);
+  if (!suite) return 2;
+  const std::vector<Vector>& vectors = *suite;
   // The default profile first: most faults show there, and the search stops
   // at the first profile that catches a fault.
-  std::vector<Profile> profiles;
-  std::vector<fs::path> paths;
-  for (const auto& e : fs::directory_iterator(profiles_dir))
-    if (e.path().extension() == ".yaml") paths.push_back(e.path());
-  std::sort(paths.begin(), paths.end());
-  std::stable_partition(paths.begin(), paths.end(),
-                        [](const fs::path& p) { return p == fs::path(default_profile_path()); });
-  for (const auto& p : paths) {
-    ProfileResult loaded = load_profile_file(p.string());
-    if (!loaded) {
-      std::cerr << loaded.error->text() << "\n";
-      return 2;
-    }
-    profiles.push_back(*loaded.profile);
-  }
+  const auto shipped = sabus::gates::load_profiles(profiles_dir, default_profile_path());
+  if (!shipped) return 2;
+  const std::vector<Profile>& profiles = *shipped;
 
   bool ok = true;
   std::cout << fmt::format("== profiles: {} vectors on each shipped profile\n", vectors.size());

@@ -606,17 +606,27 @@ void read_ms(const YAML::Node& v, const At& at, const StepContext& cx, Step& ste
   step.timeout = std::chrono::milliseconds(to_integer_in(v, at, 1, kMaxMs));
 }
 
-Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
-  MapReader r(v, at, schema_keys(SchemaNode::kPoll));
-  require_keys(r, at, {"send", "until"}, "a poll");
+// A step that sends one frame again and again (a poll, a survey): its
+// `send` and its `interval_ms` (§4, E-3), read alike by each.
+Step repeated_send(const MapReader& r, const At& at, StepContext& cx, Step::Kind kind, Send& send) {
   Step step;
-  step.kind = Step::Kind::kPoll;
-  Send send;
+  step.kind = kind;
   r.with("send", [&](const YAML::Node& n, const At& a) { send = read_send(n, a, cx); });
   check_length(send, std::nullopt);
   step.command = send.command;
   step.raw = send.raw;
   step.expect.where = cx.file.loc(at.mark);
+  r.read("interval_ms", step.interval, [](const YAML::Node& n, const At& a) {
+    return std::chrono::milliseconds(to_integer_in(n, a, kMinPollIntervalMs, kMaxMs));  // §4, E-3
+  });
+  return step;
+}
+
+Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
+  MapReader r(v, at, schema_keys(SchemaNode::kPoll));
+  require_keys(r, at, {"send", "until"}, "a poll");
+  Send send;
+  Step step = repeated_send(r, at, cx, Step::Kind::kPoll, send);
   r.with("expect", [&](const YAML::Node& n, const At& a) {
     step.expect = read_expectation(n, a, send.sketch.command, cx);
     if (step.expect.kind == Expectation::Kind::kSilence) fail(a, "a poll needs a reply to test until against");
@@ -626,9 +636,6 @@ Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
   });
   keep_captures(step.until, cx);
   r.with("timeout_ms", [&](const YAML::Node& n, const At& a) { read_ms(n, a, cx, step); });
-  r.read("interval_ms", step.interval, [](const YAML::Node& n, const At& a) {
-    return std::chrono::milliseconds(to_integer_in(n, a, kMinPollIntervalMs, kMaxMs));  // §4, E-3
-  });
   if (step.timeout.count() > 0 && step.interval > step.timeout) fail(r.at("interval_ms"), "interval_ms is longer than timeout_ms");
   return step;
 }
@@ -638,19 +645,10 @@ Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
 Step read_survey(const YAML::Node& v, const At& at, StepContext& cx) {
   MapReader r(v, at, schema_keys(SchemaNode::kSurvey));
   require_keys(r, at, {"send", "count"}, "a survey");
-  Step step;
-  step.kind = Step::Kind::kSurvey;
   Send send;
-  r.with("send", [&](const YAML::Node& n, const At& a) { send = read_send(n, a, cx); });
-  check_length(send, std::nullopt);
-  step.command = send.command;
-  step.raw = send.raw;
+  Step step = repeated_send(r, at, cx, Step::Kind::kSurvey, send);
   step.expect.kind = Expectation::Kind::kAck;
-  step.expect.where = cx.file.loc(at.mark);
   r.with("count", [&](const YAML::Node& n, const At& a) { step.survey_count = static_cast<std::size_t>(to_integer_in(n, a, 10, 1000)); });
-  r.read("interval_ms", step.interval, [](const YAML::Node& n, const At& a) {
-    return std::chrono::milliseconds(to_integer_in(n, a, kMinPollIntervalMs, kMaxMs));  // §4, E-3
-  });
   return step;
 }
 
