@@ -281,7 +281,7 @@ int run_sweep(const SweepOptions& opts) {
   // value ran, of those where its reply was asked for (issue 32; the target
   // is 100%, `sabus vectors coverage` gates it on the requirements alone).
   std::vector<ProfileSite> sites;
-  for (const auto& o : outcomes) sites.push_back({fmt::format("seed {}", o.seed), o.ran_ids});
+  for (const auto& o : outcomes) sites.push_back({fmt::format("seed {}", o.seed), o.ran_ids, undetermined_fields(o.profile)});
   std::size_t whole = 0, asked = 0;
   for (const FieldShare& share : field_shares(matrix, sites)) {
     asked += share.exists > 0;

@@ -194,8 +194,20 @@ bool literal_requirement(const Requirement& r) {
   });
 }
 
+std::set<std::string> undetermined_fields(const Profile& profile) {
+  // E-85: a count's scale is the profile's only where the azimuth sensor
+  // counts (a pulse or resolver sensor); the elevation's is taken to be of
+  // the same kind.
+  const std::vector<Requirement> counting{{"azimuth_sensor", {"pulse", "resolver"}, {}}};
+  if (requirements_hold(profile, counting)) return {};
+  std::set<std::string> out;
+  for (const ReplyFieldClass& f : reply_field_classes())
+    if (f.reply == ReplyKind::kPulseCount) out.insert(field_label(f));
+  return out;
+}
+
 ProfileSite requirement_site(const std::vector<VectorFile>& files, const Profile& profile, std::string label) {
-  ProfileSite site{std::move(label), {}};
+  ProfileSite site{std::move(label), {}, undetermined_fields(profile)};
   // Most vectors share their file's or group's requirements: each set is
   // judged once (a judgement writes the profile out).
   std::map<std::string, bool> judged;
@@ -225,6 +237,7 @@ std::vector<FieldShare> field_shares(const CoverageMatrix& m, const std::vector<
         return std::any_of(ids.begin(), ids.end(), [&](const std::string& id) { return site.runs.count(id) > 0; });
       };
       if (acked == m.acked.end() || !runs_one(acked->second)) continue;  // the reply is never asked for here
+      if (site.undetermined.count(field_label(*row.field))) continue;     // no value to check here
       ++share.exists;
       if (runs_one(row.ids)) ++share.checked;
       else share.unchecked.push_back(site.label);

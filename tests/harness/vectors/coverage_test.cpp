@@ -73,6 +73,7 @@ TEST(Coverage, TheShippedSuiteHasNoMissingCell) {
   EXPECT_EQ(m.missing(), std::vector<std::string>{});
 }
 
+
 }  // namespace
 }  // namespace sabus::harness
 
@@ -181,6 +182,31 @@ TEST(CoverageValues, AVectorOnALiteralProfileValueDoesNotCount) {
               return field_label(*s.field) == "device type version";
             })->exists,
             0u);
+}
+
+// E-85: a pot or fluxgate mount's pulse counts have no scale the spec or the
+// profile gives; the reply is asked for there, but its counts are no value
+// to check, so the profile does not count where they exist.
+TEST(CoverageValues, PulseCountsCountOnlyWhereTheAzimuthSensorCounts) {
+  Profile pot, pulse, fluxgate, resolver;
+  pot.az_sensor = AzSensor::kPot;
+  pulse.az_sensor = AzSensor::kPulse;
+  fluxgate.az_sensor = AzSensor::kFluxgate;
+  resolver.az_sensor = AzSensor::kResolver;
+  const std::set<std::string> counts = {"pulse count azimuth count", "pulse count elevation count"};
+  EXPECT_EQ(undetermined_fields(pot), counts);
+  EXPECT_EQ(undetermined_fields(fluxgate), counts);
+  EXPECT_TRUE(undetermined_fields(pulse).empty());
+  EXPECT_TRUE(undetermined_fields(resolver).empty());
+
+  const auto files = suite("      - send: {command: pulse_count}\n        expect: ack\n");
+  const CoverageMatrix m = coverage(files);
+  const auto shares = field_shares(m, {requirement_site(files, pot, "pot"), requirement_site(files, pulse, "pulse")});
+  const auto& az = *std::find_if(shares.begin(), shares.end(),
+                                 [](const FieldShare& s) { return field_label(*s.field) == "pulse count azimuth count"; });
+  EXPECT_EQ(az.exists, 1u) << "the pulse mount only";
+  EXPECT_EQ(az.checked, 0u);
+  EXPECT_EQ(az.unchecked, std::vector<std::string>{"pulse"});
 }
 
 }  // namespace

@@ -91,8 +91,15 @@ bool literal_requirement(const Requirement& r);
 struct ProfileSite {
   std::string label;            // "rc3000-1.59.yaml", "sweep seed 1 profile 3 (--profile-seed 123)"
   std::set<std::string> runs;   // vector ids
+  // The fields (field_label) whose value the spec leaves open on this
+  // profile (undetermined_fields): not counted where the field exists.
+  std::set<std::string> undetermined;
 };
 ProfileSite requirement_site(const std::vector<VectorFile>& files, const Profile& profile, std::string label);
+// The reply fields whose value the spec does not determine on `profile`,
+// by field_label: the pulse counts of a mount whose azimuth sensor does not
+// count (ERRATA E-85: only the layout is checked there).
+std::set<std::string> undetermined_fields(const Profile& profile);
 
 // The share of profiles on which a field's value is checked (issue 32): of
 // the profiles where the field exists (a vector that expects an ACK with its
