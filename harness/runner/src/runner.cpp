@@ -234,7 +234,7 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
 // Setup, steps and teardown of one attempt. A failing setup or step ends
 // its phase, and a precondition not met ends the setup and the steps; the
 // teardown always runs, and an 'X' stop follows every vector that can move
-// the antenna.
+// the antenna, unless its teardown has just ended with one the device ACKed.
 Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& transcript) {
   Attempt a;
   s.transcript = s.options.record_transcripts ? &transcript : nullptr;
@@ -247,9 +247,17 @@ Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& trans
       break;
     }
   if (!a.ended()) run_steps(s, v, a);
+  // Whether the teardown's last step stopped the mount (an 'X' stop the
+  // device ACKed): the runner's own stop after it would repeat it.
+  bool stopped = false;
   for (const Step& step : v.teardown) {
+    stopped = false;
     if (is_stop(step) && s.track_governs()) continue;  // as the runner's own stop (Session::stop_motion)
-    if (auto e = s.run_step(step)) {
+    auto e = s.run_step(step);
+    const auto& replies = s.last_replies();
+    stopped = !e && is_stop(step) && replies.size() == 1 && replies[0].kind == FrameKind::kAck && !is_offline_reply(replies[0]) &&
+              replies[0].command == find_command(step.command->command)->code;
+    if (e) {
       // A short poll for rest that did not see rest: the mount's state after
       // the vector is unknown, not wrong (an earlier failure said so); a step
       // the line left unjudged is an error.
@@ -262,7 +270,7 @@ Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& trans
       }
     }
   }
-  if (v.has_tag("motion")) s.stop_motion();  // not while TRACK governs (Session::stop_motion)
+  if (v.has_tag("motion") && !stopped) s.stop_motion();  // not while TRACK governs (Session::stop_motion)
   s.transcript = nullptr;
   return a;
 }

@@ -392,9 +392,9 @@ std::optional<std::string> Session::run_poll(const Step& s) {
   }
   Step probe = s;
   probe.kind = Step::Kind::kSend;
-  int stopped_polls = 0;
+  int stopped_polls = 0, requests = 0;
   // A poll for the rest of an axis whose poll for rest timed out is short
-  // (kShortRestPoll), until that axis shows rest.
+  // (kShortRestPoll requests), until that axis shows rest.
   const std::vector<FieldMatcher> rest = rest_matchers(s);
   auto waits_for_unshown_rest = [&] {
     return std::any_of(rest.begin(), rest.end(), [&](const FieldMatcher& m) { return rest_not_shown.count(m.field) > 0; });
@@ -415,6 +415,7 @@ std::optional<std::string> Session::run_poll(const Step& s) {
     }
     line.recovered += static_cast<std::size_t>(unjudged);  // the poll asked again and got a clean reply
     unjudged = 0;
+    ++requests;
     // The reply of the last exchange, checked against `until`.
     const Bytes reply = last_replies().empty() ? Bytes{} : encode_frame(last_replies()[0]);
     const FrameDescription d = describe_frame(reply);
@@ -437,10 +438,10 @@ std::optional<std::string> Session::run_poll(const Step& s) {
     } else {
       stopped_polls = 0;
     }
-    if (short_poll && transport.now() - start >= std::min(timeout, kShortRestPoll)) {
+    if (short_poll && requests >= kShortRestPoll) {
       rest_unseen = true;
-      return "the mount did not show rest in a short poll of " + std::to_string(std::min(timeout, kShortRestPoll).count()) +
-             " ms (" + *unmet + "): the poll for rest of " + rest_timed_out_in +
+      return "the mount did not show rest in a short poll of " + std::to_string(kShortRestPoll) +
+             (kShortRestPoll == 1 ? " request" : " requests") + " (" + *unmet + "): the poll for rest of " + rest_timed_out_in +
              " timed out, and later polls for rest are short";
     }
     if (transport.now() - start >= timeout) {

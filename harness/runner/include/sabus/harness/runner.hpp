@@ -228,12 +228,14 @@ struct StoredDataBackup {
 // A poll for rest is a poll whose `until` names an axis's movement status
 // (§3.2 bytes 36-38: "az status", "el status", "pol status"). Once one has
 // timed out with an axis still showing movement, each later poll for that
-// axis's rest lasts at most this long: when the axis shows rest, the run goes
-// back to normal for it; when not, the poll's vector ends inconclusive,
-// naming the vector whose poll timed out. A controller that never shows rest is judged by its
-// first timeout, not after a full poll of every later vector that needs the
-// mount at rest.
-inline constexpr std::chrono::milliseconds kShortRestPoll{1000};
+// axis's rest sends this many status requests: when the axis shows rest, the
+// run goes back to normal for it; when not, the poll's vector ends
+// inconclusive, naming the vector whose poll timed out. A controller that
+// never shows rest is judged by its first timeout, not after a full poll of
+// every later vector that needs the mount at rest. One: after a poll of
+// minutes that never saw rest, a second request a second later tells
+// nothing more, and costs a second of the §4 pace.
+inline constexpr int kShortRestPoll = 1;
 
 // RunResult::exit_code when no vector ran.
 inline constexpr int kNothingRanExitCode = 5;
