@@ -38,9 +38,13 @@ bool JournalWriter::open(const std::string& path, const RunDocument& header) {
   return write_text(journal_record_json("header", header));
 }
 
-bool JournalWriter::open(const std::string& path, const RunDocument& header, const std::vector<VectorRecord>& earlier) {
+bool JournalWriter::open(const std::string& path, const RunDocument& header, const std::vector<VectorRecord>& earlier,
+                         const std::string& backup_file) {
   const std::string tmp = path + ".tmp";
   if (!open(tmp, header)) return false;
+  // In the file before it replaces the killed run's journal: a resumed run
+  // killed in turn still names the backup its restore needs.
+  if (!backup_file.empty() && !backup(backup_file)) return false;
   for (const auto& v : earlier)
     if (!append(v)) return false;
   if (::fsync(fd_) != 0 || ::rename(tmp.c_str(), path.c_str()) != 0) {
@@ -55,6 +59,8 @@ bool JournalWriter::open(const std::string& path, const RunDocument& header, con
 }
 
 bool JournalWriter::append(const VectorRecord& v) { return write_text(vector_json(v)); }
+
+bool JournalWriter::backup(const std::string& file) { return write_text(journal_backup_json(file)); }
 
 bool JournalWriter::close(const RunDocument& finished) {
   if (fd_ < 0) return false;
@@ -145,6 +151,7 @@ std::optional<RunDocument> scan_journal(std::istream& in, const std::string& pat
                                         const std::function<void(const ordered_json&)>& on_vector, JournalNotes& notes,
                                         std::string& error) {
   std::optional<RunDocument> header;
+  std::string backup_file;  // the backup record's
   std::size_t line_no = 0;
   auto fail = [&](const std::string& why) {
     error = path + ":" + std::to_string(line_no) + ": " + why;
@@ -187,6 +194,14 @@ std::optional<RunDocument> scan_journal(std::istream& in, const std::string& pat
         return fail(std::string("vector: ") + e.what());
       }
       ++notes.vectors;
+    } else if (type == "backup") {
+      const auto file = r.find("file");
+      if (file == r.end() || !file->is_string() || file->get<std::string>().empty())
+        return fail("a backup record without its file (\"file\": the stored-data backup file, a string)");
+      if (!backup_file.empty() && *file != backup_file)
+        return fail("a second backup record, naming " + file->get<std::string>() + " after " + backup_file +
+                    ": a run takes one stored-data backup");
+      backup_file = file->get<std::string>();
     } else if (type == "end") {
       auto finished = run_of(r);
       if (!finished) return std::nullopt;
@@ -201,6 +216,9 @@ std::optional<RunDocument> scan_journal(std::istream& in, const std::string& pat
     error = path + ": empty: not a run journal";
     return std::nullopt;
   }
+  // The header record was written before the backup was taken; the end
+  // record, when there is one, names it itself.
+  if (header->backup.empty()) header->backup = std::move(backup_file);
   return header;
 }
 

@@ -179,6 +179,15 @@ std::string journal_record_json(std::string_view record, const RunDocument& run)
   });
 }
 
+std::string journal_backup_json(std::string_view file) {
+  return one_line([&](LineWriter& w) {
+    w.StartObject();
+    put_string_member(w, "record", "backup");
+    put_string_member(w, "file", file);
+    w.EndObject();
+  });
+}
+
 // ---- the run JSON ----------------------------------------------------------------
 
 namespace {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "sabus/reports/checks.hpp"
 #include "sample_run.hpp"
 #include "temp_dir.hpp"
 
@@ -218,6 +219,90 @@ TEST_F(Journal, ADamagedLineOrAnotherFileIsAnErrorWithFileAndLine) {
   ASSERT_TRUE(doc) << error << " (a run JSON reads as one)";
   EXPECT_FALSE(notes.journal);
   EXPECT_FALSE(read_run_or_journal(path("none.jsonl"), notes, error));
+}
+
+// The backup record names the stored-data backup file: a malformed one is
+// an error naming the line and what is wrong, not a vector or a note.
+TEST_F(Journal, AMalformedBackupRecordIsAnErrorNamingItsLine) {
+  write_journal(path("run.journal.jsonl"), false);
+  const std::string raw = slurp(dir_ / "run.journal.jsonl");
+  const auto second = raw.find('\n') + 1;  // after the header: line 2
+  for (const std::string record : {R"({"record":"backup"})", R"({"record":"backup","file":3})",
+                                   R"({"record":"backup","file":""})"}) {
+    std::string damaged = raw;
+    damaged.insert(second, record + "\n");
+    std::ofstream(path("bad.journal.jsonl"), std::ios::binary | std::ios::trunc) << damaged;
+    JournalNotes notes;
+    std::string error;
+    EXPECT_FALSE(read_journal(path("bad.journal.jsonl"), notes, error)) << record;
+    EXPECT_NE(error.find("bad.journal.jsonl:2: a backup record without its file (\"file\": the stored-data backup file, a "
+                         "string)"),
+              std::string::npos)
+        << record << ": " << error;
+    EXPECT_EQ(checks::journal_problems(damaged),
+              checks::Problems{"journal line 2: a backup record that is not {\"record\": \"backup\", \"file\": FILE} once, "
+                               "after the header and before the end"})
+        << record;
+  }
+  // A run takes one backup: a second record naming another file.
+  std::string twice = raw;
+  twice.insert(second, "{\"record\":\"backup\",\"file\":\"out/backup.json\"}\n");
+  twice += "{\"record\":\"backup\",\"file\":\"out/backup-2.json\"}\n";
+  std::ofstream(path("bad.journal.jsonl"), std::ios::binary | std::ios::trunc) << twice;
+  JournalNotes notes;
+  std::string error;
+  EXPECT_FALSE(read_journal(path("bad.journal.jsonl"), notes, error));
+  EXPECT_NE(error.find("bad.journal.jsonl:6: a second backup record, naming out/backup-2.json after out/backup.json"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(checks::journal_problems(twice),
+            checks::Problems{"journal line 6: a backup record that is not {\"record\": \"backup\", \"file\": FILE} once, "
+                             "after the header and before the end"});
+}
+
+// A killed run's journal names its backup in the backup record (the end
+// record that would name it is never written): read back, the document's
+// `backup` is that file, and so is the run JSON's made from the journal.
+TEST_F(Journal, AKilledRunsBackupRecordIsTheDocumentsBackup) {
+  RunDocument d = header();
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path("run.journal.jsonl"), d)) << w.error();
+    ASSERT_TRUE(w.append(vector("a", "pass"))) << w.error();
+    ASSERT_TRUE(w.backup("out/backup \"1\".json")) << w.error();
+    ASSERT_TRUE(w.append(vector("b", "fail"))) << w.error();
+  }  // killed: no end record
+  const std::string raw = slurp(dir_ / "run.journal.jsonl");
+  EXPECT_NE(raw.find("\n{\"record\":\"backup\",\"file\":\"out/backup \\\"1\\\".json\"}\n"), std::string::npos) << raw;
+  EXPECT_EQ(checks::journal_problems(raw), checks::Problems{});
+  JournalNotes notes;
+  std::string error;
+  const auto back = read_journal(path("run.journal.jsonl"), notes, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_FALSE(notes.ended);
+  EXPECT_EQ(notes.vectors, 2u) << "the backup record is not a vector";
+  EXPECT_EQ(back->backup, "out/backup \"1\".json");
+  ASSERT_TRUE(write_run_json(path("run.json"), *back, path("run.journal.jsonl"), error)) << error;
+  EXPECT_EQ(checks::run_json_problems(slurp(dir_ / "run.json")), checks::Problems{});
+  const auto doc = read_run_file(path("run.json"), error);
+  ASSERT_TRUE(doc) << error;
+  EXPECT_EQ(doc->backup, "out/backup \"1\".json");
+  EXPECT_EQ(doc->vectors.size(), 2u);
+  // The journal of a run that ended names the backup in its end record too;
+  // the checks hold the two to the same file.
+  d.vectors = {vector("a", "pass"), vector("b", "fail")};
+  d.status = "complete";
+  d.finished_at = "2024-01-01T00:00:01Z";
+  d.summary = Summary{1, 1, 0, 0, 0, 1};
+  d.journal.clear();
+  d.backup = "out/backup \"1\".json";
+  d.traffic = {{"bytes_sent", 10}, {"bytes_received", 10}, {"silence_windows", 0}, {"silence_listened_ms", 0.0},
+               {"measured_turnaround_ms", 1.0}};
+  const std::string ended = raw + journal_record_json("end", d) + "\n";
+  EXPECT_EQ(checks::journal_problems(ended), checks::Problems{});
+  d.backup = "out/other.json";
+  EXPECT_EQ(checks::journal_problems(raw + journal_record_json("end", d) + "\n"),
+            checks::Problems{"journal end record: backup out/other.json, not the backup record's out/backup \"1\".json"});
 }
 
 TEST(JournalPath, BesideItsJson) {

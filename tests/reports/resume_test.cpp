@@ -176,6 +176,80 @@ TEST_F(StoppedRunFile, AKilledRunIsReadFromItsJournal) {
   EXPECT_NE(refused(path("run.json")).find("its journal, " + path("run.journal.jsonl") + ", is not there"), std::string::npos);
 }
 
+// A killed run after its backup: the journal's backup record is the
+// stopped run's `backup`, which the resumed run restores from. A malformed
+// one refuses the resume, naming the journal's line.
+TEST_F(StoppedRunFile, AKilledRunsBackupIsTheOneItsJournalNames) {
+  RunDocument header = stopped();
+  header.status = "running";
+  header.abort_reason.clear();
+  header.stopped_by.clear();
+  header.finished_at.clear();
+  header.summary.reset();
+  header.restore.clear();
+  header.backup.clear();
+  header.vectors.clear();
+  header.journal = "run.journal.jsonl";
+  write("run.json", header);
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path("run.journal.jsonl"), header)) << w.error();
+    ASSERT_TRUE(w.append(stopped().vectors[0]));
+    ASSERT_TRUE(w.backup("out/backup.json")) << w.error();
+    ASSERT_TRUE(w.append(stopped().vectors[1]));
+  }  // no end record
+  EXPECT_EQ(checks::journal_problems(test::slurp(dir_ / "run.journal.jsonl")), checks::Problems{});
+  std::string error;
+  const auto s = read_stopped_run(path("run.json"), error);
+  ASSERT_TRUE(s) << error;
+  EXPECT_EQ(s->stop.stopped_by, "killed");
+  EXPECT_EQ(s->doc.backup, "out/backup.json");
+  EXPECT_EQ(s->doc.vectors.size(), 2u);
+
+  std::string text = test::slurp(dir_ / "run.journal.jsonl");
+  const std::string record = "{\"record\":\"backup\",\"file\":\"out/backup.json\"}";
+  ASSERT_NE(text.find(record), std::string::npos) << text;
+  text.replace(text.find(record), record.size(), "{\"record\":\"backup\",\"file\":[\"out/backup.json\"]}");
+  std::ofstream(path("run.journal.jsonl"), std::ios::binary | std::ios::trunc) << text;
+  EXPECT_EQ(refused(path("run.json")), path("run.journal.jsonl") +
+                                           ":3: a backup record without its file (\"file\": the stored-data backup file, a "
+                                           "string)");
+}
+
+// The journal of a run resumed from a stopped run's backup names it, after
+// its header and before the kept vectors: killed in turn, it is resumed
+// from the same backup.
+TEST_F(StoppedRunFile, AResumedRunsJournalNamesTheStoppedRunsBackup) {
+  RunDocument d = stopped();
+  const std::vector<VectorRecord> kept = d.vectors;
+  d.status = "running";
+  d.abort_reason.clear();
+  d.stopped_by.clear();
+  d.finished_at.clear();
+  d.summary.reset();
+  d.restore.clear();
+  d.backup.clear();  // the resumed run's header: it has taken no backup of its own
+  d.vectors.clear();
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path("run.journal.jsonl"), d, kept, "out/backup.json")) << w.error();
+    ASSERT_TRUE(w.append(sample_vector("c", "pass")));
+  }  // killed: no end record
+  const std::string text = test::slurp(dir_ / "run.journal.jsonl");
+  EXPECT_EQ(checks::journal_problems(text), checks::Problems{});
+  const std::size_t second = text.find('\n') + 1;
+  EXPECT_EQ(text.substr(second, text.find('\n', second) - second), "{\"record\":\"backup\",\"file\":\"out/backup.json\"}");
+  JournalNotes notes;
+  std::string error;
+  const auto back = read_journal(path("run.journal.jsonl"), notes, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_FALSE(notes.ended);
+  EXPECT_EQ(back->backup, "out/backup.json");
+  ASSERT_EQ(back->vectors.size(), 3u);
+  EXPECT_EQ(back->vectors[0].id, "a");
+  EXPECT_EQ(back->vectors[2].id, "c");
+}
+
 TEST_F(StoppedRunFile, AJournalWithoutItsJsonIsNotResumed) {
   JournalWriter w;
   ASSERT_TRUE(w.open(path("run.journal.jsonl"), sample_header())) << w.error();

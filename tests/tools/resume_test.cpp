@@ -6,8 +6,9 @@
 // killed; resumed against a new one on another port), each resumed: the
 // same verdicts, reports and console summary as an uninterrupted run, and
 // the same stored data once it has restored it, from the backup taken
-// before the stop. A run killed outright is resumed from its journal, and
-// refused when a destructive vector had run (its backup is not named).
+// before the stop. A run killed outright is resumed from its journal, after
+// a destructive vector too (the journal's backup record names the backup);
+// refused when the record is missing or malformed, or its file is gone.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -329,22 +330,91 @@ TEST_F(Resume, AKilledRunIsResumedFromItsJournal) {
   EXPECT_FALSE(fs::exists(dir_ / "res/run.journal.jsonl"));
 }
 
-// Killed after a destructive vector ran: the journal does not say where the
-// backup taken before it is, so the restore at the end could not be
-// complete; refused, and the journal left as it was.
-TEST_F(Resume, AKilledRunAfterADestructiveVectorIsRefused) {
-  Sim sim;
-  ASSERT_FALSE(sim.address.empty());
-  {
-    Process run(run_args(sim, "res"));
-    wait_for("res", 9);
-  }  // SIGKILL
-  const std::string journal = slurp(dir_ / "res/run.journal.jsonl");
+// A run killed outright (SIGKILL) after a destructive vector ran, to resume
+// in the tests below: its journal has no end record, and names the backup
+// taken before the first destructive vector in its backup record.
+class AKilledDestructiveRun : public Resume {
+ protected:
+  void SetUp() override {
+    Resume::SetUp();
+    sim_ = std::make_unique<Sim>();
+    ASSERT_FALSE(sim_->address.empty());
+    {
+      Process run(run_args(*sim_, "res"));
+      wait_for("res", 9);
+    }  // SIGKILL
+    ASSERT_EQ(json::parse(slurp(dir_ / "res/run.json"))["status"], "running");
+    journal_ = slurp(dir_ / "res/run.journal.jsonl");
+    const std::string line = std::string("\n").append(backup_record()).append("\n");
+    ASSERT_NE(journal_.find(line), std::string::npos) << "no backup record " << backup_record();
+    ASSERT_NE(journal_.find("{\"id\":\"3.10-"), std::string::npos) << "no destructive vector ran";
+  }
+  std::string backup_record() const {
+    return nlohmann::ordered_json{{"record", "backup"}, {"file", path("res/backup.json")}}.dump();
+  }
+  // The journal with its backup record replaced by `line` ("": left out).
+  void replace_backup_record(const std::string& line) {
+    std::string text = journal_;
+    const std::string record = backup_record() + "\n";
+    text.replace(text.find(record), record.size(), line.empty() ? "" : line + "\n");
+    std::ofstream(path("res/run.journal.jsonl"), std::ios::binary | std::ios::trunc) << text;
+    journal_ = text;
+  }
+  std::unique_ptr<Sim> sim_;
+  std::string journal_;
+};
+
+// A journal without the backup record (as an earlier sabus wrote it) does
+// not say where the backup taken before the destructive vector is: the
+// restore at the end could not be complete; refused, the journal left as it
+// was.
+TEST_F(AKilledDestructiveRun, WithoutABackupRecordItIsRefused) {
+  replace_backup_record("");
   const auto r = shell(kSabus + " run --resume " + path("res/run.json") + " 2>&1");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("the run was killed after a destructive vector (3.10-"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("its journal does not name the stored-data backup"), std::string::npos) << r.out;
-  EXPECT_EQ(slurp(dir_ / "res/run.journal.jsonl"), journal);
+  EXPECT_NE(r.out.find("its journal does not name the stored-data backup it took before it (no backup record)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(slurp(dir_ / "res/run.journal.jsonl"), journal_);
+}
+
+// A backup record without its file names the journal's line.
+TEST_F(AKilledDestructiveRun, AMalformedBackupRecordIsRefusedNamingItsLine) {
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < journal_.find(backup_record()); ++i) line += journal_[i] == '\n';
+  replace_backup_record("{\"record\":\"backup\",\"file\":\"\"}");
+  const auto r = shell(kSabus + " run --resume " + path("res/run.json") + " 2>&1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "sabus run: --resume " + path("res/run.journal.jsonl") + ":" + std::to_string(line) +
+                       ": a backup record without its file (\"file\": the stored-data backup file, a string)\n");
+  EXPECT_EQ(slurp(dir_ / "res/run.journal.jsonl"), journal_);
+}
+
+// The backup file the record names is gone: the restore could not be
+// complete without it.
+TEST_F(AKilledDestructiveRun, ABackupFileThatCannotBeReadIsRefused) {
+  fs::rename(dir_ / "res/backup.json", dir_ / "elsewhere.json");
+  const auto r = shell(kSabus + " run --resume " + path("res/run.json") + " 2>&1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "sabus run: --resume " + path("res/backup.json") +
+                       ": cannot read the stopped run's stored-data backup (the restore at the end needs it)\n");
+  EXPECT_EQ(slurp(dir_ / "res/run.journal.jsonl"), journal_);
+}
+
+// Killed after a destructive vector, resumed from its journal: one run, as
+// if never stopped; the restore at the end writes back the backup the
+// journal names, taken before the kill, and no second one is taken.
+TEST_F(AKilledDestructiveRun, ResumedItIsTheUninterruptedRun) {
+  EXPECT_EQ(checks::journal_problems(journal_), checks::Problems{});
+  const std::size_t journaled = journaled_vectors(dir_ / "res/run.journal.jsonl");
+  Process resumed({kSabus, "run", "--resume", path("res/run.journal.jsonl")});
+  const std::string out = resumed.read_all(60s);
+  ASSERT_EQ(resumed.wait_exit_for(30s), 0) << out;
+  EXPECT_NE(out.find("resuming " + path("res/run.json") + ", killed at "), std::string::npos) << out;
+  run_uninterrupted();
+  expect_one_run(out, "killed", *sim_);
+  EXPECT_EQ(json::parse(slurp(dir_ / "res/run.json"))["resumptions"][0]["kept"], journaled);
 }
 
 }  // namespace

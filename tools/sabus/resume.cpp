@@ -83,12 +83,15 @@ std::optional<std::vector<harness::Vector>> vectors_left(const std::vector<harne
                     "since; run it again");
       return std::nullopt;
     }
-    // A killed run's journal ends before its end record, which names the
-    // backup file: the restore at the end could not be complete.
-    if (r.stopped.stop.stopped_by == "killed" && v.outcome != "skip" && it->second->has_tag("destructive")) {
+    // A killed run has no end record; its journal names the backup file in
+    // a backup record, written before the first destructive vector ran. A
+    // journal without one (a killed run of an earlier sabus) cannot say what
+    // the device held before: the restore at the end could not be complete.
+    if (r.stopped.stop.stopped_by == "killed" && r.stopped.doc.backup.empty() && v.outcome != "skip" &&
+        it->second->has_tag("destructive")) {
       refuse(file + "the run was killed after a destructive vector (" + v.id +
-             ") had run, and its journal does not name the stored-data backup it took before it: the restore at the end "
-             "would not be complete; restore the device from that backup and run it again");
+             ") had run, and its journal does not name the stored-data backup it took before it (no backup record): the "
+             "restore at the end would not be complete; restore the device from that backup and run it again");
       return std::nullopt;
     }
     kept.insert(v.id);

@@ -37,8 +37,8 @@ std::optional<Resume> read_resume(const std::string& file, const CLI::App& sub);
 // The vectors of `selection` the stopped run did not finish, in selection
 // order; nullopt after printing why not (exit 2): a vector it finished is
 // not selected now (the suite or the vector files changed since), or it was
-// killed after a destructive vector ran (its journal does not name the
-// backup file).
+// killed after a destructive vector ran and its journal has no backup
+// record naming the backup file (a journal of an earlier sabus).
 std::optional<std::vector<harness::Vector>> vectors_left(const std::vector<harness::Vector>& selection, const Resume& r);
 
 // Whether `now` (the device type reply, 30h, §3.1) is the device the stopped

@@ -334,8 +334,10 @@ struct RunJournal {
   std::optional<TempFolder> folder;
 
   // `earlier`: a resumed run's kept vectors, in the journal before the first
-  // vector it runs (JournalWriter::open with them).
-  void open(const ReportPaths& paths, reports::RunDocument& doc, const std::vector<reports::VectorRecord>* earlier = nullptr) {
+  // vector it runs (JournalWriter::open with them), and `backup` the stopped
+  // run's stored-data backup, which it restores from.
+  void open(const ReportPaths& paths, reports::RunDocument& doc, const std::vector<reports::VectorRecord>* earlier = nullptr,
+            const std::string& backup = "") {
     if (paths.json.empty()) return;
     const bool json_file = paths.json != "-";
     std::string journal_path, error;
@@ -346,7 +348,8 @@ struct RunJournal {
       folder.emplace();
       journal_path = (folder->path / "run.journal.jsonl").string();
     }
-    if (!(earlier ? writer.open(journal_path, doc, *earlier) : writer.open(journal_path, doc))) std::cerr << "sabus run: " << writer.error() << "\n";
+    if (!(earlier ? writer.open(journal_path, doc, *earlier, backup) : writer.open(journal_path, doc)))
+      std::cerr << "sabus run: " << writer.error() << "\n";
     else if (json_file && !reports::write_run_json(paths.json, doc, error)) std::cerr << "sabus run: " << error << "\n";
   }
 
@@ -473,7 +476,7 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
   // --resume: one run, whose journal starts with the vectors it kept.
   if (resume) resume_document(doc, *resume);
   RunJournal journal;
-  journal.open(*paths, doc, resume ? &resume->stopped.doc.vectors : nullptr);
+  journal.open(*paths, doc, resume ? &resume->stopped.doc.vectors : nullptr, resume ? resume->stopped.doc.backup : "");
   if (resume) {
     keep_vectors(doc, ro, *resume);
     if (!quiet()) console.line(resume_line(*resume, to_run.size()));
@@ -490,6 +493,13 @@ int run_run(RunCliOptions o, const CLI::App& sub) {
     doc.vectors.push_back(std::move(record));
     console.vector_done(doc.vectors.back());
     last_result = std::chrono::steady_clock::now();  // writing this one is not the next one's time
+  };
+  // A run killed from here on has no end record to name the backup file:
+  // the journal names it before the destructive vector runs, so that
+  // --resume restores the device from it.
+  ro.on_backup = [&](const StoredDataBackup& backup) {
+    if (!backup.file.empty() && journal.writer.is_open() && !journal.writer.backup(backup.file))
+      std::cerr << "sabus run: " << journal.writer.error() << "\n";
   };
   std::signal(SIGINT, on_run_stop_signal);
   std::signal(SIGTERM, on_run_stop_signal);

@@ -462,6 +462,7 @@ RunResult Runner::run(const std::vector<Vector>& vectors) {
           abort_run(result, error + "; no destructive vector runs without it");
           break;
         }
+        if (options_.on_backup) options_.on_backup(result.backup);
       }
       execute(s, v, r, result);
     }

@@ -224,6 +224,7 @@ Problems journal_problems(std::string_view text) {
   const Schemas& schemas = Schemas::get();
   std::vector<const json*> vectors;
   const json* end_run = nullptr;
+  const json* backup_file = nullptr;  // the backup record's
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string what = "journal line " + std::to_string(i + 1);
     const json& d = lines[i];
@@ -243,6 +244,15 @@ Problems journal_problems(std::string_view text) {
     }
     const auto& type = d["record"];
     const std::string kind = type.is_string() ? type.get<std::string>() : "";
+    if (kind == "backup") {
+      // Between the header and the end, once: the run takes one backup.
+      const bool named = d.size() == 2 && d.contains("file") && d["file"].is_string() && !d["file"].get<std::string>().empty();
+      if (first || end_run || !named || backup_file)
+        problems.push_back(what + ": a backup record that is not {\"record\": \"backup\", \"file\": FILE} once, after the "
+                                  "header and before the end");
+      else backup_file = &d["file"];
+      continue;
+    }
     const bool placed = (kind == "header" && first) || (kind == "end" && last && !first);
     if (!placed || d.size() != 2 || !d.contains("run")) {
       problems.push_back(what + ": a record that is not {\"record\": \"header\"} first or {\"record\": \"end\"} last, each with its \"run\"");
@@ -252,6 +262,9 @@ Problems journal_problems(std::string_view text) {
     if (kind == "end") end_run = &d["run"];
     else if (d["run"].contains("summary")) problems.push_back(what + ": the header record has a summary");
   }
+  if (problems.empty() && end_run && backup_file && end_run->value("backup", "") != backup_file->get<std::string>())
+    problems.push_back("journal end record: backup " + end_run->value("backup", std::string("absent")) +
+                       ", not the backup record's " + backup_file->get<std::string>());
   if (problems.empty() && end_run) check_run(*end_run, vectors, problems, "journal end record");
   return problems;
 }

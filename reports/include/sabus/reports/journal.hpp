@@ -32,6 +32,10 @@ std::string vector_json(const VectorRecord& v);
 // A journal's header or end record on one line: {"record": RECORD, "run":
 // the header members of `run`}.
 std::string journal_record_json(std::string_view record, const RunDocument& run);
+// A journal's backup record on one line: {"record": "backup", "file": FILE},
+// the stored-data backup file the run wrote before its first destructive
+// vector (RunDocument::backup).
+std::string journal_backup_json(std::string_view file);
 
 // The run JSON of a document held in memory: the header members one a line,
 // then "vectors" last (a reader sees the header first), one vector a line.
@@ -62,7 +66,8 @@ bool write_run_json(const std::string& path, const RunDocument& header, const st
 std::string journal_path_for(const std::string& json_path);
 
 // Appends records to a journal file (JSON Lines): a header record, each
-// vector as run.json's "vectors" holds it, an end record. Each line is
+// vector as run.json's "vectors" holds it, the backup record once the
+// stored-data backup is written, an end record. Each line is
 // written with one write(2), so a killed process leaves every finished
 // record; the file is fsynced when the run ends (complete or aborted).
 class JournalWriter {
@@ -77,9 +82,17 @@ class JournalWriter {
   // and the vectors the stopped run finished, written to PATH.tmp, fsynced
   // and renamed over PATH, so that a journal already at PATH (a killed
   // run's, which may be where those vectors come from) is replaced only by
-  // one that holds them all. The file stays open for append.
-  bool open(const std::string& path, const RunDocument& header, const std::vector<VectorRecord>& earlier);
+  // one that holds them all. `backup`: the stopped run's stored-data backup
+  // file, which the resumed run restores from and takes no other: its backup
+  // record follows the header ("": none). The file stays open for append.
+  bool open(const std::string& path, const RunDocument& header, const std::vector<VectorRecord>& earlier,
+            const std::string& backup = "");
   bool append(const VectorRecord& v);
+  // The backup record: the stored-data backup is written to `file`. Written
+  // before the destructive vector it was taken for runs, so that the journal
+  // of a run killed after it names the backup (the end record, which names it
+  // too, is never written then).
+  bool backup(const std::string& file);
   // Writes the end record (the finished header: status, summary, ...),
   // fsyncs and closes the file.
   bool close(const RunDocument& finished);
@@ -119,7 +132,8 @@ struct JournalNotes {
 };
 
 // Reads a journal record by record: `on_vector` gets each vector, in order. Returns the run header (the end record's when the run
-// ended, the header record's otherwise, with no vectors), or nullopt with
+// ended, the header record's otherwise, with no vectors; its `backup` the
+// backup record's file when the header has none), or nullopt with
 // `error` set (file:line and why) when the file is not a journal or a line
 // other than the last is not a record. A last line without its newline is a
 // record cut short by a kill and is left out with a note.

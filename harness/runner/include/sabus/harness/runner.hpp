@@ -183,6 +183,12 @@ struct RunOptions {
   // false: no backup and no restore, for a device that does not outlive the
   // run (the in-process reference controller).
   bool backup_stored_data = true;
+  // Called once the stored-data backup is taken and written
+  // (StoredDataBackup::file, "" when backup_path is), before the destructive
+  // vector it was taken for runs: a run killed after that leaves no end
+  // record to name the file, so the caller's journal records it here for
+  // `sabus run --resume` to restore from.
+  std::function<void(const StoredDataBackup&)> on_backup;
   // Line faults (LineFaultCounts): how many times an exchange whose reply
   // showed one is repeated (pymodbus's `retries`). A read or status poll is
   // sent again after the silence window; a command that changes state only

@@ -28,7 +28,8 @@ using Problems = std::vector<std::string>;
 Problems run_json_problems(std::string_view text);
 // A journal: each line one JSON text; the first a header record, the last
 // (when the run ended) an end record, each run against the schema's header;
-// every other line a vector against the schema's vector.
+// at most one backup record between them, naming the file the end record's
+// `backup` names; every other line a vector against the schema's vector.
 Problems journal_problems(std::string_view text);
 
 // ---- the reports of a document ---------------------------------------------------
