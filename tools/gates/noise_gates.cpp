@@ -8,7 +8,7 @@
 //     recovered, the runner's own exchanges' too (the line survey's garbled
 //     replies are its measure, counted apart: LineFaultCounts::surveyed).
 //     On the fixed seed: a vector in error is a legal outcome on a noisy
-//     line, and over 40 seeds 9 of 262,600 vectors ended in error (a key or
+//     line, and over 40 seeds 10 of 262,600 vectors ended in error (a key or
 //     jog whose every attempt met a fault the header does not settle: a
 //     silence, or a reply garbled in its header or in the data the step
 //     reads): the gate runs the fixed seed, and `noise_gates SEED` measures
