@@ -50,6 +50,21 @@ class StoppedRunFile : public test::TempDirTest {
                  {"measured_turnaround_ms", 2.0}};
     return d;
   }
+  // The header a killed run left: its JSON says "running", names its journal,
+  // and has no end (no summary, restore or backup).
+  RunDocument killed_header() {
+    RunDocument header = stopped();
+    header.status = "running";
+    header.abort_reason.clear();
+    header.stopped_by.clear();
+    header.finished_at.clear();
+    header.summary.reset();
+    header.restore.clear();
+    header.backup.clear();
+    header.vectors.clear();
+    header.journal = "run.journal.jsonl";
+    return header;
+  }
   void write(const std::string& name, const RunDocument& d) {
     std::string error;
     ASSERT_TRUE(write_run_json(path(name), d, error)) << error;
@@ -147,16 +162,7 @@ TEST_F(StoppedRunFile, TheVectorTheDeviceWasLostInIsLeftOutToRunAgain) {
 // the vectors; the journal named instead gives the same, and the JSON beside
 // it is the file the resumed run writes.
 TEST_F(StoppedRunFile, AKilledRunIsReadFromItsJournal) {
-  RunDocument header = stopped();
-  header.status = "running";
-  header.abort_reason.clear();
-  header.stopped_by.clear();
-  header.finished_at.clear();
-  header.summary.reset();
-  header.restore.clear();
-  header.backup.clear();
-  header.vectors.clear();
-  header.journal = "run.journal.jsonl";
+  const RunDocument header = killed_header();
   write("run.json", header);
   {
     JournalWriter w;
@@ -180,16 +186,7 @@ TEST_F(StoppedRunFile, AKilledRunIsReadFromItsJournal) {
 // stopped run's `backup`, which the resumed run restores from. A malformed
 // one refuses the resume, naming the journal's line.
 TEST_F(StoppedRunFile, AKilledRunsBackupIsTheOneItsJournalNames) {
-  RunDocument header = stopped();
-  header.status = "running";
-  header.abort_reason.clear();
-  header.stopped_by.clear();
-  header.finished_at.clear();
-  header.summary.reset();
-  header.restore.clear();
-  header.backup.clear();
-  header.vectors.clear();
-  header.journal = "run.journal.jsonl";
+  const RunDocument header = killed_header();
   write("run.json", header);
   {
     JournalWriter w;
