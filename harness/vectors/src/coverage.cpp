@@ -197,9 +197,9 @@ bool literal_requirement(const Requirement& r) {
 std::set<std::string> undetermined_fields(const Profile& profile) {
   // E-85: a count's scale is the profile's only where the azimuth sensor
   // counts (a pulse or resolver sensor); the elevation's is taken to be of
-  // the same kind.
-  const std::vector<Requirement> counting{{"azimuth_sensor", {"pulse", "resolver"}, {}}};
-  if (requirements_hold(profile, counting)) return {};
+  // the same kind. (Read from the profile itself: a requirement judged
+  // writes the profile out, which the sweep would pay once a profile.)
+  if (profile.az_sensor == AzSensor::kPulse || profile.az_sensor == AzSensor::kResolver) return {};
   std::set<std::string> out;
   for (const ReplyFieldClass& f : reply_field_classes())
     if (f.reply == ReplyKind::kPulseCount) out.insert(field_label(f));
