@@ -23,7 +23,8 @@ Running a block (docs/ci.md, "The documentation is tested"):
     rewritten in place leaves its last text); other commands run in the
     block's shell;
   - a command ending in "&" runs in the background; the test waits (up to
-    10 s) until it has printed as many lines as the block shows under it;
+    30 s: a loaded CI machine starts a simulator slowly) until it has printed
+    as many lines as the block shows under it;
   - every job still running at the end of the block is stopped.
 
 A block preceded by a comment `<!-- transcript: not-run (REASON) -->` is not
@@ -312,7 +313,7 @@ def run_block(block, index, args, work):
         return re.sub(r"127\.0\.0\.1:(\d{2,5})", port, command)
 
     script = ["set +e -m", f"cd {shlex.quote(work)}", "exec </dev/null", "rm -rf .t; mkdir .t",
-              "__wait() { for _ in $(seq 100); do [ \"$(wc -l <\"$1\")\" -ge \"$2\" ] && return; sleep 0.1; done; }"]
+              "__wait() { for _ in $(seq 300); do [ \"$(wc -l <\"$1\")\" -ge \"$2\" ] && return; sleep 0.1; done; }"]
     for n, (command, expected) in enumerate(block.steps):
         c = substitute(command)
         if c.rstrip().endswith("&") and not c.rstrip().endswith("&&"):
