@@ -10,8 +10,6 @@
 namespace sabus {
 namespace {
 
-constexpr std::size_t kDataStart = kFrameDataStart;
-
 // A field's width on the wire; an Opaque field of width 0 takes the rest.
 template <class C, class T>
 std::size_t width_for_encode(const C& c, const T& value) {
@@ -58,14 +56,14 @@ struct Decoder {
     if (error) return;
     const std::size_t w = width_for_decode(c, in.size() - pos);
     if (pos + w > in.size()) {
-      error = DecodeError{kDataStart + in.size(), std::string(name), std::to_string(w) + " more byte(s)", "ETX"};
+      error = DecodeError{kFrameDataStart + in.size(), std::string(name), std::to_string(w) + " more byte(s)", "ETX"};
       return;
     }
     if (auto e = c.decode(in.subspan(pos, w), value)) {
       // A field may report the position just past its last byte ("a digit"
       // after "-"): name the last byte instead.
       const std::size_t at = pos + std::min(e->index, w - 1);
-      error = DecodeError{kDataStart + at, std::string(name), e->expected, describe_byte(in[at])};
+      error = DecodeError{kFrameDataStart + at, std::string(name), e->expected, describe_byte(in[at])};
     }
     pos += w;
   }
@@ -104,22 +102,22 @@ struct Describer {
     if (w > remaining) {
       truncated = true;
       const std::string want = std::to_string(w) + " byte(s) for " + std::string(name);
-      if (!error) error = DecodeError{kDataStart + in.size(), std::string(name), want, "ETX"};
+      if (!error) error = DecodeError{kFrameDataStart + in.size(), std::string(name), want, "ETX"};
       if (remaining > 0)
-        out.push_back({kDataStart + pos, kDataStart + in.size() - 1, std::string(name), raw_text(in.subspan(pos)),
+        out.push_back({kFrameDataStart + pos, kFrameDataStart + in.size() - 1, std::string(name), raw_text(in.subspan(pos)),
                        "invalid: the data ends here, expected " + want, false, fields::KindOf<C>::value});
       return;
     }
     if (w == 0) return;
     ByteView slice = in.subspan(pos, w);
-    FieldDescription d{kDataStart + pos, kDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true,
+    FieldDescription d{kFrameDataStart + pos, kFrameDataStart + pos + w - 1, std::string(name), raw_text(slice), "", true,
                        fields::KindOf<C>::value};
     if (auto e = c.decode(slice, value)) {
       const std::size_t at = std::min(e->index, w - 1);  // see Decoder
       d.ok = false;
       d.meaning = "invalid: expected " + e->expected;
-      if (w > 1) d.meaning += " at byte " + std::to_string(kDataStart + pos + at);
-      if (!error) error = DecodeError{kDataStart + pos + at, std::string(name), e->expected, describe_byte(slice[at])};
+      if (w > 1) d.meaning += " at byte " + std::to_string(kFrameDataStart + pos + at);
+      if (!error) error = DecodeError{kFrameDataStart + pos + at, std::string(name), e->expected, describe_byte(slice[at])};
     } else if constexpr (sizeof...(M) > 0) {
       d.meaning = (meaning(value), ...);
     } else {
@@ -147,7 +145,7 @@ Expected<T> decode_layout(ByteView data) {
   T::layout(m, dec);
   if (dec.error) return *dec.error;
   if (dec.pos != data.size())
-    return DecodeError{kDataStart + dec.pos, "data", "ETX after " + std::to_string(dec.pos) + " data bytes",
+    return DecodeError{kFrameDataStart + dec.pos, "data", "ETX after " + std::to_string(dec.pos) + " data bytes",
                        std::to_string(data.size()) + " data bytes"};
   return m;
 }
@@ -389,7 +387,7 @@ Expected<Request> decode_request(const Frame& f) {
   if (info->request_length && length != *info->request_length)
     return length_error(*info, length, *info->request_length, false);
   if (!info->request_length && f.data.size() < 2)
-    return DecodeError{kDataStart, "index", "a 2-digit index", "ETX"};
+    return DecodeError{kFrameDataStart, "index", "a 2-digit index", "ETX"};
   return decode_request_by_code(f.command, f.data, std::make_index_sequence<std::variant_size_v<Request>>{});
 }
 
@@ -423,7 +421,7 @@ Expected<Reply> decode_reply(const Frame& f) {
   if (f.kind == FrameKind::kCommand) return DecodeError{0, "start", "ACK or NAK (a reply frame)", describe_byte(STX)};
   if (f.kind == FrameKind::kNak) {
     if (!f.data.empty())
-      return DecodeError{kDataStart, "ETX", "ETX after the command byte (§3 NAK Reply: NAK A CC ETX LRC)",
+      return DecodeError{kFrameDataStart, "ETX", "ETX after the command byte (§3 NAK Reply: NAK A CC ETX LRC)",
                          describe_byte(f.data[0])};
     return Reply{NakReply{}};
   }
@@ -481,7 +479,7 @@ FrameDescription describe_frame(ByteView b) {
   out.summary = kind_text + " " + code + " " + (info ? std::string(info->name) : "(unknown)") +
                 (is_command ? " to " : " from ") + address_text(b[1]);
 
-  ByteView data = b.subspan(kDataStart, etx - kDataStart);
+  ByteView data = b.subspan(kFrameDataStart, etx - kFrameDataStart);
   std::optional<DecodeError> field_error;
   Describer d{data, out.fields, field_error, 0, false};
   bool described = false;
@@ -507,7 +505,7 @@ FrameDescription describe_frame(ByteView b) {
     }
   }
   if (!described && !data.empty() && !(start == ACK && data.size() == 1 && data[0] == kOfflineMarker))
-    add(kDataStart, etx - 1, "data", std::to_string(data.size()) + " byte(s) not described", false,
+    add(kFrameDataStart, etx - 1, "data", std::to_string(data.size()) + " byte(s) not described", false,
         fields::Kind::kUndescribed);
   if (field_error && !out.error) out.error = field_error;
 
