@@ -178,7 +178,7 @@ int run_fuzz(const FuzzCliOptions& o) {
   Generator generator(go, seed);
   if (const Lockstep* l = session.lockstep()) {
     generator.set_rules_fired(&l->coverage().rules_fired);
-    generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+    generator.set_model([l] { return Generator::ModelView{&l->model(), l->now(), l->device_led()}; });
   }
   DeviceFactory fresh;
   if (transport.in_process()) {

@@ -429,8 +429,14 @@ FuzzFrame Generator::motion_sequence() {
   // stopped (a STOW, DEPLOY or search is judged by how it stops).
   for (std::size_t k = uniform(1, 2), first = 1; k > 0; --k, first = 0)
     queued_.push_back({command(0x31), {}, "status while moving", std::chrono::milliseconds(first ? uniform(200, 800) : 0)});
+  // The stop goes out with a status just before it, in one write: what the
+  // stop found (moving or not) is what that status shows (a STOW, DEPLOY or
+  // search may end by itself at any moment, E-89, E-90).
   const Stop& stop = kStops[stop_pending_->second];
-  queued_.push_back({command(stop.code, stop.data), {}, "stop"});
+  Bytes with_status = command(0x31);
+  const Bytes stop_frame = command(stop.code, stop.data);
+  with_status.insert(with_status.end(), stop_frame.begin(), stop_frame.end());
+  queued_.push_back({std::move(with_status), {}, "status and stop"});
   queued_.push_back({command(0x31), {}, "status after the stop"});
   queued_.push_back({command(0x40), {}, "extended status after the stop"});
   // A device that goes on after a stop shows it in its positions once they
@@ -618,7 +624,7 @@ std::optional<Bytes> Generator::legal_move(std::array<int, 3>* limits_out, Aim a
 std::optional<FuzzFrame> Generator::while_arriving() {
   if (!arriving_) return std::nullopt;
   const ModelView view = model_();
-  const bool at_rest = all_at_rest(*view.controller);
+  const bool at_rest = all_at_rest(*view.controller) && !view.device_led;
   if (!at_rest) at_rest_since_.reset();
   else if (!at_rest_since_) at_rest_since_ = view.now;
   if ((at_rest_since_ && view.now - *at_rest_since_ >= kRestFor) || view.now - arrival_start_ >= kArrivalLimit) {
@@ -629,13 +635,18 @@ std::optional<FuzzFrame> Generator::while_arriving() {
   }
   if (++writes_since_poll_ >= kPollEvery) {
     writes_since_poll_ = 0;
-    return FuzzFrame{command(0x31), {}, "status while arriving"};
+    // The extended status while the device leads: its mode bytes end the
+    // episode, and a LOCATE's end is judged by it.
+    return FuzzFrame{command(view.device_led ? 0x40 : 0x31), {}, "status while arriving"};
   }
-  // Anything that cannot move the antenna (nor start another sequence).
+  // Anything that cannot move the antenna (nor start another sequence);
+  // while the device leads (a LOCATE), nothing that stores either: a 42h or
+  // 46h would leave the LOCATE before its end is judged.
+  const bool stores = options_.allow_destructive && !view.device_led;
   for (;;) {
     const auto m = static_cast<Mutation>(std::uniform_int_distribution<unsigned>(0, static_cast<unsigned>(Mutation::kCount) - 1)(rng_));
     FuzzFrame f = m == Mutation::kSequence ? stored_read() : make(m);
-    if (is_safe_to_send(f.chars, false, options_.allow_destructive, tail_)) return f;
+    if (is_safe_to_send(f.chars, false, stores, tail_)) return f;
   }
 }
 
@@ -730,7 +741,7 @@ FuzzFrame Generator::next() {
       FuzzFrame q = std::move(queued_.front());
       queued_.pop_front();
       if (!safe(q)) continue;
-      if (q.what == "stop" && stop_pending_) {
+      if (q.what == "status and stop" && stop_pending_) {
         const bool moving = !model_ || !all_at_rest(*model_().controller);
         motions_stopped_[stop_pending_->first][stop_pending_->second] += moving ? 1.0 : 1.0 / 3;
         stop_pending_.reset();

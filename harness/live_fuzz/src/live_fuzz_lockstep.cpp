@@ -315,8 +315,8 @@ void Lockstep::rebuild(TimePoint now) {
   arrived_at_ = {};
   settle_mode_ = {};
   position_unknown_ = {};
-  locate_outran_ = false;
-  device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = device_seen_moving_ = model_was_led_ = false;
+  device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = model_was_led_ = false;
+  locate_completed_ = false;
 }
 
 Controller& Lockstep::model() { return bus_->controller(0); }
@@ -527,17 +527,18 @@ struct Lockstep::Memory {
   std::array<double, 3> arrived_position;
   TimePoint settle_until;
   ModeState settle_mode;
-  bool device_led, stopped_out, handed_over, model_was_led, moving_when_stopped, device_seen_moving, half_turn;
+  bool device_led, stopped_out, handed_over, model_was_led, moving_when_stopped, half_turn;
   LockstepCoverage coverage;
   std::array<bool, 3> position_unknown;
-  bool locate_outran;
+  TimePoint stopped_at;
+  bool locate_completed;
 };
 
 Lockstep::Memory Lockstep::remember() const {
   return Memory{std::make_unique<Bus>(*bus_), last_, drifted_, moved_on_line_, at_limit_agreed_, auto_moving_,
                 uncertainty_since_rest_, arrived_at_, arrived_position_, settle_until_, settle_mode_, device_led_,
-                stopped_out_, handed_over_, model_was_led_, moving_when_stopped_, device_seen_moving_, half_turn_,
-                coverage_, position_unknown_, locate_outran_};
+                stopped_out_, handed_over_, model_was_led_, moving_when_stopped_, half_turn_,
+                coverage_, position_unknown_, stopped_at_, locate_completed_};
 }
 
 void Lockstep::recall(const Memory& m) {
@@ -558,11 +559,11 @@ void Lockstep::recall(const Memory& m) {
   handed_over_ = m.handed_over;
   model_was_led_ = m.model_was_led;
   moving_when_stopped_ = m.moving_when_stopped;
-  device_seen_moving_ = m.device_seen_moving;
   half_turn_ = m.half_turn;
-  locate_outran_ = m.locate_outran;
   coverage_ = m.coverage;
   position_unknown_ = m.position_unknown;
+  stopped_at_ = m.stopped_at;
+  locate_completed_ = m.locate_completed;
 }
 
 std::vector<std::string> Lockstep::open_readings() const {
@@ -609,7 +610,11 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // second) can explain a device whose search has ended where the model's
   // runs (at rest, or out of the search mode), not one that goes on moving
   // (a stop it ignored), which the episode rules would otherwise leave to it.
+  // E-94 decides only the order and pace of a LOCATE's movements, which the
+  // device leads while it is open (device_leads): its other side would
+  // redo the LOCATE and so excuse where it ends.
   auto plausible = [&](const std::string& id) {
+    if (id == "E-94") return false;
     if (id != "E-90") return true;
     auto search = [](std::uint8_t mode) { return meanings::mode_name(mode) == "SPIRAL_REMOTE_MODE"; };
     bool ended = false, going_on = false;
@@ -656,7 +661,7 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
             false, runs, device, false, std::nullopt, {}};
   const Controller& nominal = runs.front().bus->controller(0);
   note_settling(nominal, j);
-  j.stopped_out = follow_device_led(nominal, device);
+  j.stopped_out = follow_device_led(nominal, mode_before, device);
 
   // Answers vs silence: the framing oracle judges these first against the
   // reference receiver; here only what the model adds (a command it leaves
@@ -675,8 +680,6 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
   if (uncertainty > Duration{0})
     for (std::size_t a = 0; a < 3; ++a)
       for (const Run& r : runs) moved_on_line_[a] = moved_on_line_[a] || motion_of(r.bus->controller(0), a) != AxisState::Motion::kIdle;
-  for (const Frame& dev : device)
-    if (const auto moving = shows_moving(dev)) device_seen_moving_ = *moving;
 
   // Keep the run the device agreed with most (the nominal one on a tie).
   std::size_t best = 0;
@@ -704,7 +707,6 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
     }
   }
   note_arrivals();
-  note_locate_outran(device);
   if (j.take_modes && !j.finding)
     for (const Frame& dev : device)
       if (const auto x = extended_status(dev)) {
@@ -798,20 +800,163 @@ void Lockstep::note_settling(const Controller& nominal, const Judging& j) {
     half_turn_ = true;
 }
 
-bool Lockstep::follow_device_led(const Controller& nominal, const std::vector<Frame>& device) {
-  // While the model or the device runs a STOW, a DEPLOY or a search, the
-  // positions, motion bits and mode bytes are the device's: not compared,
-  // and taken over once both are at rest out of it (E-89, E-90). A stop
-  // still has to stop: after it the model is at rest and compares again.
+// ERRATA E-94: while the profile leaves it open, the order and pace of a
+// LOCATE's movements are the device's as a STOW's are (§3.17 locate_states
+// lists movements, not their order); it is judged by where it ends
+// (locate_ended_alike) and how it exits (judge_locate_end, judge_stop_exit).
+// A LOCATE held at rest (waiting for its site or data, E-59, or in a range
+// error, E-81) is a held mode, not led.
+bool Lockstep::locate_led() const { return !side_pinned(profile_.readings, "E-94"); }
+
+bool Lockstep::device_leads_mode(std::uint8_t mode) const {
+  return moves_by_itself(mode) || (locate_led() && meanings::mode_name(mode) == "LOCATE_MODE");
+}
+
+namespace {
+// A binary reply byte as describe_frame shows it ("0x5c").
+unsigned long hex_byte(const std::string& raw) { return std::strtoul(raw.c_str(), nullptr, 16); }
+
+// A LOCATE that runs: in LOCATE_MODE, neither waiting (for its site or data,
+// E-59) nor in a range or parameter error (E-81), which hold it at rest.
+bool locate_runs(const ModeState& ms) {
+  if (meanings::mode_name(ms.mode) != "LOCATE_MODE") return false;
+  const std::string state = meanings::state_name(ms.mode, ms.state);
+  return state.find("WAITING") == std::string::npos && !state.ends_with("_ERROR");
+}
+}  // namespace
+
+bool Lockstep::device_leads(const ModeState& ms) const {
+  return moves_by_itself(ms.mode) || (locate_led() && locate_runs(ms));
+}
+
+// A LOCATE the model and the device have both run to LOCATE_FUNCTION_COMPLETED
+// and rest after (the device's 40h says so): its positions are the look
+// angles the profile's site and the satellite give (§3.18), whatever the
+// order of the movements: judged as any position at rest.
+bool Lockstep::locate_ended_alike(const AckJudging& r) const {
+  const ModeState& ms = r.nominal().mode;
+  const auto completed = [](std::uint8_t last_mode, std::uint8_t exit) {
+    return meanings::mode_name(last_mode) == "LOCATE_MODE" &&
+           meanings::exit_name(last_mode, exit) == "LOCATE_FUNCTION_COMPLETED";
+  };
+  if (!locate_led() || handed_over_ || !completed(ms.last_mode, ms.exit_status)) return false;
+  for (std::size_t a = 0; a < 3; ++a)
+    if (by_axis(r.nominal(), a).motion != AxisState::Motion::kIdle) return false;
+  const auto x = extended_status(r.dev);
+  return x && completed(x->last_mode, x->exit_status) && !device_leads_mode(x->mode) && shows_moving(r.dev) == false;
+}
+
+// How a LOCATE the device leads ends, whatever the order of its movements
+// (E-94): not in an error state of LOCATE_MODE (§3.17 locate_states: a
+// range or parameter error) where the model's LOCATE runs or has completed,
+// nor left by an exit that is neither LOCATE_FUNCTION_COMPLETED nor a
+// stop's (a stop or another command may end it, §3.17
+// locate_exit_conditions). nullopt: it holds.
+std::optional<std::string> Lockstep::judge_locate_end(const AckJudging& r, const ReplyField& f) const {
+  if (!locate_led() || handed_over_ || stopped_out_ || (f.name != "current state" && f.name != "exit status"))
+    return std::nullopt;
+  const ControllerState& m = r.nominal();
+  const bool model_running = locate_runs(m.mode);
+  const bool model_completed = meanings::mode_name(m.mode.mode) != "LOCATE_MODE" &&
+                               meanings::mode_name(m.mode.last_mode) == "LOCATE_MODE" &&
+                               meanings::exit_name(m.mode.last_mode, m.mode.exit_status) == "LOCATE_FUNCTION_COMPLETED";
+  const auto x = extended_status(r.dev);
+  if ((!model_running && !model_completed) || !x) return std::nullopt;
+  std::string how;
+  if (f.name == "current state" && meanings::mode_name(x->mode) == "LOCATE_MODE") {
+    if (const std::string state = meanings::state_name(x->mode, x->state); state.ends_with("_ERROR")) how = state;
+  } else if (f.name == "exit status" && meanings::mode_name(x->mode) != "LOCATE_MODE" &&
+             meanings::mode_name(x->last_mode) == "LOCATE_MODE") {
+    const std::string exit = meanings::exit_name(x->last_mode, x->exit_status);
+    if (exit != "LOCATE_FUNCTION_COMPLETED" && !is_stop_exit(x->last_mode, x->exit_status)) how = exit;
+  }
+  if (how.empty()) return std::nullopt;
+  return "field '" + f.name + "' (§3.17) is " + f.raw + " (" + how + "): the device's LOCATE ended so where the model's " +
+         (model_running ? "runs" : "completed") +
+         " (§3.18; the order of its movements is the device's, ERRATA E-94, not its end). Device: " + summary(r.dev) +
+         " [" + fields_text(r.dev_fields) + "]; model: [" + fields_text(r.model_fields.front()) + "]";
+}
+
+// In a LOCATE the device leads (E-94) its states are its own, but not its
+// mode: LOCATE_MODE while it runs, then MANUAL_MODE or REMOTE_MODE (E-52,
+// E-93) or what the model's next command entered. Any other mode code (one
+// naming a search, say) is judged.
+bool Lockstep::mode_outside_locate(const AckJudging& r, const ReplyField& f) const {
+  const ModeState& ms = r.nominal().mode;
+  const auto x = extended_status(r.dev);
+  if (f.name != "current mode" || !x || !locate_led() || moves_by_itself(ms.mode) || moves_by_itself(ms.last_mode))
+    return false;
+  const std::string mode = meanings::mode_name(x->mode);
+  return x->mode != ms.mode && mode != "LOCATE_MODE" && mode != "MANUAL_MODE" && mode != "REMOTE_MODE";
+}
+
+// §3.2 byte 35: "The 'Y' field described above only contains meaningful
+// data when TRACK mode is active" (ERRATA E-95, class text): outside TRACK
+// its bit (0x08) is the device's, whatever the profile pins.
+bool Lockstep::y_outside_track(const AckJudging& r, const ReplyField& f,
+                               const std::vector<const std::string*>& values) const {
+  if (f.name != "pol equipment" || r.nominal().track.active) return false;
+  return std::any_of(values.begin(), values.end(),
+                     [&](const std::string* v) { return v && ((hex_byte(*v) ^ hex_byte(f.raw)) & ~0x08ul) == 0; });
+}
+
+// An axis the device's own episode drove, at a speed the model does not
+// know, ramps down after the stop (§3.2 bytes 36-38: movement in progress
+// until it rests) for as long as its fast speed takes to stop at the
+// profile's acceleration: moving until then is no finding.
+bool Lockstep::ramping_down(std::size_t axis, std::uint8_t status, Duration uncertainty) const {
+  const AxisProfile& ap = axis_profile(axis);
+  const std::uint8_t code = status & 0x0F;
+  if ((code != 0x04 && code != 0x05 && code != 0x07) || !ap.accel_dps2 || *ap.accel_dps2 <= 0) return false;
+  const auto ramp = std::chrono::duration<double>(ap.fast_dps / *ap.accel_dps2);
+  constexpr Duration kMargin = std::chrono::milliseconds(100);  // the status's own exchange
+  return clock_->now() - stopped_at_ <= std::chrono::duration_cast<Duration>(ramp) + uncertainty + kMargin;
+}
+
+// §3.2 byte 35 ZZZ names 'h' and 'v' beside 'H' and 'V' without saying when
+// the lower case shows (ERRATA E-96): while E-96 is open, a device whose own
+// status shows its feed moving may show the model's letter in either case.
+bool Lockstep::lower_case_while_moving(const AckJudging& r, const ReplyField& f,
+                                       const std::vector<const std::string*>& values) const {
+  if (f.name != "pol equipment" || side_pinned(profile_.readings, "E-96")) return false;
+  const auto st = status_block(r.dev);
+  const std::uint8_t pol = st ? axis_status(*st, 2) & 0x0F : 0;
+  if (pol != 0x04 && pol != 0x05 && pol != 0x07) return false;
+  const unsigned long dev = hex_byte(f.raw);
+  // The letter codes are 000-011 ('H', 'h', 'V', 'v'): the case is bit 0;
+  // 'Y' (0x08) is left to y_outside_track.
+  const unsigned long mask = r.nominal().track.active ? ~0x01ul : ~0x09ul;
+  return (dev & 0x07) <= 0x03 && std::any_of(values.begin(), values.end(), [&](const std::string* v) {
+           return v && (hex_byte(*v) & 0x07) <= 0x03 && ((hex_byte(*v) ^ dev) & mask) == 0;
+         });
+}
+
+bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& before, const std::vector<Frame>& device) {
+  // While the model or the device runs a STOW, a DEPLOY, a search or (E-94
+  // open) a LOCATE's movements, the positions, motion bits and mode bytes
+  // are the device's: not compared, and taken over once both are at rest
+  // out of it (E-89, E-90, E-94). A stop still has to stop: after it the
+  // model is at rest and compares again.
   const ModeState& ms = nominal.state().mode;
-  if (moves_by_itself(ms.mode)) device_led_ = true;
+  if (device_leads(ms)) device_led_ = true;
+  // A new STOW, DEPLOY, search or LOCATE takes the antenna: whatever ended
+  // the one before (a hand-over, a stop) no longer holds.
+  if (device_leads(ms) && !model_was_led_) handed_over_ = stopped_out_ = locate_completed_ = false;
+  // One the model entered and left within this write (a burst that starts
+  // and stops it): the device's too, the model in it as far as a stop goes.
+  const bool through = !device_leads(before) && device_leads_mode(ms.last_mode) &&
+                       (before.last_mode != ms.last_mode || before.exit_status != ms.exit_status);
+  if (through) device_led_ = model_was_led_ = true;
   // The device in such a mode where the model is not: only where the model
   // has been in one (it left it a little earlier, or later); else the
   // device's mode byte is judged (a wrong mode code that names one made
   // every mode byte the device's for the rest of the episode).
-  const bool model_has_been = model_was_led_ || moves_by_itself(ms.last_mode);
+  const bool model_has_been = model_was_led_ || device_leads_mode(ms.last_mode);
+  // Not while the model's own LOCATE is held at rest (a range error, E-81):
+  // a device that moves there is judged.
+  const bool held = meanings::mode_name(ms.mode) == "LOCATE_MODE" && !locate_runs(ms);
   for (const Frame& dev : device)
-    if (const auto mode = device_mode(dev); mode && moves_by_itself(*mode) && model_has_been) device_led_ = true;
+    if (const auto mode = device_mode(dev); mode && device_leads_mode(*mode) && model_has_been && !held) device_led_ = true;
   // Where such a mode leaves the axes the model knows only to the tenths the
   // device's readings show: counts and hundredths are not compared after it.
   if (device_led_) drifted_ = {true, true, true};
@@ -829,14 +974,29 @@ bool Lockstep::follow_device_led(const Controller& nominal, const std::vector<Fr
       at_rest = at_rest && m == AxisState::Motion::kIdle;
       driving = driving || (m != AxisState::Motion::kIdle && m != AxisState::Motion::kStopping);
     }
-    if (model_was_led_ && !moves_by_itself(ms.mode) && driving) handed_over_ = true;
-    stopped_out = !handed_over_ && at_rest && !moves_by_itself(ms.mode) && moves_by_itself(ms.last_mode) &&
+    if (model_was_led_ && !device_leads(ms) && driving) handed_over_ = true;
+    // The model's LOCATE has completed (E-94): what the device shows until
+    // its own ends is not taken into the model (a MODE_CHANGED exit taken
+    // would read as a stop), but judged at the end (judge_locate_end).
+    if (!device_leads(ms) && meanings::mode_name(ms.last_mode) == "LOCATE_MODE" &&
+        meanings::exit_name(ms.last_mode, ms.exit_status) == "LOCATE_FUNCTION_COMPLETED")
+      locate_completed_ = true;
+    stopped_out = !handed_over_ && at_rest && !device_leads(ms) && device_leads_mode(ms.last_mode) &&
                   is_stop_exit(ms.last_mode, ms.exit_status);
   }
-  model_was_led_ = moves_by_itself(ms.mode);
+  model_was_led_ = device_leads(ms);
   // The write that stopped it: whether the device's last status before it
   // showed the device moving (then its exit must be a stop's too).
-  if (stopped_out && !stopped_out_) moving_when_stopped_ = device_seen_moving_;
+  if (stopped_out && !stopped_out_) {
+    // Seen moving by a status in the write that stops it, just before the
+    // stop: a STOW, DEPLOY or search may end by itself at any moment (E-89,
+    // E-90), so a status of an earlier write says nothing of what the stop
+    // found (the generator sends the two together).
+    moving_when_stopped_ = device.size() > 1 && std::any_of(device.begin(), device.end() - 1, [](const Frame& dev) {
+                             return shows_moving(dev) == true;
+                           });
+    stopped_at_ = clock_->now();
+  }
   stopped_out_ = stopped_out;
   return stopped_out;
 }
@@ -924,48 +1084,36 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
     return report(FindingKind::kEffect, *judged);
   }
   if (std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; })) return true;
-  if (const auto outran = judge_outran_locate(j, r, f)) return *outran;
-  // §3.17 locate_exit_conditions pair a STOP_KEY and a MODE_CHANGED entry
-  // with each movement of a LOCATE, whose order is the device's (ERRATA
-  // E-94): a LOCATE left by the same cause in another movement than the
-  // model's is a note while E-94 is open, and the model takes its exit.
-  if (f.name == "exit status" && !side_pinned(profile_.readings, "E-94"))
-    if (const auto x = extended_status(r.dev); x && x->last_mode == r.nominal().mode.last_mode) {
-      const std::string got = meanings::exit_name(x->last_mode, x->exit_status);
-      const std::string want = meanings::exit_name(x->last_mode, r.nominal().mode.exit_status);
-      auto cause = [](const std::string& e) {
-        for (std::string_view c : {"_STOP_KEY", "_MODE_CHANGED", "_MODE_CHANGE"})
-          if (e.starts_with("LOCATE_") && e.ends_with(c)) return std::string(c);
-        return std::string();
-      };
-      if (!cause(got).empty() && cause(got) == cause(want)) {
-        note_reading({"E-94"}, Verdict{FindingKind::kValue, "field 'exit status' (§3.17) is " + f.raw + " (" + got +
-                                                              "); the model left the LOCATE in another movement (" +
-                                                              want + ")"});
-        j.take_modes = true;
-        return true;
-      }
-    }
+  if (y_outside_track(r, f, values) || lower_case_while_moving(r, f, values)) return true;
   // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
   // reports an optional's value as maybe unset through this loop).
   const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
   const bool has_axis = axis != kNoAxis;
-  if (device_led_ && (has_axis || is_mode_byte(f.name)) && !held_by_a_command(r, f)) {
+  if (device_led_ && (has_axis || is_mode_byte(f.name)) && !held_by_a_command(r, f) &&
+      !(has_axis && locate_ended_alike(r)) && !mode_outside_locate(r, f)) {
     // After the stop only whether it moves: its limits are where its own
     // positions put it.
     const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !f.name.ends_with(" limits");
     if (!(motion_bits && j.stopped_out)) {
+      if (const auto wrong_end = judge_locate_end(r, f)) return report(FindingKind::kEffect, *wrong_end);
       if (const auto wrong_exit = judge_stop_exit(j, r, f)) return report(FindingKind::kValue, *wrong_exit);
-      // Taken over while it runs; once the model has stopped out, not (a
-      // device that goes on would hold the model in the mode): the device's
-      // exit is taken when the episode ends (keep_in_step).
-      j.take_modes = j.take_modes || (is_mode_byte(f.name) && !j.stopped_out);
+      // Taken over while it runs; once the model has stopped out or
+      // completed its LOCATE, not (a device that goes on would hold the
+      // model in the mode): the device's exit is taken when the episode
+      // ends (keep_in_step).
+      j.take_modes = j.take_modes || (is_mode_byte(f.name) && !j.stopped_out && !locate_completed_);
       return true;
     }
     // Whether it moves, which way and its alarms; the speed bit (0x10) is
     // that of the last leg the device ran (§3.2 bytes 36-38, E-89, E-90),
     // taken when the episode ends (keep_in_step).
     const auto dev_status = has_axis && f.name.ends_with(" status") ? status_block(r.dev) : std::nullopt;
+    // A reply before the last of the write came before the stop (the
+    // generator's "status and stop"); an axis at rest is what the stop asks,
+    // whatever speed the model's ramp runs down from.
+    if (dev_status && r.index + 1 < r.same.front()->replies.size()) return true;
+    if (dev_status && (axis_status(*dev_status, axis) & 0x0F) == 0) return true;
+    if (dev_status && ramping_down(axis, axis_status(*dev_status, axis), j.uncertainty)) return true;
     if (dev_status && std::any_of(r.same.begin(), r.same.end(), [&](const Run* run) {
           const auto model_status = status_block(run->replies[r.index]);
           return model_status && (axis_status(*model_status, axis) & 0x0F) == (axis_status(*dev_status, axis) & 0x0F);
@@ -1077,7 +1225,7 @@ bool Lockstep::held_by_a_command(const AckJudging& r, const ReplyField& f) const
   // is not: a mode the device ran to its end leaves it there as a stop does.
   if (f.name != "current mode" && f.name != "current state") return false;
   const ControllerState& s = r.nominal();
-  if (moves_by_itself(s.mode.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
+  if (device_leads(s.mode) || meanings::mode_name(s.mode.mode) == "MANUAL_MODE") return false;
   for (std::size_t a = 0; a < 3; ++a)
     if (by_axis(s, a).motion != AxisState::Motion::kIdle || device_moving(r.dev, a)) return false;
   return true;
@@ -1157,8 +1305,15 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   // drift window takes the device's reading (a move arriving elsewhere
   // within its tolerance, a stop a few milliseconds apart: §3.2).
   Controller& m = model();
+  // A 40h reply showing every axis at rest: the episode's end.
+  const bool device_at_rest = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
+    return device_mode(dev).has_value() && shows_moving(dev) == false;
+  });
   take_positions(device, [&](std::size_t axis, double distance) {
-    if (device_led_ && !moves_by_itself(m.state().mode.mode)) return true;  // out of a STOW, DEPLOY or search, at rest
+    // Out of a STOW, DEPLOY, search or LOCATE, at rest; where a LOCATE the
+    // model completed ends is judged by the 40h that shows its end
+    // (locate_ended_alike), so it is taken only from that one.
+    if (device_led_ && !device_leads(m.state().mode)) return !locate_completed_ || device_at_rest;
     if (device_led_) return false;
     if (axis == 0 && half_turn_) {
       half_turn_ = false;  // both at rest: the device's azimuth, whatever it is
@@ -1168,15 +1323,12 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   });
   // Judged again once the model is out of such a mode and at rest, and the
   // device's extended status shows every axis at rest.
-  if (!device_led_ || moves_by_itself(m.state().mode.mode)) return;
+  if (!device_led_ || device_leads(m.state().mode)) return;
   // A 40h reply: its positions taken above and its mode bytes with them.
-  const bool device_at_rest = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
-    return device_mode(dev).has_value() && shows_moving(dev) == false;
-  });
   if (!all_at_rest(m) || !device_at_rest) return;
   device_led_ = false;
   for (std::size_t a = 0; a < 3; ++a) position_unknown_[a] = !reading_of(m, a);
-  stopped_out_ = handed_over_ = moving_when_stopped_ = false;
+  stopped_out_ = handed_over_ = moving_when_stopped_ = locate_completed_ = false;
   for (const Frame& dev : device)  // how the device says it ended (judged above)
     if (const auto x = extended_status(dev)) {
       m.mutable_state().mode = mode_state(*x);
@@ -1220,43 +1372,6 @@ void Lockstep::note_arrivals() {
       arrived_at_[a].reset();
     }
   }
-}
-
-// ERRATA E-94: the order and pace of a LOCATE's movements are the device's.
-// Whether the model's LOCATE has completed while the device's status still
-// shows an axis moving after it; cleared by a new LOCATE in the model, or
-// once an extended status has shown the device's mode bytes.
-void Lockstep::note_locate_outran(const std::vector<Frame>& device) {
-  const ModeState& ms = model().state().mode;
-  if (meanings::mode_name(ms.mode) == "LOCATE_MODE") {
-    locate_outran_ = false;
-    return;
-  }
-  for (const Frame& dev : device)
-    if (extended_status(dev)) locate_outran_ = false;
-  const bool completed = meanings::mode_name(ms.last_mode) == "LOCATE_MODE" &&
-                         meanings::exit_name(ms.last_mode, ms.exit_status) == "LOCATE_FUNCTION_COMPLETED";
-  if (completed && std::any_of(device.begin(), device.end(), [](const Frame& dev) { return shows_moving(dev) == true; }))
-    locate_outran_ = true;
-}
-
-std::optional<bool> Lockstep::judge_outran_locate(Judging& j, const AckJudging& r, const Field& f) {
-  // The device's LOCATE still moved where the model's had completed, and a
-  // stop or another command has left it since: its last mode is the LOCATE,
-  // left by a STOP_KEY or MODE_CHANGED entry (§3.17 locate_exit_conditions),
-  // where the model's last mode is the one its completed LOCATE went to. A
-  // note while E-94 is open; the model takes the device's mode bytes.
-  if (!locate_outran_ || side_pinned(profile_.readings, "E-94")) return std::nullopt;
-  if (f.name != "last exited mode" && f.name != "exit status") return std::nullopt;
-  const auto x = extended_status(r.dev);
-  if (!x || meanings::mode_name(x->last_mode) != "LOCATE_MODE" || x->mode != r.nominal().mode.mode) return std::nullopt;
-  if (!is_stop_exit(x->last_mode, x->exit_status)) return std::nullopt;
-  if (f.name == "last exited mode")
-    note_reading({"E-94"}, Verdict{FindingKind::kValue, "field 'last exited mode' (§3.17) is " + f.raw + " with exit " +
-                                                          meanings::exit_name(x->last_mode, x->exit_status) +
-                                                          ": the device's LOCATE still moved when the model's had completed, and was left"});
-  j.take_modes = true;
-  return true;
 }
 
 }  // namespace sabus::harness::live_fuzz

@@ -10,7 +10,10 @@
 #include "sabus/harness/profile_generator.hpp"
 #include "sabus/harness/profile_loader.hpp"
 #include "sabus/harness/transports.hpp"
+#include "sabus/protocol/catalog.hpp"
 #include "sabus/protocol/codec.hpp"
+#include "sabus/protocol/messages.hpp"
+#include "sabus/protocol/structured.hpp"
 
 namespace sabus::harness::live_fuzz {
 namespace {
@@ -31,9 +34,28 @@ std::string noted(const Session& s) {
   return out;
 }
 
+// Polls the extended status (40h) every `every` until the model's LOCATE and
+// the device's have both ended (neither in LOCATE_MODE) and the device rests,
+// at most `polls` times: the first finding, if any.
+std::optional<Verdict> poll_until_located(Session& s, const Profile& model, InProcessTransport& t, int polls,
+                                          std::chrono::milliseconds every) {
+  FuzzFrame extended{encode_frame({FrameKind::kCommand, model.address, 0x40, {}}), {}, "test", every};
+  for (int i = 0; i < polls; ++i) {
+    if (auto v = s.step(extended)) return v;
+    const auto locating = [](const Controller& c) { return meanings::mode_name(c.state().mode.mode) == "LOCATE_MODE"; };
+    if (!locating(s.lockstep()->model()) && !locating(t.bus().controller(0)) && all_at_rest(t.bus().controller(0)) &&
+        all_at_rest(s.lockstep()->model()))
+      return std::nullopt;
+  }
+  ADD_FAILURE() << "the LOCATE did not end in " << polls << " polls";
+  return std::nullopt;
+}
+
 // A LOCATE whose first movement is the elevation's (E-94's other side),
-// asked for its extended status at once: a note, not an effect finding.
-TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsANote) {
+// asked for its extended status at once and then until it has ended: the
+// order of its movements is the device's, as a STOW's is, so no finding and
+// no note; where it ends is judged, and agrees.
+TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsTheDevicesUntilItEnds) {
   const Profile model = default_profile();
   Profile device = model;
   device.readings["E-94"] = ReadingSide::kOther;
@@ -47,7 +69,94 @@ TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsANote) {
     const auto v = s.step(raw(hex));
     EXPECT_FALSE(v) << hex << ": " << v->message;
   }
-  EXPECT_EQ(noted(s), "E-94:other");
+  const auto v = poll_until_located(s, model, *t, 200, 2000ms);
+  EXPECT_FALSE(v) << v->message;
+  EXPECT_EQ(noted(s), "");
+  EXPECT_NEAR(s.lockstep()->model().state().az.position, t->bus().controller(0).state().az.position, 0.1);
+  EXPECT_NEAR(s.lockstep()->model().state().el.position, t->bus().controller(0).state().el.position, 0.1);
+}
+
+// A LOCATE started and stopped in one write (a burst): the model's stop
+// finds its azimuth movement, the device's its first elevation movement
+// (E-94's other side); each exits by its own stop entry, and that is no
+// finding (gate.fuzz_readings, iess-implemented, fuzz seed 1). A device
+// that went on moving after it would still be one.
+TEST(LiveFuzzReadings, ALocateStoppedInTheWriteThatStartsItExitsByItsOwnStop) {
+  const Profile model = default_profile();
+  Profile device = model;
+  device.readings["E-94"] = ReadingSide::kOther;
+  auto t = make_in_process_transport({device}, {});
+  SessionOptions o;
+  o.allow_motion = o.allow_destructive = true;
+  Session s(*t, model, o);
+  const FuzzFrame burst = raw(
+      "02 32 41 40 30 46 55 5a 5a 20 4c 4f 43 20 20 2d 39 33 2e 35 20 30 20 31 30 2e 30 20 20 4e 41 20 20 20 20 03 6d "
+      "02 32 47 58 53 30 30 30 30 03 7f");
+  const auto v = s.step(burst);
+  EXPECT_FALSE(v) << v->message;
+  FuzzFrame extended = raw("02 32 40 03 73");
+  extended.pause = 2000ms;
+  for (int i = 0; i < 3; ++i) {
+    const auto w = s.step(extended);
+    EXPECT_FALSE(w) << w->message;
+  }
+  const auto* x = &t->bus().controller(0).state().mode;
+  EXPECT_EQ(meanings::exit_name(x->last_mode, x->exit_status), "LOCATE_FIRST_ELEV_MOVEMENT_STOP_KEY");
+  EXPECT_EQ(meanings::mode_name(s.lockstep()->model().state().mode.last_mode), "LOCATE_MODE");
+}
+
+// The same LOCATE led by a device that turns the azimuth the wrong way
+// (fault locate-azimuth-counterclockwise) on a pot-sensed mount whose 0.0 is
+// not true north: while it runs, nothing of its motion is judged (E-94
+// open); once both have completed, the device's azimuth is a finding.
+TEST(LiveFuzzReadings, ALocateTheDeviceLeadsIsJudgedWhereItEnds) {
+  const ProfileResult loaded = load_profile_file(
+      (std::filesystem::path(default_profile_path()).parent_path() / "fast-mount-manual-nav.yaml").string());
+  ASSERT_TRUE(loaded);
+  const Profile model = *loaded.profile;
+  ASSERT_FALSE(side_pinned(model.readings, "E-94"));
+  Profile device = model;
+  device.readings["E-94"] = ReadingSide::kOther;
+  auto t = make_in_process_transport({device}, FaultSet{Fault::kLocateAzimuthCounterclockwise});
+  SessionOptions o;
+  o.allow_motion = o.allow_destructive = true;
+  Session s(*t, model, o);
+  const FuzzFrame locate{encode_request(build_request(*find_command(0x41), "data",
+                                                      {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"},
+                                                       {"band", "1"}, {"pol offset", "0.0"}, {"receive polarization", "N"},
+                                                       {"position update", "A"}})
+                                            .value(),
+                                        model.address),
+                         {}, "test"};
+  const auto started = s.step(locate);
+  ASSERT_FALSE(started) << started->message;
+  const auto v = poll_until_located(s, model, *t, 200, 500ms);
+  ASSERT_TRUE(v) << "the wrong azimuth was not found where the LOCATE ended; notes: " << noted(s);
+  EXPECT_EQ(v->kind, FindingKind::kEffect) << v->message;
+  EXPECT_EQ(v->field, "azimuth") << v->message;
+  // Both at rest out of the LOCATE, its exit LOCATE_FUNCTION_COMPLETED (0x38).
+  EXPECT_NE(v->message.find("last exited mode=0x25, exit status=0x38"), std::string::npos) << v->message;
+  EXPECT_EQ(noted(s), "");
+}
+
+// §3.2 byte 35 'Y' "only contains meaningful data when TRACK mode is
+// active" (E-95, class text): a device showing 0 outside TRACK is no
+// finding and needs no note, even where the model's profile pins the side
+// that shows 1.
+TEST(LiveFuzzReadings, YOutsideTrackIsTheDevicesEvenPinned) {
+  Profile model = default_profile();
+  ASSERT_FALSE(model.track.active);
+  model.readings["E-95"] = ReadingSide::kReference;
+  Profile device = model;
+  device.readings["E-95"] = ReadingSide::kOther;
+  auto t = make_in_process_transport({device}, {});
+  Session s(*t, model, SessionOptions{});
+  for (std::uint8_t code : {0x31, 0x40}) {
+    const FuzzFrame poll{encode_frame({FrameKind::kCommand, model.address, code, {}}), {}, "test"};
+    const auto v = s.step(poll);
+    EXPECT_FALSE(v) << v->message;
+  }
+  EXPECT_EQ(noted(s), "");
 }
 
 // A search over within a second (E-90's other side) on a mount whose
@@ -82,7 +191,9 @@ TEST(LiveFuzzReadings, AnAxisWithoutAReadingIsTakenFromItsCountAfterASearch) {
 // Each switchable reading on its own (sabus sim --reading E-NN=other), on a
 // profile where it shows (a circular feed for E-91, remote control disabled
 // for E-97): 3,000 writes with motion and stored writes give no finding,
-// and the entries the generator reaches within them are noted.
+// and the entries the generator reaches within them are noted. E-94 and
+// E-95 never are: a LOCATE's movements are the device's episode, and 'Y'
+// outside TRACK is the device's by the spec's own word.
 struct OneReading {
   const char* id;
   const char* profile;  // a shipped profile's file name
@@ -105,7 +216,7 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
   Generator generator(go, 1);
   const Lockstep* l = session.lockstep();
   generator.set_rules_fired(&l->coverage().rules_fired);
-  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now()}; });
+  generator.set_model([l] { return Generator::ModelView{&l->model(), l->now(), l->device_led()}; });
   for (int i = 0; i < 3000; ++i) {
     FuzzFrame f = generator.next();
     for (int k = 0; k < 2 && session.would_be_ignored(f); ++k) {
@@ -127,7 +238,7 @@ INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},
                                            OneReading{"E-93", "rc3000-1.59.yaml", false},
                                            OneReading{"E-94", "rc3000-1.59.yaml", false},
-                                           OneReading{"E-95", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-95", "rc3000-1.59.yaml", false},
                                            OneReading{"E-96", "rc3000-1.59.yaml", false},
                                            OneReading{"E-97", "remote-disabled.yaml", false},
                                            OneReading{"E-98", "rc3000-1.59.yaml", true}),

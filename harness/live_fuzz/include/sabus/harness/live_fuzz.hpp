@@ -147,6 +147,10 @@ class Generator {
   struct ModelView {
     const Controller* controller;
     TimePoint now;  // the model's clock
+    // The device leads an episode (a STOW, DEPLOY, search or LOCATE,
+    // Lockstep::device_led): an arrival lasts until the device's extended
+    // status shows it at rest too.
+    bool device_led = false;
   };
   void set_model(std::function<ModelView()> model) { model_ = std::move(model); }
 
@@ -375,6 +379,8 @@ class Lockstep {
   const Controller& model() const;
   // The model's clock: when it executed the last write.
   TimePoint now() const { return last_; }
+  // Whether the device leads the motion now (an episode not over yet).
+  bool device_led() const { return device_led_; }
 
   // The spread a position may have on this axis for `uncertainty` of timing
   // (fast speed both ways), the axis's arrival tolerance and the display's
@@ -418,9 +424,22 @@ class Lockstep {
   // A move ending within the drift window (the mode bytes settle), an
   // azimuth move to the half turn.
   void note_settling(const Controller& nominal, const Judging& j);
-  // A STOW, DEPLOY or search in the model or the device (E-89, E-90):
-  // whether the model has stopped out of one.
-  bool follow_device_led(const Controller& nominal, const std::vector<Frame>& device);
+  // A STOW, DEPLOY, search or LOCATE in the model or the device (E-89,
+  // E-90, E-94), `before` the model's mode before the write: whether the
+  // model has stopped out of one.
+  bool follow_device_led(const Controller& nominal, const ModeState& before, const std::vector<Frame>& device);
+  // Whether the device leads the model's current episode (`ms` a STOW,
+  // DEPLOY or search, or a LOCATE that runs while E-94 is open), or would
+  // lead one in `mode`.
+  bool locate_led() const;
+  bool device_leads(const ModeState& ms) const;
+  bool device_leads_mode(std::uint8_t mode) const;
+  bool locate_ended_alike(const AckJudging& r) const;
+  std::optional<std::string> judge_locate_end(const AckJudging& r, const ReplyField& f) const;
+  bool mode_outside_locate(const AckJudging& r, const ReplyField& f) const;
+  bool y_outside_track(const AckJudging& r, const ReplyField& f, const std::vector<const std::string*>& values) const;
+  bool lower_case_while_moving(const AckJudging& r, const ReplyField& f,
+                               const std::vector<const std::string*>& values) const;
   // The i-th reply, and an ACK's fields: false once judging stops (a finding).
   bool judge_reply(Judging& j, std::size_t i);
   bool judge_field(Judging& j, AckJudging& r, const ReplyField& f, std::size_t occurrence);
@@ -471,25 +490,22 @@ class Lockstep {
   void note_arrivals();
   TimePoint settle_until_{};             // mode bytes taken from the device until then
   ModeState settle_mode_{};              // the model's while that move still ran
-  // A STOW, DEPLOY or search in the model or the device: motion and mode
-  // bytes are the device's until both are at rest out of it (E-89, E-90).
+  // A STOW, DEPLOY, search or (E-94 open) moving LOCATE in the model or the
+  // device: motion and mode bytes are the device's until both are at rest
+  // out of it (E-89, E-90, E-94).
   bool device_led_ = false;
   bool stopped_out_ = false;          // the model stopped out of it, at rest
   bool handed_over_ = false;          // left for another command's move, not stopped
   bool model_was_led_ = false;        // the model in such a mode after the last write
-  bool moving_when_stopped_ = false;  // the device's last status before that stop showed it moving
-  bool device_seen_moving_ = false;   // the device's last status block showed an axis moving
+  bool moving_when_stopped_ = false;  // a status just before that stop, in its write, showed the device moving
+  TimePoint stopped_at_{};            // when the model stopped out of it
+  bool locate_completed_ = false;     // the model's LOCATE has completed, the device's maybe not
+  bool ramping_down(std::size_t axis, std::uint8_t status, Duration uncertainty) const;
   bool half_turn_ = false;               // an azimuth move to +-180 on a line: azimuth not compared
   // Out of a STOW, DEPLOY or search where the axis's reading is '*' (an
   // A/D error, E-42): where the device left it shows first in a pulse count
   // (§3.16), which is taken, not judged.
   std::array<bool, 3> position_unknown_{};
-  void note_locate_outran(const std::vector<Frame>& device);
-  std::optional<bool> judge_outran_locate(Judging& j, const AckJudging& r, const ReplyField& f);
-  // The model's LOCATE completed while the device's still moved (its legs
-  // in another order or at another pace, E-94): a stop that follows may
-  // leave the device's LOCATE, where the model's has none to leave.
-  bool locate_outran_ = false;
   LockstepCoverage coverage_;
 };
 
