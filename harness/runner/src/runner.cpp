@@ -235,12 +235,22 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
 // its phase, and a precondition not met ends the setup and the steps; the
 // teardown always runs, and an 'X' stop follows every vector that can move
 // the antenna, unless its teardown has just ended with one the device ACKed.
+// A vector ended before its setup (the mount still not at rest) has moved
+// nothing and has neither.
 Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& transcript) {
   Attempt a;
   s.transcript = s.options.record_transcripts ? &transcript : nullptr;
-  s.captures.clear();
   s.vector_moves = v.has_tag("motion");
   s.vector_id = v.id;
+  // A vector that needs an axis at rest that has not shown rest since its
+  // poll for rest timed out: one status request, and no setup, teardown or
+  // stop when it still does not (Session::rest_still_unseen).
+  if (auto e = s.rest_still_unseen(v)) {
+    a.inconclusive = "before the setup: " + *e;
+    s.transcript = nullptr;
+    return a;
+  }
+  s.captures.clear();
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
       record(a, s, step, "setup: ", *e);
