@@ -187,6 +187,8 @@ struct Attempt {
   std::vector<std::string> failures;
   std::string inconclusive;
   std::string error;  // why the line left it unjudged (Verdict::kError)
+  // Whether it ended inconclusive on a short poll for rest (kShortRestPoll).
+  bool rest_unseen = false;
   // Whether the setup and the steps are over: a step failed, a
   // precondition did not hold or the line left a step unjudged (the
   // teardown still runs).
@@ -203,10 +205,16 @@ struct Attempt {
 // vector's failure has reported already.
 // A step the line left unjudged (Session::line_error) ends it in error.
 void record(Attempt& a, Session& s, const Step& step, const std::string& where, const std::string& error) {
-  if (std::exchange(s.line_error, false)) a.error = where + error;
-  else if (std::exchange(s.rest_unseen, false)) a.inconclusive = where + error;
-  else if (step.precondition.empty()) a.failures.push_back(where + error);
-  else a.inconclusive = where + "precondition not met (" + step.precondition + "): " + error;
+  if (std::exchange(s.line_error, false)) {
+    a.error = where + error;
+  } else if (std::exchange(s.rest_unseen, false)) {
+    a.inconclusive = where + error;
+    a.rest_unseen = true;
+  } else if (step.precondition.empty()) {
+    a.failures.push_back(where + error);
+  } else {
+    a.inconclusive = where + "precondition not met (" + step.precondition + "): " + error;
+  }
 }
 
 // The steps, once, or once for each slot of the list `each_slot` names that
@@ -235,12 +243,23 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
 // its phase, and a precondition not met ends the setup and the steps; the
 // teardown always runs, and an 'X' stop follows every vector that can move
 // the antenna, unless its teardown has just ended with one the device ACKed.
+// A vector ended before its setup (the mount still not at rest) has moved
+// nothing and has neither.
 Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& transcript) {
   Attempt a;
   s.transcript = s.options.record_transcripts ? &transcript : nullptr;
-  s.captures.clear();
   s.vector_moves = v.has_tag("motion");
   s.vector_id = v.id;
+  // A vector that needs an axis at rest that has not shown rest since its
+  // poll for rest timed out: one status request, and no setup, teardown or
+  // stop when it still does not (Session::rest_still_unseen).
+  if (auto e = s.rest_still_unseen(v)) {
+    a.inconclusive = "before the setup: " + *e;
+    a.rest_unseen = true;
+    s.transcript = nullptr;
+    return a;
+  }
+  s.captures.clear();
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
       record(a, s, step, "setup: ", *e);
@@ -337,7 +356,19 @@ void execute(Session& s, const Vector& v, VectorResult& r, RunResult& result) {
       faults_before = s.line.faults;
       recovered_before = s.line.recovered;
       silent_before = s.unsure_repeats;
-      a = attempt(s, v, r.transcript);
+      Attempt next = attempt(s, v, r.transcript);
+      // A run again that a short poll ended, because this vector's own poll
+      // for rest timed out and the axis still does not show rest, reached
+      // nothing: the failure before it stands (that poll judged the clean
+      // replies it got until its timeout), or a mount that never shows rest
+      // would pass on a line with a fault in that poll's minutes.
+      if (next.rest_unseen && s.rest_timed_out_in == v.id) {
+        if (s.options.record_transcripts)
+          r.transcript.push_back({s.t_ms(), false, {}, "the mount still does not show rest (" + next.inconclusive +
+                                      "): the failure of the attempt before stands", {}, ""});
+        break;
+      }
+      a = std::move(next);
     }
     // An attempt that ended with every fault of its own recovered settled
     // those of the attempts before it.

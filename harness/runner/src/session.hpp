@@ -107,6 +107,11 @@ class Session : public ReceiverSink {
   std::optional<std::string> run_send(const Step& s);
   std::optional<std::string> run_poll(const Step& s);
   std::optional<std::string> run_survey(const Step& s);
+  // Before a vector's setup, while an axis has not shown rest since its poll
+  // for rest timed out (kShortRestPoll): the short poll's failure when the
+  // vector needs that axis at rest and it still does not show it; nullopt
+  // when the vector is to run.
+  std::optional<std::string> rest_still_unseen(const Vector& v);
   // What came back to a send, as its expectation is checked against it.
   struct Reply {
     const std::vector<Frame>& replies;
@@ -132,6 +137,7 @@ class Session : public ReceiverSink {
   void pace();
   void send_in_chunks(const Bytes& chars, const Modifiers& m);
   std::optional<std::string> check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers);
+  std::optional<Step> unshown_rest_poll(const Vector& v) const;
   std::chrono::milliseconds poll_timeout(const Step& s, const FrameDescription& first_reply);
   // The line fault the last exchange showed, for a step that expects `due`:
   // what the master's receiver discarded, or no reply where one was due; ""

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "sabus/harness/motion.hpp"
 #include "sabus/harness/profile_records.hpp"
@@ -452,6 +453,46 @@ std::optional<std::string> Session::run_poll(const Step& s) {
     if (options.stop && !options.stop().empty()) return "stopped";
     transport.pause(s.interval);
   }
+}
+
+// The first poll of the vector's setup and steps that waits for the rest of
+// an axis that has not shown rest, its `until` cut to those axes' status:
+// the poll it would run short. nullopt when there is none.
+std::optional<Step> Session::unshown_rest_poll(const Vector& v) const {
+  if (rest_not_shown.empty()) return std::nullopt;
+  for (const auto* list : {&v.setup, &v.steps})
+    for (const Step& s : *list) {
+      if (s.kind != Step::Kind::kPoll) continue;
+      std::vector<FieldMatcher> unshown;
+      for (const auto& m : rest_matchers(s))
+        if (rest_not_shown.count(m.field) > 0) unshown.push_back(m);
+      if (unshown.empty()) continue;
+      Step probe = s;
+      probe.until = std::move(unshown);
+      return probe;
+    }
+  return std::nullopt;
+}
+
+// The vector's own poll for rest would be short and, on a mount still
+// showing movement, end it inconclusive after its setup had moved the
+// mount, with its teardown and the runner's stop to follow. That short poll
+// comes first instead: when the axis still does not show rest, the vector
+// ends before its setup, having sent nothing else, and a controller that
+// never shows rest costs one request a vector. Anything else runs the vector
+// as before, which judges it: rest seen (the run is back to normal for that
+// axis, as in run_poll), a reply the poll's expectation fails, a line that
+// left the request unjudged. So this only ever ends a vector inconclusive,
+// never fails or passes one. What its setup and steps would have checked
+// before its poll is left unchecked, as in any inconclusive vector, and a
+// vector that waits before its poll for rest does not get that wait.
+std::optional<std::string> Session::rest_still_unseen(const Vector& v) {
+  const std::optional<Step> probe = unshown_rest_poll(v);
+  if (!probe) return std::nullopt;
+  std::optional<std::string> e = run_poll(*probe);
+  line_error = false;
+  if (!std::exchange(rest_unseen, false)) return std::nullopt;
+  return e;
 }
 
 namespace {

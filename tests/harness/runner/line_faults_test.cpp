@@ -63,6 +63,35 @@ RunOptions retries(int n) {
   return o;
 }
 
+// A mount that never shows rest, on a line that garbles a reply now and
+// then: the poll for rest times out with line faults in its minutes, so the
+// vector runs again; its short poll for rest (kShortRestPoll) sees no rest,
+// and the timeout's failure stands rather than the rerun's inconclusive.
+TEST(LineFaults, APollForRestThatTimedOutStillFailsWhenTheLineMadeTheVectorRunAgain) {
+  Step poll = status();
+  poll.kind = Step::Kind::kPoll;
+  poll.timeout = std::chrono::milliseconds(20000);
+  FieldMatcher rest;
+  rest.field = "az status";
+  rest.kind = FieldMatcher::Kind::kRegex;
+  rest.values = {"^0x[45]0$"};
+  poll.until = {rest};
+  Vector v = vector_with("move", {send("auto_move", "2A", {{"azimuth", "-10.0"}, {"elevation", "45.0"}}), poll});
+  v.tags = {"motion"};
+  RunOptions o = retries(1);
+  o.allow_motion = true;
+  const Outcome r = run_with({v}, {Fault::kNeverShowsRest, Fault::kGarblesReplies}, o);
+  const VectorResult& got = r.result.vectors.at(0);
+  ASSERT_EQ(got.verdict, Verdict::kFail) << got.inconclusive_reason;
+  EXPECT_EQ(got.failures.at(0).rfind("poll timed out after 20000 ms: byte 36 az status", 0), 0u) << got.failures[0];
+  EXPECT_GT(got.line.faults, 0u);
+  const bool noted = std::any_of(got.transcript.begin(), got.transcript.end(), [](const TranscriptEntry& e) {
+    return e.note.find("the failure of the attempt before stands") != std::string::npos;
+  });
+  EXPECT_TRUE(noted);
+  EXPECT_EQ(r.result.exit_code(), 1);
+}
+
 // The liveness check's two replies come first (30h, 31h): the vector's first
 // reply is the run's third, which garbles-replies garbles.
 TEST(LineFaults, AGarbledReplyToAReadIsSentAgainAndRecovered) {

@@ -1110,6 +1110,12 @@ std::size_t status_polls(const VectorResult& v) {
   }));
 }
 
+// The frames a vector sent, of any command.
+std::size_t frames_sent(const VectorResult& v) {
+  return static_cast<std::size_t>(
+      std::count_if(v.transcript.begin(), v.transcript.end(), [](const TranscriptEntry& e) { return e.sent; }));
+}
+
 // Once a poll for rest has timed out with the azimuth still moving, later
 // polls for its rest are short: their vectors end inconclusive, naming the
 // vector whose poll timed out. A poll for the elevation's rest alone, which
@@ -1136,18 +1142,54 @@ TEST(Runner, AfterAPollForRestTimedOutLaterOnesAreShortAndTheirVectorsInconclusi
         << v->inconclusive_reason;
     EXPECT_NE(v->inconclusive_reason.find("the poll for rest of a-move timed out"), std::string::npos)
         << v->inconclusive_reason;
-    // A short poll: one status request.
+    // A short poll: one status request, before the vector's steps, and nothing else.
+    EXPECT_EQ(v->inconclusive_reason.rfind("before the setup: ", 0), 0u) << v->inconclusive_reason;
     EXPECT_EQ(status_polls(*v), static_cast<std::size_t>(kShortRestPoll)) << v->id;
+    EXPECT_EQ(frames_sent(*v), static_cast<std::size_t>(kShortRestPoll)) << v->id;
   }
   EXPECT_EQ(r.vectors[3].verdict, Verdict::kPass) << "the elevation shows rest";
   EXPECT_EQ(r.exit_code(), 1);
   EXPECT_EQ(r.inconclusive, 3u);
 }
 
+// A vector that needs the mount at rest (a poll for rest in its setup), after
+// a poll for rest timed out on a mount that never shows rest: one status
+// request before its setup, and nothing else (no setup move, no teardown, no
+// 'X' stop from the runner: it moved nothing); it ends inconclusive, naming
+// the vector whose poll timed out, and its steps are not judged.
+TEST(Runner, AVectorThatNeedsRestSendsOneStatusRequestAndNothingElseWhileRestIsUnseen) {
+  const auto move = send_command("auto_move", "2A", {{"azimuth", "-10.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
+  const auto stop = send_command("jog", "X", {{"speed", "S"}, {"duration", "0"}}, Expectation::Kind::kAck);
+  // Its step would fail (an ACK where a NAK is due) if it ran.
+  Vector setup_rest = vector_with("b-setup-rest", {send_command("status", "", {}, Expectation::Kind::kNak)}, {"motion"});
+  setup_rest.setup = {move, poll_for({at_rest("az status"), at_rest("el status")})};
+  setup_rest.teardown = {stop};
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult r = run_in_process({vector_with("a-move", {move, poll_for({at_rest("az status")})}, {"motion"}), setup_rest},
+                                     {Fault::kNeverShowsRest}, o);
+  ASSERT_EQ(r.vectors.size(), 2u);
+  EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
+  const auto& v = r.vectors[1];
+  EXPECT_EQ(v.verdict, Verdict::kInconclusive) << (v.failures.empty() ? "" : v.failures[0]);
+  EXPECT_TRUE(v.failures.empty());
+  EXPECT_EQ(v.inconclusive_reason.rfind("before the setup: the mount did not show rest in a short poll of 1 request (byte 36 az status", 0),
+            0u)
+      << v.inconclusive_reason;
+  EXPECT_NE(v.inconclusive_reason.find("the poll for rest of a-move timed out"), std::string::npos) << v.inconclusive_reason;
+  EXPECT_EQ(frames_sent(v), 1u) << "one status request, nothing else";
+  EXPECT_EQ(status_polls(v), 1u);
+}
+
 // A poll for rest that timed out while the mount was still on its way (a
-// long move, a short timeout): the next poll for rest is short and ends its
-// vector inconclusive; once a poll sees the azimuth at rest, the run is back
-// to normal, and a later poll for rest that times out fails its vector again.
+// long move, a short timeout): the next vector that needs the azimuth at
+// rest sends one status request and ends inconclusive; once a status request
+// sees the azimuth at rest, the run is back to normal: that vector runs as
+// it would have (its setup, its full polls), and a later poll for rest that
+// times out fails its vector again. The status request comes before the
+// vector's own steps: one that waits before its poll for rest (c-wait here
+// is a vector of its own) would end inconclusive with the mount not yet at
+// rest.
 TEST(Runner, APollThatSeesRestPutsTheRunBackToNormal) {
   const auto far = send_command("auto_move", "2A", {{"azimuth", "150.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
   const auto back = send_command("auto_move", "2A", {{"azimuth", "-150.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck);
@@ -1158,18 +1200,29 @@ TEST(Runner, APollThatSeesRestPutsTheRunBackToNormal) {
   wait.timeout = std::chrono::milliseconds(3600000);
   RunOptions o;
   o.allow_motion = true;
-  // No motion tag on b and c: their vectors do not stop the mount after them.
+  // The vector that sees rest moves in its setup and polls for rest there.
+  Vector rest = vector_with("d-setup-rest", {send_command("status", "", {}, Expectation::Kind::kAck)});
+  rest.setup = {send_command("auto_move", "2A", {{"azimuth", "140.0"}, {"elevation", "45.0"}}, Expectation::Kind::kAck),
+                poll_for({at_rest("az status")})};
+  // No motion tag on b, c and d: their vectors do not stop the mount after them.
   const RunResult r = run_in_process({vector_with("a-far", {far, brief}), vector_with("b-az-rest", {poll_for({at_rest("az status")})}),
-                                      vector_with("c-wait-then-rest", {wait, poll_for({at_rest("az status")})}),
-                                      vector_with("d-back", {back, brief})},
+                                      vector_with("c-wait", {wait}), rest, vector_with("e-back", {back, brief})},
                                      {}, o);
-  ASSERT_EQ(r.vectors.size(), 4u);
+  ASSERT_EQ(r.vectors.size(), 5u);
   EXPECT_EQ(r.vectors[0].verdict, Verdict::kFail);
   EXPECT_EQ(r.vectors[1].verdict, Verdict::kInconclusive) << (r.vectors[1].failures.empty() ? "" : r.vectors[1].failures[0]);
   EXPECT_NE(r.vectors[1].inconclusive_reason.find("the poll for rest of a-far timed out"), std::string::npos);
-  EXPECT_EQ(r.vectors[2].verdict, Verdict::kPass) << r.vectors[2].inconclusive_reason;
-  ASSERT_EQ(r.vectors[3].verdict, Verdict::kFail) << r.vectors[3].inconclusive_reason;
-  EXPECT_EQ(r.vectors[3].failures[0].rfind("poll timed out after 3000 ms", 0), 0u) << r.vectors[3].failures[0];
+  EXPECT_EQ(frames_sent(r.vectors[1]), 1u);
+  EXPECT_EQ(r.vectors[2].verdict, Verdict::kPass);
+  const auto& d = r.vectors[3];
+  EXPECT_EQ(d.verdict, Verdict::kPass) << d.inconclusive_reason << (d.failures.empty() ? "" : d.failures[0]);
+  // The status request, then the setup's move, its full poll (the move takes
+  // seconds) and the step.
+  ASSERT_FALSE(d.transcript.empty());
+  EXPECT_EQ(d.transcript[0].bytes.at(2), 0x31);
+  EXPECT_GT(status_polls(d), 3u);
+  ASSERT_EQ(r.vectors[4].verdict, Verdict::kFail) << r.vectors[4].inconclusive_reason;
+  EXPECT_EQ(r.vectors[4].failures[0].rfind("poll timed out after 3000 ms", 0), 0u) << r.vectors[4].failures[0];
 }
 
 // The same vectors on a controller without the fault: every poll sees rest.

@@ -236,11 +236,14 @@ struct StoredDataBackup {
 // timed out with an axis still showing movement, each later poll for that
 // axis's rest sends this many status requests: when the axis shows rest, the
 // run goes back to normal for it; when not, the poll's vector ends
-// inconclusive, naming the vector whose poll timed out. A controller that
-// never shows rest is judged by its first timeout, not after a full poll of
-// every later vector that needs the mount at rest. One: after a poll of
-// minutes that never saw rest, a second request a second later tells
-// nothing more, and costs a second of the §4 pace.
+// inconclusive, naming the vector whose poll timed out. A vector whose setup
+// or steps poll for that rest sends that short poll before its setup, and
+// when it does not see rest, nothing else: no setup move, no teardown, no
+// stop. A controller that never shows rest is judged by its first timeout,
+// not after a full poll, or a setup and a teardown, of every later vector
+// that needs the mount at rest. One: after a poll of minutes that never saw
+// rest, a second request a second later tells nothing more, and costs a
+// second of the §4 pace.
 inline constexpr int kShortRestPoll = 1;
 
 // RunResult::exit_code when no vector ran.
