@@ -71,6 +71,16 @@ for p in "$regressions"/sweep-*.yaml; do
   seed=$fuzz_seed
 done
 
+# Profiles with the fuzz seed that once found on them (seeds.txt).
+while read -r name fuzz_seed_once; do
+  [[ -z $name || $name == \#* ]] && continue
+  p="$regressions/$name.yaml"
+  [[ -f $p ]] || p="$profiles/$name.yaml"
+  fuzz_seed=$seed seed=$fuzz_seed_once
+  fuzz_one "regression-$name-$fuzz_seed_once" --sim --reading other --profile "$p"
+  seed=$fuzz_seed
+done <"$regressions/seeds.txt"
+
 # Over a pseudo-terminal: the controller behind a line, the fuzzer's timing
 # rules (the lockstep's runs earlier and later) at work.
 link="$work/pty"

@@ -167,8 +167,16 @@ std::optional<bool> shows_moving(const Frame& reply) {
 
 // An exit status by which a stop ends a mode (§3.17 exit lists): the
 // movement's STOP_KEY or MOVE_STOPPED entry, or MODE_CHANGED.
-bool is_stop_exit(std::uint8_t mode, std::uint8_t exit_status) {
-  const std::string exit = meanings::exit_name(mode, exit_status);
+// An exit status's name in the list the profile reads (E-28: where
+// LOCATE_FUNCTION_COMPLETED is 0x38 or, as printed, 0x37).
+std::string exit_named(std::uint8_t mode, std::uint8_t exit_status, const enums::EnumReading& reading) {
+  const enums::EnumList* list = enums::exit_list_for_mode(mode, reading);
+  const auto name = list ? list->name_of(exit_status) : std::nullopt;
+  return name ? std::string(*name) : meanings::exit_name(mode, exit_status);
+}
+
+bool is_stop_exit(std::uint8_t mode, std::uint8_t exit_status, const enums::EnumReading& reading) {
+  const std::string exit = exit_named(mode, exit_status, reading);
   return exit.ends_with("_STOP_KEY") || exit.ends_with("_MOVE_STOPPED") || exit.find("_MODE_CHANGE") != std::string::npos;
 }
 
@@ -178,6 +186,13 @@ std::optional<ExtendedStatusReply> extended_status(const Frame& reply) {
   if (!decoded) return std::nullopt;
   if (const auto* x = std::get_if<ExtendedStatusReply>(&decoded.value())) return *x;
   return std::nullopt;
+}
+
+// The 40h reply that ends a write, if it does: one earlier in a burst may be
+// overtaken by a later frame's command (a LOCATE behind it), so the mode
+// bytes the model takes and an episode's end come only from the last.
+std::optional<ExtendedStatusReply> last_extended_status(const std::vector<Frame>& device) {
+  return device.empty() ? std::nullopt : extended_status(device.back());
 }
 
 // The mode a reply shows the device in (§3.17 byte 45), if it is a 40h reply.
@@ -708,11 +723,10 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
   }
   note_arrivals();
   if (j.take_modes && !j.finding)
-    for (const Frame& dev : device)
-      if (const auto x = extended_status(dev)) {
-        model().mutable_state().mode = mode_state(*x);
-        ++coverage_.resyncs;
-      }
+    if (const auto x = last_extended_status(device)) {
+      model().mutable_state().mode = mode_state(*x);
+      ++coverage_.resyncs;
+    }
   if (!j.finding) keep_in_step(device, uncertainty);
   // Both at rest (the device's status says so): the positions are in step
   // again, and earlier timing no longer matters.
@@ -808,6 +822,8 @@ void Lockstep::note_settling(const Controller& nominal, const Judging& j) {
 // error, E-81) is a held mode, not led.
 bool Lockstep::locate_led() const { return !side_pinned(profile_.readings, "E-94"); }
 
+enums::EnumReading Lockstep::profile_reading() const { return enums::EnumReading{profile_.restore_lost_locate_exit}; }
+
 bool Lockstep::device_leads_mode(std::uint8_t mode) const {
   return moves_by_itself(mode) || (locate_led() && meanings::mode_name(mode) == "LOCATE_MODE");
 }
@@ -835,9 +851,9 @@ bool Lockstep::device_leads(const ModeState& ms) const {
 // order of the movements: judged as any position at rest.
 bool Lockstep::locate_ended_alike(const AckJudging& r) const {
   const ModeState& ms = r.nominal().mode;
-  const auto completed = [](std::uint8_t last_mode, std::uint8_t exit) {
+  const auto completed = [this](std::uint8_t last_mode, std::uint8_t exit) {
     return meanings::mode_name(last_mode) == "LOCATE_MODE" &&
-           meanings::exit_name(last_mode, exit) == "LOCATE_FUNCTION_COMPLETED";
+           exit_named(last_mode, exit, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
   };
   if (!locate_led() || handed_over_ || !completed(ms.last_mode, ms.exit_status)) return false;
   for (std::size_t a = 0; a < 3; ++a)
@@ -859,7 +875,7 @@ std::optional<std::string> Lockstep::judge_locate_end(const AckJudging& r, const
   const bool model_running = locate_runs(m.mode);
   const bool model_completed = meanings::mode_name(m.mode.mode) != "LOCATE_MODE" &&
                                meanings::mode_name(m.mode.last_mode) == "LOCATE_MODE" &&
-                               meanings::exit_name(m.mode.last_mode, m.mode.exit_status) == "LOCATE_FUNCTION_COMPLETED";
+                               exit_named(m.mode.last_mode, m.mode.exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
   const auto x = extended_status(r.dev);
   if ((!model_running && !model_completed) || !x) return std::nullopt;
   std::string how;
@@ -867,8 +883,8 @@ std::optional<std::string> Lockstep::judge_locate_end(const AckJudging& r, const
     if (const std::string state = meanings::state_name(x->mode, x->state); state.ends_with("_ERROR")) how = state;
   } else if (f.name == "exit status" && meanings::mode_name(x->mode) != "LOCATE_MODE" &&
              meanings::mode_name(x->last_mode) == "LOCATE_MODE") {
-    const std::string exit = meanings::exit_name(x->last_mode, x->exit_status);
-    if (exit != "LOCATE_FUNCTION_COMPLETED" && !is_stop_exit(x->last_mode, x->exit_status)) how = exit;
+    const std::string exit = exit_named(x->last_mode, x->exit_status, profile_reading());
+    if (exit != "LOCATE_FUNCTION_COMPLETED" && !is_stop_exit(x->last_mode, x->exit_status, profile_reading())) how = exit;
   }
   if (how.empty()) return std::nullopt;
   return "field '" + f.name + "' (§3.17) is " + f.raw + " (" + how + "): the device's LOCATE ended so where the model's " +
@@ -944,7 +960,7 @@ bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& bef
   if (device_leads(ms) && !model_was_led_) handed_over_ = stopped_out_ = locate_completed_ = false;
   // One the model entered and left within this write (a burst that starts
   // and stops it): the device's too, the model in it as far as a stop goes.
-  const bool through = !device_leads(before) && device_leads_mode(ms.last_mode) &&
+  const bool through = before.mode != ms.last_mode && device_leads_mode(ms.last_mode) &&
                        (before.last_mode != ms.last_mode || before.exit_status != ms.exit_status);
   if (through) device_led_ = model_was_led_ = true;
   // The device in such a mode where the model is not: only where the model
@@ -979,10 +995,10 @@ bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& bef
     // its own ends is not taken into the model (a MODE_CHANGED exit taken
     // would read as a stop), but judged at the end (judge_locate_end).
     if (!device_leads(ms) && meanings::mode_name(ms.last_mode) == "LOCATE_MODE" &&
-        meanings::exit_name(ms.last_mode, ms.exit_status) == "LOCATE_FUNCTION_COMPLETED")
+        exit_named(ms.last_mode, ms.exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED")
       locate_completed_ = true;
     stopped_out = !handed_over_ && at_rest && !device_leads(ms) && device_leads_mode(ms.last_mode) &&
-                  is_stop_exit(ms.last_mode, ms.exit_status);
+                  is_stop_exit(ms.last_mode, ms.exit_status, profile_reading());
   }
   model_was_led_ = device_leads(ms);
   // The write that stopped it: whether the device's last status before it
@@ -1237,9 +1253,10 @@ std::optional<std::string> Lockstep::judge_stop_exit(const Judging& j, const Ack
   // a peak (E-90).
   if (f.name != "exit status" || !j.stopped_out || !moving_when_stopped_) return std::nullopt;
   const auto x = extended_status(r.dev);
-  if (!x || x->last_mode != r.nominal().mode.last_mode || is_stop_exit(x->last_mode, x->exit_status)) return std::nullopt;
+  if (!x || x->last_mode != r.nominal().mode.last_mode || is_stop_exit(x->last_mode, x->exit_status, profile_reading()))
+    return std::nullopt;
   return "field 'exit status' (§3.17, state: how the last mode ended) is " + f.raw + " (" +
-         meanings::exit_name(x->last_mode, x->exit_status) + ") after a stop that found the device moving in " +
+         exit_named(x->last_mode, x->exit_status, profile_reading()) + ") after a stop that found the device moving in " +
          std::string(meanings::mode_name(x->last_mode)) +
          "; a stop ends it with a STOP_KEY, MOVE_STOPPED or MODE_CHANGED entry (§3.7, ERRATA E-90). Device: " +
          summary(r.dev) + " [" + fields_text(r.dev_fields) + "]; model: [" + fields_text(r.model_fields.front()) + "]";
@@ -1306,9 +1323,7 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   // within its tolerance, a stop a few milliseconds apart: §3.2).
   Controller& m = model();
   // A 40h reply showing every axis at rest: the episode's end.
-  const bool device_at_rest = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
-    return device_mode(dev).has_value() && shows_moving(dev) == false;
-  });
+  const bool device_at_rest = last_extended_status(device) && shows_moving(device.back()) == false;
   take_positions(device, [&](std::size_t axis, double distance) {
     // Out of a STOW, DEPLOY, search or LOCATE, at rest; where a LOCATE the
     // model completed ends is judged by the 40h that shows its end
@@ -1329,19 +1344,18 @@ void Lockstep::keep_in_step(const std::vector<Frame>& device, Duration uncertain
   device_led_ = false;
   for (std::size_t a = 0; a < 3; ++a) position_unknown_[a] = !reading_of(m, a);
   stopped_out_ = handed_over_ = moving_when_stopped_ = locate_completed_ = false;
-  for (const Frame& dev : device)  // how the device says it ended (judged above)
-    if (const auto x = extended_status(dev)) {
-      m.mutable_state().mode = mode_state(*x);
-      ++coverage_.resyncs;
-      // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10), or
-      // on E-98's other side the speed it is configured for: what the bit
-      // shows on the side the model takes.
-      const bool configured = side_taken(m.profile().readings, "E-98") == ReadingSide::kOther;
-      for (std::size_t a = 0; a < 3; ++a) {
-        AxisState& ax = by_axis(m.mutable_state(), a);
-        (configured ? ax.configured_fast : ax.fast) = (axis_status(x->status, a) & 0x10) != 0;
-      }
+  if (const auto x = last_extended_status(device)) {  // how the device says it ended (judged above)
+    m.mutable_state().mode = mode_state(*x);
+    ++coverage_.resyncs;
+    // The speed of each axis's last leg (§3.2 bytes 36-38, bit 0x10), or
+    // on E-98's other side the speed it is configured for: what the bit
+    // shows on the side the model takes.
+    const bool configured = side_taken(m.profile().readings, "E-98") == ReadingSide::kOther;
+    for (std::size_t a = 0; a < 3; ++a) {
+      AxisState& ax = by_axis(m.mutable_state(), a);
+      (configured ? ax.configured_fast : ax.fast) = (axis_status(x->status, a) & 0x10) != 0;
     }
+  }
 }
 
 const AxisProfile& Lockstep::axis_profile(std::size_t axis) const {

@@ -432,6 +432,8 @@ class Lockstep {
   // DEPLOY or search, or a LOCATE that runs while E-94 is open), or would
   // lead one in `mode`.
   bool locate_led() const;
+  // The enumeration lists the profile reads (E-28), for exit names.
+  enums::EnumReading profile_reading() const;
   bool device_leads(const ModeState& ms) const;
   bool device_leads_mode(std::uint8_t mode) const;
   bool locate_ended_alike(const AckJudging& r) const;
