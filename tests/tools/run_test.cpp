@@ -312,7 +312,10 @@ TEST(Run, LastFailedAndFailedFirstNameABadFileAndExit2) {
 // then the rest.
 TEST(Run, LastFailedRunsOnlyTheFailuresOfTheEarlierRunAndFailedFirstRunsThemFirst) {
   const std::string first = temp_path("first.json"), again = temp_path("again.json"), ordered = temp_path("ordered.json");
-  EXPECT_EQ(shell(kSabus + " run -q --fault short-status --paragraph 3.2 --json " + first + " >/dev/null 2>&1").status, 1);
+  // The as-found vectors (3.2-status-power-on-*) run first whatever the
+  // order asked for: left out, so the order is --failed-first's alone.
+  const std::string selection = " --paragraph 3.2 --exclude '3.2-status-power-on-*'";
+  EXPECT_EQ(shell(kSabus + " run -q --fault short-status" + selection + " --json " + first + " >/dev/null 2>&1").status, 1);
   const reports::RunDocument f = read_run(first);
   std::set<std::string> failed;
   for (const auto& v : f.vectors)
@@ -324,7 +327,7 @@ TEST(Run, LastFailedRunsOnlyTheFailuresOfTheEarlierRunAndFailedFirstRunsThemFirs
   EXPECT_EQ(ids_of(a), failed);
   EXPECT_EQ(a.options.value("last_failed", ""), first);
   for (const auto& v : a.vectors) EXPECT_EQ(v.outcome, "pass") << v.id;
-  EXPECT_EQ(shell(kSabus + " run -q --paragraph 3.2 --failed-first " + first + " --json " + ordered + " >/dev/null 2>&1").status, 0);
+  EXPECT_EQ(shell(kSabus + " run -q" + selection + " --failed-first " + first + " --json " + ordered + " >/dev/null 2>&1").status, 0);
   const reports::RunDocument o = read_run(ordered);
   ASSERT_EQ(o.vectors.size(), f.vectors.size());
   for (std::size_t i = 0; i < o.vectors.size(); ++i)

@@ -742,6 +742,8 @@ StatusBlock Controller::status_block() const {
   b.el_status = axis_status_bits(AxisId::kEl);
   b.pol_status = profile_.pol_type == PolType::kCircular ? 0 : axis_status_bits(AxisId::kPol);
   b.alarm_code = state_.alarm_code;
+  // Fault alarm-code-low-battery: byte 39 never shows "0 No alarm active".
+  if (faults_.has(Fault::kAlarmCodeLowBattery) && b.alarm_code == 0) b.alarm_code = 1;
   b.track = track_byte();
   b.agc = profile_.agc;
   b.agc_channel = profile_.agc_channel;

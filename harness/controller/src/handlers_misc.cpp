@@ -42,6 +42,8 @@ Outcome Handlers::extended_status(C& c) {
   x.az_hundredths = c.hundredths_digit(AxisId::kAz);
   x.el_hundredths = c.hundredths_digit(AxisId::kEl);
   if (c.faults_.has(Fault::kExtendedStatusSpeedBit)) x.status.az_status ^= 0x10;  // §3.2 byte 36 'S'
+  // §3.17 bytes 3-44 are 31h's: byte 40 SSSS 0000 says "track mode not active".
+  if (c.faults_.has(Fault::kExtendedStatusTrackInactive)) x.status.track &= 0x70;
   return ack(c, 0x40, x);
 }
 

@@ -417,6 +417,31 @@ const Function kFunctions[] = {
      [](const Call& c) { return text(c.cx.profile.firmware); }},
     {{"agc", "", "the AGC level the profile states, 0-999 (§3.2 bytes 41-43)"}, 0,
      [](const Call& c) { return number(c.cx.profile.agc); }},
+    // The power-on state the profile states (issue 32): a vector tagged
+    // as-found reads it before any command could change it.
+    {{"agc_channel", "", "the AGC channel the profile states: 1 SS1, 2 SS2, 3 not applicable (§3.2 byte 44 CC)"}, 0,
+     [](const Call& c) { return number(c.cx.profile.agc_channel); }},
+    {{"alarm_code", "", "the alarm code active at power-on, 0-63, 0 for none (§3.2 byte 39 A5..A0; alarms.code)"}, 0,
+     [](const Call& c) { return number(c.cx.profile.alarms.code); }},
+    {{"axis_alarm", "axis",
+      "the axis's alarm active at power-on as §3.2 bytes 36-38 XXXX: 0 none, 8 off axis, 9 sensor direction, 10 runaway, "
+      "11 jammed, 12 drive (alarms.az, .el, .pol)"},
+     1,
+     [](const Call& c) {
+       const auto axis = axis_arg(c.args[0]);
+       if (!axis) return error("axis_alarm: argument 1 must be an axis: az, el or pol");
+       const AlarmProfile& a = c.cx.profile.alarms;
+       return number(*axis == motion::Axis::kAz ? a.az : *axis == motion::Axis::kEl ? a.el : a.pol);
+     }},
+    {{"track_band", "", "the track band the profile states as §3.2 byte 40 BBB, 1-7 (track.band, E-70)"}, 0,
+     [](const Call& c) { return number(static_cast<int>(c.cx.profile.track.band)); }},
+    {{"pol_feed", "", "the polarization feed as §3.2 byte 35 XX: 0 circular, 1 single port, 2 dual port (polarization)"}, 0,
+     [](const Call& c) {
+       const PolType t = c.cx.profile.pol_type;
+       return number(t == PolType::kCircular ? 0 : t == PolType::kSinglePort ? 1 : 2);
+     }},
+    {{"display_name", "", "the satellite name the controller shows at power-on, as text (§3.2 bytes 3-12; display.satellite)"}, 0,
+     [](const Call& c) { return text(c.cx.profile.display.satellite); }},
     {{"count_step", "", "the position one pulse count stands for: 1 / counts_per_degree (§3.16)"}, 0,
      [](const Call& c) { return number(1.0 / c.cx.profile.counts_per_degree); }},
     {{"min_deg", "axis", "the axis's lower limit position"}, 1,

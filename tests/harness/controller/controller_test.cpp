@@ -1168,6 +1168,14 @@ TEST(Faults, EveryFaultChangesTheWire) {
       // The same move, ended after 1 s: the status shows it at rest, or still moving.
       {Fault::kNeverShowsRest, [](Profile& p) { p.az.initial_deg = 0; }, wire(AutoMove{AutoMoveAzEl{15, 450}}, '2')},
       {Fault::kExtendedStatusSpeedBit, none, wire(ExtendedStatusPoll{}, '2')},
+      // Issue 32: the alarm code with no alarm; the track byte of 40h while TRACK peaks.
+      {Fault::kAlarmCodeLowBattery, none, poll},
+      {Fault::kExtendedStatusTrackInactive,
+       [](Profile& p) {
+         p.track.active = true;
+         p.track.activity = TrackActivity::kPeaking;
+       },
+       wire(ExtendedStatusPoll{}, '2')},
       // Resting on the counterclockwise limit: §3.2 byte 32 shows it.
       {Fault::kAzLimitBitsMissing, [](Profile& p) { p.az.initial_deg = p.az.min_deg; }, poll},
       // Issue 22, value checks (VAL): 1 s of a move later the counts follow the mount.

@@ -102,6 +102,10 @@ namespace sabus::harness {
     "a frame for another address that the controller would NAK (unknown code, wrong length, bad data) is NAKed")  \
   X(kSpareBytesBlank, "spare-bytes-blank",                                                                       \
     "44h returns the signpost's spare bytes 30-33 as blanks instead of the zeros §3.21 fixes")                  \
+  X(kAlarmCodeLowBattery, "alarm-code-low-battery",                                                             \
+    "status byte 39 shows alarm code 1 (Low Battery) where no alarm is active (§3.2 \"0 No alarm active\")")        \
+  X(kExtendedStatusTrackInactive, "extended-status-track-inactive",                                              \
+    "the extended status reply's track byte shows SSSS 0000 (not active) while TRACK is active (31h's is right)") \
   /* The line (issue 34) */                                                                                        \
   X(kGarblesReplies, "garbles-replies",                                                                          \
     "every third reply leaves with a wrong check byte, though every byte's parity is right (§4 a garbled reply)")
