@@ -13,12 +13,13 @@ namespace {
 
 // The skip causes (harness SkipCause, the run JSON's skip_cause) in the
 // order the summary names them, each with what it takes to run those vectors.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 5> kSkipCauses{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 6> kSkipCauses{{
     {"level", "above --level"},
     {"profile", "need another profile"},
     {"motion", "need --allow-motion"},
     {"destructive", "need --allow-destructive"},
     {"parity", "need an 8N1 port"},
+    {"fresh", "need --fresh-device"},
 }};
 
 // ANSI SGR colours of the verdict words.

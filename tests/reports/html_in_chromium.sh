@@ -44,7 +44,7 @@ has() { grep -qF -- "$1" <<<"$2"; }
 
 dom=$(browse --dump-dom "file://$html")
 for want in "<p id=\"summary\">$summary</p>" 'id="verdict">FAIL<' 'id="coverage"' '3.2-status-reply-length' \
-            'sabus-run v6' '<svg id="chart-turnaround"' '<svg id="chart-coverage"'; do
+            'sabus-run v7' '<svg id="chart-turnaround"' '<svg id="chart-coverage"'; do
   check "the rendered DOM has $want" has "$want" "$dom"
 done
 # The heat map has a cell per coverage row and path, and cells of both colours.

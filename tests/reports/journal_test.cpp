@@ -127,7 +127,7 @@ TEST(JsonText, HeaderInSchemaOrderAndVectorsLastOneALine) {
   RunDocument d = header();
   d.vectors = {vector("a", "pass"), vector("b", "fail")};
   const std::string text = json_text(d);
-  EXPECT_EQ(text.rfind("{\n  \"schema\": \"sabus-run\",\n  \"schema_version\": 6,\n  \"generator\": \"sabus 1.2.3\",\n", 0), 0u) << text;
+  EXPECT_EQ(text.rfind("{\n  \"schema\": \"sabus-run\",\n  \"schema_version\": 7,\n  \"generator\": \"sabus 1.2.3\",\n", 0), 0u) << text;
   const auto vectors = text.find("  \"vectors\": [\n    {\"id\":\"a\",");
   ASSERT_NE(vectors, std::string::npos) << text;
   EXPECT_EQ(text.find("\"planned\""), text.rfind("\"planned\"")) << "each header member once";

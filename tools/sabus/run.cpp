@@ -62,6 +62,7 @@ struct RunCliOptions {
   int retries = -1;  // -1: 1 on a line, 0 in-process
   double max_line_fault_rate = 0.1;
   bool allow_motion = false, allow_destructive = false, strict = false, exit_first = false, strict_line = false;
+  bool fresh_device = false;
 };
 
 std::optional<Level> parse_level(const std::string& s) {
@@ -199,6 +200,7 @@ void set_run_options(RunOptions& ro, const RunCliOptions& o, Level level, const 
                      const ReportPaths& paths) {
   ro.allow_motion = o.allow_motion;
   ro.allow_destructive = o.allow_destructive;
+  ro.fresh_device = o.fresh_device;
   ro.max_level = level;
   ro.repeat = o.repeat;
   ro.strict = o.strict;
@@ -235,6 +237,7 @@ reports::RunDocument start_document(const RunCliOptions& o, const RunOptions& ro
   doc.address = device.profile.address;
   doc.faults = o.device.faults;
   doc.options = {{"allow_motion", o.allow_motion}, {"allow_destructive", o.allow_destructive},
+                 {"fresh_device", o.fresh_device},
                  {"level", o.level},               {"seed", o.seed},
                  {"repeat", o.repeat},             {"pace_ms", ro.pace.count()},
                  {"strict", o.strict},             {"retries", ro.retries},
@@ -277,6 +280,7 @@ RunCliOptions options_of_stopped_run(const RunCliOptions& given, const reports::
   o.level = op.value("level", o.level);
   o.allow_motion = op.value("allow_motion", false);
   o.allow_destructive = op.value("allow_destructive", false);
+  o.fresh_device = op.value("fresh_device", false);
   o.seed = op.value("seed", std::uint64_t{0});
   o.repeat = op.value("repeat", 0);
   o.pace_ms = op.value("pace_ms", -1L);
@@ -553,6 +557,9 @@ Command add_run_command(CLI::App& app) {
       ->check(CLI::IsMember({"must", "should", "informative"}));
   sub->add_flag("--allow-motion", o->allow_motion, "Run vectors that move the antenna");
   sub->add_flag("--allow-destructive", o->allow_destructive, "Run vectors that change stored data");
+  sub->add_flag("--fresh-device", o->fresh_device,
+                "The device stands as its profile powers on (just powered on in that state): run the power-on vectors, "
+                "which compare the status with the profile's positions, alarms and name (always run with --sim)");
   sub->add_option("--known-issues", o->known_issues, "Vector ids expected to fail, with reasons");
   sub->add_option("--repeat", o->repeat, "Re-run each failing vector N times (0-100)")->check(CLI::Range(0, 100));
   sub->add_flag("--strict", o->strict, "A should-level failure fails the run too (exit 1)");

@@ -39,6 +39,7 @@ std::string_view to_string(SkipCause c) {
     case SkipCause::kMotion: return "motion";
     case SkipCause::kDestructive: return "destructive";
     case SkipCause::kParity: return "parity";
+    case SkipCause::kFresh: return "fresh";
   }
   return "?";
 }
@@ -176,6 +177,8 @@ std::optional<Skip> skip_reason(const Vector& v, const RunOptions& o, const Prof
   if (v.has_tag("motion") && !o.allow_motion) return Skip{SkipCause::kMotion, "moves the antenna: needs --allow-motion"};
   if (v.has_tag("destructive") && !o.allow_destructive)
     return Skip{SkipCause::kDestructive, "changes stored data: needs --allow-destructive"};
+  if (v.has_tag("power-on") && !o.fresh_device && !transport.in_process())
+    return Skip{SkipCause::kFresh, "compares the status with the profile's power-on state: needs --fresh-device"};
   if (v.has_tag("parity") && !transport.can_send_parity_errors())
     return Skip{SkipCause::kParity, "sends parity errors: the port is a true 7E1 port (--line 7E1)"};
   return std::nullopt;

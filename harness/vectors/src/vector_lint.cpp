@@ -25,7 +25,8 @@ namespace {
 // `destructive` are required by the catalog's effects (READING-NOTES 26).
 constexpr std::string_view kKnownTags[] = {"motion",          "destructive", "option:dvb", "pol:circular",
                                            "pol:single_port", "pol:dual_port", "parity",   "timing",
-                                           "offline",         "multidrop",   "track",      "as-found"};
+                                           "offline",         "multidrop",   "track",      "as-found",
+                                           "power-on"};
 
 // In the data directory (data_dir.hpp).
 constexpr std::string_view kErrataFile = "protocol/ERRATA.md";

@@ -887,6 +887,48 @@ TEST(Runner, SkipsAreCountedByCauseAndARunThatRanNothingExits5) {
   EXPECT_EQ(to_string(SkipCause::kParity), "parity");
 }
 
+// The in-process controller as a bench controller looks to the runner: not
+// in-process, so nothing says it stands as its profile powers on.
+class OnABench : public Transport {
+ public:
+  explicit OnABench(Transport& inner) : inner_(inner) {}
+  void send(ByteView chars, std::span<const std::size_t> wrong_parity) override { inner_.send(chars, wrong_parity); }
+  std::size_t receive(std::span<std::uint8_t> buf, std::chrono::milliseconds timeout) override {
+    return inner_.receive(buf, timeout);
+  }
+  void pause(std::chrono::milliseconds d) override { inner_.pause(d); }
+  TimePoint now() const override { return inner_.now(); }
+  bool is_a_line() const override { return false; }
+  bool can_send_parity_errors() const override { return true; }
+  int baud() const override { return 0; }
+  std::string describe() const override { return "the reference controller, as on a bench"; }
+
+ private:
+  Transport& inner_;
+};
+
+// A `power-on` vector compares the status with the profile's power-on state
+// (issue 32), which a bench controller need not stand in: it is skipped with
+// the cause `fresh` unless the run says the device is fresh (--fresh-device),
+// and runs in-process, where the controller is the profile's just powered on.
+TEST(Runner, PowerOnVectorsRunOnlyOnAFreshDevice) {
+  const Step status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+  const Vector power_on = vector_with("3.2-power-on", {status}, {"as-found", "power-on"});
+  const Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto device = make_in_process_transport({p});
+  OnABench bench(*device);
+  const RunResult skipped = Runner(bench, p, RunOptions{}).run({power_on});
+  ASSERT_EQ(skipped.vectors.size(), 1u);
+  EXPECT_EQ(skipped.vectors[0].verdict, Verdict::kSkip);
+  EXPECT_EQ(skipped.vectors[0].skip_cause, SkipCause::kFresh);
+  EXPECT_NE(skipped.vectors[0].skip_reason.find("--fresh-device"), std::string::npos) << skipped.vectors[0].skip_reason;
+  EXPECT_EQ(to_string(SkipCause::kFresh), "fresh");
+  RunOptions fresh;
+  fresh.fresh_device = true;
+  EXPECT_EQ(Runner(bench, p, fresh).run({power_on}).vectors[0].verdict, Verdict::kPass);
+  EXPECT_EQ(run_in_process({power_on}).vectors[0].verdict, Verdict::kPass) << "in-process: the profile's controller";
+}
+
 // ---- preconditions and the inconclusive verdict (TTCN-3 inconc) ------------------
 
 const std::string kSearchRuns = "the search is still running when the stop goes out";

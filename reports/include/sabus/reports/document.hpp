@@ -17,7 +17,7 @@
 
 namespace sabus::reports {
 
-inline constexpr int kSchemaVersion = 6;
+inline constexpr int kSchemaVersion = 7;
 inline constexpr const char* kSchemaName = "sabus-run";
 
 // One named field of a frame with its byte range (protocol describe_frame).

@@ -68,8 +68,8 @@ std::string_view to_string(Verdict v);
 // above the one asked, the profile lacks what it requires, it moves the
 // antenna or changes stored data and that was not allowed, or it sends
 // parity errors a true 7E1 port cannot send.
-enum class SkipCause : std::uint8_t { kNone, kLevel, kProfile, kMotion, kDestructive, kParity };
-// "", "level", "profile", "motion", "destructive", "parity" (the run JSON's skip_cause).
+enum class SkipCause : std::uint8_t { kNone, kLevel, kProfile, kMotion, kDestructive, kParity, kFresh };
+// "", "level", "profile", "motion", "destructive", "parity", "fresh" (the run JSON's skip_cause).
 std::string_view to_string(SkipCause c);
 
 struct TranscriptEntry {
@@ -153,6 +153,11 @@ struct StoredDataBackup;
 struct RunOptions {
   bool allow_motion = false;
   bool allow_destructive = false;
+  // The device stands as its profile powers on (just powered on in that
+  // state, or sabus sim): the `power-on` vectors, which compare the status
+  // with the profile's power-on state (positions, alarms, the name shown),
+  // run. A controller on a bench is wherever the last run left it.
+  bool fresh_device = false;
   Level max_level = Level::kInformative;      // run vectors up to this level
   // Which vectors run is decided before the run (selection.hpp): the runner
   // runs every vector it is given.
