@@ -34,6 +34,23 @@ std::string noted(const Session& s) {
   return out;
 }
 
+// A session, motion and stored writes allowed, with the model on `model`
+// and the device on `model` with E-94 on its other side.
+struct OtherLocateOrder {
+  explicit OtherLocateOrder(Profile m, FaultSet faults = {})
+      : model(std::move(m)),
+        t(make_in_process_transport({[&] {
+                                       Profile d = model;
+                                       d.readings["E-94"] = ReadingSide::kOther;
+                                       return d;
+                                     }()},
+                                    faults)),
+        s(*t, model, SessionOptions{.allow_motion = true, .allow_destructive = true}) {}
+  Profile model;
+  std::unique_ptr<InProcessTransport> t;
+  Session s;
+};
+
 // Polls the extended status (40h) every `every` until the model's LOCATE and
 // the device's have both ended (neither in LOCATE_MODE) and the device rests,
 // at most `polls` times: the first finding, if any.
@@ -56,13 +73,10 @@ std::optional<Verdict> poll_until_located(Session& s, const Profile& model, InPr
 // order of its movements is the device's, as a STOW's is, so no finding and
 // no note; where it ends is judged, and agrees.
 TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsTheDevicesUntilItEnds) {
-  const Profile model = default_profile();
-  Profile device = model;
-  device.readings["E-94"] = ReadingSide::kOther;
-  auto t = make_in_process_transport({device}, {});
-  SessionOptions o;
-  o.allow_motion = o.allow_destructive = true;
-  Session s(*t, model, o);
+  OtherLocateOrder f(default_profile());
+  const Profile& model = f.model;
+  auto& t = f.t;
+  Session& s = f.s;
   for (std::string_view hex : {"02 32 47 44 53 30 30 30 30 03 63", "02 32 33 58 53 30 30 30 30 03 0b",
                                "02 32 41 40 30 46 55 5a 5a 20 4c 4f 43 20 20 2d 39 33 2e 35 20 30 20 31 30 2e 30 20 20 4e 41 20 20 20 20 03 6d",
                                "02 32 40 03 73"}) {
@@ -82,13 +96,9 @@ TEST(LiveFuzzReadings, ALocateThatMovesElevationFirstIsTheDevicesUntilItEnds) {
 // finding (gate.fuzz_readings, iess-implemented, fuzz seed 1). A device
 // that went on moving after it would still be one.
 TEST(LiveFuzzReadings, ALocateStoppedInTheWriteThatStartsItExitsByItsOwnStop) {
-  const Profile model = default_profile();
-  Profile device = model;
-  device.readings["E-94"] = ReadingSide::kOther;
-  auto t = make_in_process_transport({device}, {});
-  SessionOptions o;
-  o.allow_motion = o.allow_destructive = true;
-  Session s(*t, model, o);
+  OtherLocateOrder f(default_profile());
+  auto& t = f.t;
+  Session& s = f.s;
   const FuzzFrame burst = raw(
       "02 32 41 40 30 46 55 5a 5a 20 4c 4f 43 20 20 2d 39 33 2e 35 20 30 20 31 30 2e 30 20 20 4e 41 20 20 20 20 03 6d "
       "02 32 47 58 53 30 30 30 30 03 7f");
@@ -113,14 +123,11 @@ TEST(LiveFuzzReadings, ALocateTheDeviceLeadsIsJudgedWhereItEnds) {
   const ProfileResult loaded = load_profile_file(
       (std::filesystem::path(default_profile_path()).parent_path() / "fast-mount-manual-nav.yaml").string());
   ASSERT_TRUE(loaded);
-  const Profile model = *loaded.profile;
-  ASSERT_FALSE(side_pinned(model.readings, "E-94"));
-  Profile device = model;
-  device.readings["E-94"] = ReadingSide::kOther;
-  auto t = make_in_process_transport({device}, FaultSet{Fault::kLocateAzimuthCounterclockwise});
-  SessionOptions o;
-  o.allow_motion = o.allow_destructive = true;
-  Session s(*t, model, o);
+  ASSERT_FALSE(side_pinned(loaded.profile->readings, "E-94"));
+  OtherLocateOrder f(*loaded.profile, FaultSet{Fault::kLocateAzimuthCounterclockwise});
+  const Profile& model = f.model;
+  auto& t = f.t;
+  Session& s = f.s;
   const FuzzFrame locate{encode_request(build_request(*find_command(0x41), "data",
                                                       {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"},
                                                        {"band", "1"}, {"pol offset", "0.0"}, {"receive polarization", "N"},
