@@ -151,11 +151,18 @@ std::uint8_t axis_status(const StatusBlock& b, std::size_t axis) {
 // Whether a status reply shows the axis moving (§3.2 bytes 36-38: jog
 // pending, movement or auto move in progress); a reply without the byte:
 // as if it does (no resync from it).
+// §3.2 bytes 36-38 XXXX: a movement in progress (0100, 0101, 0111), not one
+// pending (0010, 0011).
+bool movement_in_progress(std::uint8_t status) {
+  const std::uint8_t code = status & 0x0F;
+  return code == 0x4 || code == 0x5 || code == 0x7;
+}
+
 bool device_moving(const Frame& reply, std::size_t axis) {
   const auto status = status_block(reply);
   if (!status) return true;
   const std::uint8_t code = axis_status(*status, axis) & 0x0F;
-  return code == 0x2 || code == 0x3 || code == 0x4 || code == 0x5 || code == 0x7;
+  return code == 0x2 || code == 0x3 || movement_in_progress(code);
 }
 
 // Whether a reply's status block shows any axis moving; nullopt for a reply
@@ -165,8 +172,6 @@ std::optional<bool> shows_moving(const Frame& reply) {
   return device_moving(reply, 0) || device_moving(reply, 1) || device_moving(reply, 2);
 }
 
-// An exit status by which a stop ends a mode (§3.17 exit lists): the
-// movement's STOP_KEY or MOVE_STOPPED entry, or MODE_CHANGED.
 // An exit status's name in the list the profile reads (E-28: where
 // LOCATE_FUNCTION_COMPLETED is 0x38 or, as printed, 0x37).
 std::string exit_named(std::uint8_t mode, std::uint8_t exit_status, const enums::EnumReading& reading) {
@@ -175,6 +180,8 @@ std::string exit_named(std::uint8_t mode, std::uint8_t exit_status, const enums:
   return name ? std::string(*name) : meanings::exit_name(mode, exit_status);
 }
 
+// An exit status by which a stop ends a mode (§3.17 exit lists): the
+// movement's STOP_KEY or MOVE_STOPPED entry, or MODE_CHANGED.
 bool is_stop_exit(std::uint8_t mode, std::uint8_t exit_status, const enums::EnumReading& reading) {
   const std::string exit = exit_named(mode, exit_status, reading);
   return exit.ends_with("_STOP_KEY") || exit.ends_with("_MOVE_STOPPED") || exit.find("_MODE_CHANGE") != std::string::npos;
@@ -824,6 +831,11 @@ bool Lockstep::locate_led() const { return !side_pinned(profile_.readings, "E-94
 
 enums::EnumReading Lockstep::profile_reading() const { return enums::EnumReading{profile_.restore_lost_locate_exit}; }
 
+bool Lockstep::left_completed_locate(std::uint8_t last_mode, std::uint8_t exit_status) const {
+  return meanings::mode_name(last_mode) == "LOCATE_MODE" &&
+         exit_named(last_mode, exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
+}
+
 bool Lockstep::device_leads_mode(std::uint8_t mode) const {
   return moves_by_itself(mode) || (locate_led() && meanings::mode_name(mode) == "LOCATE_MODE");
 }
@@ -851,15 +863,12 @@ bool Lockstep::device_leads(const ModeState& ms) const {
 // order of the movements: judged as any position at rest.
 bool Lockstep::locate_ended_alike(const AckJudging& r) const {
   const ModeState& ms = r.nominal().mode;
-  const auto completed = [this](std::uint8_t last_mode, std::uint8_t exit) {
-    return meanings::mode_name(last_mode) == "LOCATE_MODE" &&
-           exit_named(last_mode, exit, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
-  };
-  if (!locate_led() || handed_over_ || !completed(ms.last_mode, ms.exit_status)) return false;
+  if (!locate_led() || handed_over_ || !left_completed_locate(ms.last_mode, ms.exit_status)) return false;
   for (std::size_t a = 0; a < 3; ++a)
     if (by_axis(r.nominal(), a).motion != AxisState::Motion::kIdle) return false;
   const auto x = extended_status(r.dev);
-  return x && completed(x->last_mode, x->exit_status) && !device_leads_mode(x->mode) && shows_moving(r.dev) == false;
+  return x && left_completed_locate(x->last_mode, x->exit_status) && !device_leads_mode(x->mode) &&
+         shows_moving(r.dev) == false;
 }
 
 // How a LOCATE the device leads ends, whatever the order of its movements
@@ -874,8 +883,7 @@ std::optional<std::string> Lockstep::judge_locate_end(const AckJudging& r, const
   const ControllerState& m = r.nominal();
   const bool model_running = locate_runs(m.mode);
   const bool model_completed = meanings::mode_name(m.mode.mode) != "LOCATE_MODE" &&
-                               meanings::mode_name(m.mode.last_mode) == "LOCATE_MODE" &&
-                               exit_named(m.mode.last_mode, m.mode.exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
+                               left_completed_locate(m.mode.last_mode, m.mode.exit_status);
   const auto x = extended_status(r.dev);
   if ((!model_running && !model_completed) || !x) return std::nullopt;
   std::string how;
@@ -922,8 +930,7 @@ bool Lockstep::y_outside_track(const AckJudging& r, const ReplyField& f,
 // profile's acceleration: moving until then is no finding.
 bool Lockstep::ramping_down(std::size_t axis, std::uint8_t status, Duration uncertainty) const {
   const AxisProfile& ap = axis_profile(axis);
-  const std::uint8_t code = status & 0x0F;
-  if ((code != 0x04 && code != 0x05 && code != 0x07) || !ap.accel_dps2 || *ap.accel_dps2 <= 0) return false;
+  if (!movement_in_progress(status) || !ap.accel_dps2 || *ap.accel_dps2 <= 0) return false;
   const auto ramp = std::chrono::duration<double>(ap.fast_dps / *ap.accel_dps2);
   constexpr Duration kMargin = std::chrono::milliseconds(100);  // the status's own exchange
   return clock_->now() - stopped_at_ <= std::chrono::duration_cast<Duration>(ramp) + uncertainty + kMargin;
@@ -936,8 +943,7 @@ bool Lockstep::lower_case_while_moving(const AckJudging& r, const ReplyField& f,
                                        const std::vector<const std::string*>& values) const {
   if (f.name != "pol equipment" || side_pinned(profile_.readings, "E-96")) return false;
   const auto st = status_block(r.dev);
-  const std::uint8_t pol = st ? axis_status(*st, 2) & 0x0F : 0;
-  if (pol != 0x04 && pol != 0x05 && pol != 0x07) return false;
+  if (!st || !movement_in_progress(axis_status(*st, 2))) return false;
   const unsigned long dev = hex_byte(f.raw);
   // The letter codes are 000-011 ('H', 'h', 'V', 'v'): the case is bit 0;
   // 'Y' (0x08) is left to y_outside_track.
@@ -994,9 +1000,7 @@ bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& bef
     // The model's LOCATE has completed (E-94): what the device shows until
     // its own ends is not taken into the model (a MODE_CHANGED exit taken
     // would read as a stop), but judged at the end (judge_locate_end).
-    if (!device_leads(ms) && meanings::mode_name(ms.last_mode) == "LOCATE_MODE" &&
-        exit_named(ms.last_mode, ms.exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED")
-      locate_completed_ = true;
+    if (!device_leads(ms) && left_completed_locate(ms.last_mode, ms.exit_status)) locate_completed_ = true;
     stopped_out = !handed_over_ && at_rest && !device_leads(ms) && device_leads_mode(ms.last_mode) &&
                   is_stop_exit(ms.last_mode, ms.exit_status, profile_reading());
   }

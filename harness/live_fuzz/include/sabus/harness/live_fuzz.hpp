@@ -434,6 +434,8 @@ class Lockstep {
   bool locate_led() const;
   // The enumeration lists the profile reads (E-28), for exit names.
   enums::EnumReading profile_reading() const;
+  // Whether a last mode and its exit are a LOCATE that completed.
+  bool left_completed_locate(std::uint8_t last_mode, std::uint8_t exit_status) const;
   bool device_leads(const ModeState& ms) const;
   bool device_leads_mode(std::uint8_t mode) const;
   bool locate_ended_alike(const AckJudging& r) const;
