@@ -450,6 +450,20 @@ const Function kFunctions[] = {
      [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.max_deg); }); }},
     {{"initial_deg", "axis", "the axis's position at power-on"}, 1,
      [](const Call& c) { return with_axis(c, [](motion::Axis, const AxisProfile& a) { return number(a.initial_deg); }); }},
+    {{"clear_of_limits", "axis",
+      "1 when the axis's power-on position (initial_deg) is more than 1 deg from its limits and its stow limit, so that no "
+      "limit input is closed (§3.2 bytes 32-34 CBA clear); unavailable nearer (where a limit switch closes is the mount's)"},
+     1,
+     [](const Call& c) {
+       return with_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+         constexpr double kMarginDeg = 1.0;
+         const bool clear = a.initial_deg > a.min_deg + kMarginDeg && a.initial_deg < a.max_deg - kMarginDeg &&
+                            (!a.has_stow_limit || std::abs(a.initial_deg - a.stow_deg) > kMarginDeg);
+         return clear ? number(1)
+                      : unavailable("the " + std::string(motion::name_of(axis)) +
+                                    " at power-on more than 1 deg from its limits and stow limit");
+       });
+     }},
     {{"stow_deg", "axis", "the axis's stow limit position; unavailable without a stow limit"}, 1,
      [](const Call& c) {
        return with_axis(c, [](motion::Axis axis, const AxisProfile& a) {
