@@ -79,9 +79,15 @@ void Digits::encode(const value_type& v, Out out) const {
   }
 }
 FieldStatus Digits::decode(ByteView in, value_type& v) const {
+  std::size_t first = 0, last = in.size();
+  if (blank_padded) {
+    while (first < last && in[first] == ' ') ++first;
+    while (last > first && in[last - 1] == ' ') --last;
+    if (first == last) return error_at(0, "a digit '0'-'9' (a count padded with zeros or blanks)");
+  }
   std::uint32_t x = 0;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    if (!is_digit(in[i])) return error_at(i, "a digit '0'-'9'");
+  for (std::size_t i = first; i < last; ++i) {
+    if (!is_digit(in[i])) return error_at(i, blank_padded ? "a digit '0'-'9' (a count padded with zeros or blanks)" : "a digit '0'-'9'");
     x = x * 10 + (in[i] - '0');
   }
   v = x;

@@ -145,6 +145,20 @@ FieldStatus ZeroPaddedDecimal::decode(ByteView in, value_type& v) const {
     v.reset();
     return std::nullopt;
   }
+  if (blank_padded) {
+    // E-33: blanks on either side of a number with its decimals ("  0.5").
+    std::size_t first = 0, last = in.size();
+    while (first < last && in[first] == ' ') ++first;
+    while (last > first && in[last - 1] == ' ') --last;
+    std::int32_t x = 0;
+    if (auto e = parse_decimal(in, first, last, decimals, true, x)) {
+      e->expected += " (\"ddd.d\", padded with zeros or blanks)";
+      return e;
+    }
+    if (x < 0) return error_at(first, "a digit (a heading has no sign)");
+    v = x;
+    return std::nullopt;
+  }
   // Exactly width-decimals-1 integer digits, '.', `decimals` digits.
   const std::size_t point = in.size() - static_cast<std::size_t>(decimals) - 1;
   for (std::size_t i = 0; i < in.size(); ++i) {
@@ -184,12 +198,15 @@ FieldStatus Position::decode(ByteView in, value_type& v) const {
     v.reset();
     return std::nullopt;
   }
-  std::size_t first = 0;
-  while (first < in.size() && in[first] == ' ') ++first;
-  if (first == in.size()) return error_at(0, "a right-justified position \"-180.0\"..\"180.0\"");
+  // Blanks before (right-justified) or after (left-justified) the number,
+  // or neither (zero-padded): ERRATA E-33.
+  std::size_t first = 0, last = in.size();
+  while (first < last && in[first] == ' ') ++first;
+  while (last > first && in[last - 1] == ' ') --last;
+  if (first == last) return error_at(0, "a position \"-180.0\"..\"180.0\"");
   std::int32_t x = 0;
-  if (auto e = parse_decimal(in, first, in.size(), 1, true, x)) {
-    e->expected += " (right-justified position with one decimal)";
+  if (auto e = parse_decimal(in, first, last, 1, true, x)) {
+    e->expected += " (a position with one decimal, padded with blanks or zeros)";
     return e;
   }
   v = x;

@@ -56,6 +56,30 @@ TEST(Fields, Digits) {
   EXPECT_EQ(decode_ok(Digits{5}, "12152"), 12152u);
   EXPECT_EQ(encode(Digits{2}, 7, 2), "07");
   EXPECT_EQ(decode_err(Digits{2}, "1 ").index, 1u);
+  // A reply's count (§3.16, ERRATA E-33): zeros or blanks pad it, on either
+  // side; a blank inside it, a sign or no digit at all does not read.
+  const Digits count{5, true};
+  EXPECT_EQ(decode_ok(count, "00123"), 123u);
+  EXPECT_EQ(decode_ok(count, "  123"), 123u);
+  EXPECT_EQ(decode_ok(count, "123  "), 123u);
+  EXPECT_EQ(encode(count, 123, 5), "00123");
+  EXPECT_EQ(decode_err(count, "1 23 ").index, 1u);
+  decode_err(count, " -123");
+  decode_err(count, "     ");
+}
+
+TEST(Fields, HeadingZeroPaddedOrBlankPadded) {
+  // §3.22 bytes 30-34 "0.0 - 359.9"; ERRATA E-33: zeros or blanks pad it.
+  const ZeroPaddedDecimal strict{5, 1, true}, either{5, 1, true, true};
+  EXPECT_EQ(decode_ok(strict, "001.5"), 15);
+  decode_err(strict, "  1.5");
+  EXPECT_EQ(decode_ok(either, "001.5"), 15);
+  EXPECT_EQ(decode_ok(either, "  1.5"), 15);
+  EXPECT_EQ(decode_ok(either, "1.5  "), 15);
+  EXPECT_FALSE(decode_ok(either, "     ").has_value()) << "blank: no heading data";
+  EXPECT_EQ(encode(either, 15, 5), "001.5");
+  decode_err(either, " -1.5");
+  decode_err(either, "  1 5");
 }
 
 TEST(Fields, TextIsLeftJustifiedBlankPadded) {
@@ -79,7 +103,15 @@ TEST(Fields, PositionRightJustifiedWithStarsForAnError) {
   EXPECT_FALSE(decode_ok(p, "***** ").has_value());
   EXPECT_FALSE(decode_ok(p, " *****").has_value());
   EXPECT_EQ(encode(p, std::nullopt, 6), "******");
-  decode_err(p, "45.6  ");   // left-justified
+  // ERRATA E-33: a left-justified or zero-padded position reads the same;
+  // a blank inside the number or a missing decimal does not read.
+  EXPECT_EQ(decode_ok(p, "45.6  "), 456);
+  EXPECT_EQ(decode_ok(p, "-12.3 "), -123);
+  EXPECT_EQ(decode_ok(p, "0045.6"), 456);
+  EXPECT_EQ(decode_ok(p, "-012.3"), -123);
+  decode_err(p, " 4 5.6");
+  decode_err(p, "- 12.3");
+  decode_err(p, "      ");
   decode_err(p, "  4a.6");
   decode_err(p, "   456");   // no decimal point
   decode_err(p, "  ***4");

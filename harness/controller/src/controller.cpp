@@ -800,6 +800,34 @@ std::string Controller::check_invariants() const {
 
 // ---- replies and the faults that bend them ----------------------------------
 
+namespace {
+
+// The bytes first..first+width-1 of a reply (frame byte numbers, §3) with
+// their leading blanks moved to the end: "  45.0" -> "45.0  ". A fluxgate
+// heading ("123.4T", §3.2 bytes 14-19) keeps its 'M'/'T' in the last byte.
+void left_justify(Frame& f, std::size_t first, std::size_t width) {
+  const auto at = f.data.begin() + static_cast<std::ptrdiff_t>(first - 3);
+  const auto last = at[static_cast<std::ptrdiff_t>(width - 1)];
+  if (last == 'M' || last == 'T') return;
+  std::string field(at, at + static_cast<std::ptrdiff_t>(width));
+  field.erase(0, field.find_first_not_of(' '));
+  field.resize(width, ' ');
+  std::copy(field.begin(), field.end(), at);
+}
+
+// The same bytes with their leading zeros blanked, the units digit kept:
+// "00123" -> "  123", "000.5" -> "  0.5". A blank field stays blank.
+void blank_pad(Frame& f, std::size_t first, std::size_t width) {
+  const auto at = f.data.begin() + static_cast<std::ptrdiff_t>(first - 3);
+  for (std::size_t i = 0; i + 1 < width && at[static_cast<std::ptrdiff_t>(i)] == '0'; ++i) {
+    const auto next = at[static_cast<std::ptrdiff_t>(i + 1)];
+    if (next < '0' || next > '9') break;
+    at[static_cast<std::ptrdiff_t>(i)] = ' ';
+  }
+}
+
+}  // namespace
+
 Bytes Controller::finish_reply(Frame f) const {
   if (faults_.has(Fault::kReplyAddressZero)) f.address = '0';
   if (f.kind == FrameKind::kAck && !f.data.empty()) {
@@ -810,22 +838,24 @@ Bytes Controller::finish_reply(Frame f) const {
       // Frame bytes 32-39 and 44 are 0x40 | bits.
       for (std::size_t byte : {32, 33, 34, 35, 36, 37, 38, 39, 44}) f.data[byte - 3] -= 0x10;
     }
-    if (faults_.has(Fault::kLeftJustifiedPosition)) {
-      auto left = [&](std::size_t first) {
-        std::string field(f.data.begin() + static_cast<std::ptrdiff_t>(first - 3),
-                          f.data.begin() + static_cast<std::ptrdiff_t>(first + 3));
-        field.erase(0, field.find_first_not_of(' '));
-        field.resize(6, ' ');
-        std::copy(field.begin(), field.end(), f.data.begin() + static_cast<std::ptrdiff_t>(first - 3));
-      };
+    // ERRATA E-33's other side: positions left-justified, counts and the 45h
+    // heading padded with blanks (§3.2, §3.16, §3.22 give no justification
+    // for them). The fault left-justified-position is the same bend on a
+    // device whose profile pins the reference side.
+    const bool other_justification = reads_other("E-33");
+    if (other_justification || faults_.has(Fault::kLeftJustifiedPosition)) {
       if (status) {
-        left(14);
-        left(20);
-        left(26);
-      } else if (info && info->reply == ReplyKind::kJogPosition) {
-        left(4);
+        for (std::size_t first : {14, 20, 26}) left_justify(f, first, 6);
+      } else if (info && info->reply == ReplyKind::kJogPosition && !is_offline_reply(f)) {
+        left_justify(f, 4, 6);
       }
     }
+    const bool full_reply = info && !is_offline_reply(f);
+    if (other_justification && full_reply && info->reply == ReplyKind::kPulseCount) {
+      blank_pad(f, 3, 5);
+      blank_pad(f, 8, 5);
+    }
+    if (other_justification && full_reply && info->reply == ReplyKind::kNavigationData) blank_pad(f, 30, 5);
     if (status && info->reply == ReplyKind::kStatus && faults_.has(Fault::kShortStatus)) f.data.pop_back();
     if (info && info->reply == ReplyKind::kExtendedStatus && faults_.has(Fault::kExtendedStatus52))
       f.data.resize(kExtendedStatus52DataBytes);

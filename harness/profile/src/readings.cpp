@@ -10,6 +10,9 @@ namespace {
 // One row per ERRATA entry of class *reading* with a `readings:` switch; the
 // entry says more, and names the vectors that accept both sides.
 constexpr std::array kPoints{
+    ReadingPoint{"E-33", "§3.2 bytes 14-31; §3.16; §3.22 bytes 30-34; §3.24 bytes 4-9",
+                 "positions are right-justified and blank-padded; pulse counts and the 45h heading are zero-padded",
+                 "positions are left-justified; pulse counts and the 45h heading are padded with blanks"},
     ReadingPoint{"E-66", "§3.19 byte 29 'C'",
                  "a LOCATE keeps its claim for 42h 'C' until an automatic function (STOW, DEPLOY, a search) starts",
                  "42h 'C' needs the LOCATE as the last command before it, status reads aside"},

@@ -210,6 +210,46 @@ TEST(Readings, E94AStopInTheFirstMovementNamesIt) {
   EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "LOCATE_FIRST_ELEV_MOVEMENT_STOP_KEY");
 }
 
+// E-33: the justification of a reply's positions, pulse counts and 45h
+// heading. Both sides read back to the same values (the master's decoders
+// take either form); only the text differs.
+TEST(Readings, E33TheOtherSideLeftJustifiesPositionsAndPadsCountsWithBlanks) {
+  Profile p = site_profile();
+  p.az_sensor = AzSensor::kPulse;
+  p.count_offset = 0;  // 12.5 deg: count 1250, four digits
+  p.az.initial_deg = 12.5;
+  p.el.initial_deg = 45.0;
+  p.navigation.heading_tenths = 15;  // 1.5 deg
+  Rig ref(p), other(reading(p, "E-33"));
+  auto text = [](const Outcome& o, std::size_t first, std::size_t width) {
+    EXPECT_TRUE(o.reply.has_value());
+    return o.reply ? std::string(o.reply->begin() + static_cast<std::ptrdiff_t>(first),
+                                 o.reply->begin() + static_cast<std::ptrdiff_t>(first + width))
+                   : std::string();
+  };
+  // §3.2 bytes 14-19 and 20-25; §3.24 bytes 4-9 (47h for 0 ms moves nothing).
+  EXPECT_EQ(text(ref.send(StatusPoll{}), 14, 6), "  12.5");
+  EXPECT_EQ(text(other.send(StatusPoll{}), 14, 6), "12.5  ");
+  EXPECT_EQ(text(other.send(StatusPoll{}), 20, 6), "45.0  ");
+  EXPECT_EQ(text(ref.send(ExtendedStatusPoll{}), 14, 6), "  12.5");
+  EXPECT_EQ(text(other.send(ExtendedStatusPoll{}), 14, 6), "12.5  ");
+  // §3.16: five characters; §3.22 bytes 30-34.
+  const std::string ref_count = text(ref.send(PulseCountQuery{}), 3, 5);
+  const std::string other_count = text(other.send(PulseCountQuery{}), 3, 5);
+  ASSERT_EQ(ref_count.size(), 5U);
+  EXPECT_EQ(ref_count.find(' '), std::string::npos) << ref_count;
+  EXPECT_EQ(other_count.front(), ' ') << other_count;
+  EXPECT_EQ(std::stoi(other_count), std::stoi(ref_count));
+  EXPECT_EQ(text(ref.send(NavigationQuery{}), 30, 5), "001.5");
+  EXPECT_EQ(text(other.send(NavigationQuery{}), 30, 5), "  1.5");
+  // The values are the same on both sides.
+  EXPECT_EQ(ref.status().azimuth, other.status().azimuth);
+  EXPECT_EQ(ref.status().elevation, other.status().elevation);
+  EXPECT_EQ(ref.reply<PulseCountReply>(PulseCountQuery{}), other.reply<PulseCountReply>(PulseCountQuery{}));
+  EXPECT_EQ(ref.reply<NavigationDataReply>(NavigationQuery{}).heading,
+            other.reply<NavigationDataReply>(NavigationQuery{}).heading);
+}
+
 // E-95: byte 35 Y outside TRACK.
 TEST(Readings, E95TheOtherSideShowsYZeroOutsideTrack) {
   Rig ref(site_profile()), other(reading(site_profile(), "E-95"));

@@ -62,10 +62,13 @@ struct Reserved {
   std::string meaning(const value_type& v) const;
 };
 
-// Unsigned decimal digits, zero-padded ("01", "11050").
+// Unsigned decimal digits, zero-padded ("01", "11050"). With
+// `blank_padded` (a count in a reply, ERRATA E-33) blanks may pad the digits
+// on either side instead ("  123", "123  "); encode still zero-pads.
 struct Digits {
   using value_type = std::uint32_t;
   std::size_t width;
+  bool blank_padded = false;
   void encode(const value_type& v, Out out) const;
   FieldStatus decode(ByteView in, value_type& v) const;
   std::string meaning(const value_type& v) const;
@@ -89,11 +92,14 @@ struct SignedDigits {
 
 // "ddd.d": zero-padded with a decimal point (§3.23 heading "123.4",
 // §3.22 true heading; READING-NOTES 33). nullopt = all blanks, if allowed.
+// With `blank_padded` (a reply's heading, ERRATA E-33) blanks may pad the
+// number on either side instead (" 12.3", "12.3 "); encode still zero-pads.
 struct ZeroPaddedDecimal {
   using value_type = std::optional<std::int32_t>;
   std::size_t width;
   int decimals;
   bool blank_allowed = false;
+  bool blank_padded = false;
   void encode(const value_type& v, Out out) const;
   FieldStatus decode(ByteView in, value_type& v) const;
   std::string meaning(const value_type& v) const;
@@ -101,7 +107,9 @@ struct ZeroPaddedDecimal {
 
 // A position in a reply: right-justified, blank-padded, one decimal
 // ("-180.0".."180.0"); on an A/D error 5 or 6 '*' (§3.2, ERRATA E-42).
-// nullopt = the '*' error field.
+// nullopt = the '*' error field. §3.2 says only "formatted": decode also
+// takes a left-justified or zero-padded position ("-12.3 ", "0045.0",
+// ERRATA E-33); which justification a device uses is judged by vectors.
 struct Position {
   using value_type = std::optional<std::int32_t>;  // tenths of a degree
   std::size_t width = 6;

@@ -655,8 +655,8 @@ struct PulseCountReply {  // §3.16
   bool operator==(const PulseCountReply&) const = default;
   template <class S, class V>
   static void layout(S& m, V&& v) {
-    v("azimuth count", fields::Digits{5}, m.az);    // 3-7
-    v("elevation count", fields::Digits{5}, m.el);  // 8-12
+    v("azimuth count", fields::Digits{5, true}, m.az);    // 3-7 (E-33: zeros or blanks)
+    v("elevation count", fields::Digits{5, true}, m.el);  // 8-12
   }
 };
 
@@ -694,7 +694,7 @@ struct NavigationDataReply {  // §3.22
     v("reserved (lon seconds)", Reserved{3, ' '}, m.r20);                                 // 20-22
     v("reserved (altitude)", Reserved{6, ' '}, m.r23);                                    // 23-28
     v("heading source", Bits{0x40, 0x07, meanings::heading_source}, m.heading_source);   // 29
-    v("true heading", ZeroPaddedDecimal{5, 1, true}, m.heading);                          // 30-34
+    v("true heading", ZeroPaddedDecimal{5, 1, true, true}, m.heading);                    // 30-34 (E-33)
     v("magvar status", Bits{0x40, 0x01, meanings::magvar_status}, m.magvar_status);      // 35
     v("magnetic variation", RightDecimal{6, 1, true}, m.magvar);                          // 36-41
     v("reserved (time status)", Reserved{1, ' '}, m.r42);                                 // 42
