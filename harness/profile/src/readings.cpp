@@ -10,6 +10,12 @@ namespace {
 // One row per ERRATA entry of class *reading* with a `readings:` switch; the
 // entry says more, and names the vectors that accept both sides.
 constexpr std::array kPoints{
+    ReadingPoint{"E-6", "§1 Data Format; §1 Message Protocol",
+                 "a control character between the address and ETX is a protocol error: the frame is ignored",
+                 "the frame is read to its ETX and NAKed as invalid command or data"},
+    ReadingPoint{"E-8", "§1 Message Protocol",
+                 "a frame longer than the longest command (145 bytes) is an overrun: ignored",
+                 "overrun is the UART's: a long frame with a good check byte is NAKed for its length (§3)"},
     ReadingPoint{"E-66", "§3.19 byte 29 'C'",
                  "a LOCATE keeps its claim for 42h 'C' until an automatic function (STOW, DEPLOY, a search) starts",
                  "42h 'C' needs the LOCATE as the last command before it, status reads aside"},
