@@ -62,7 +62,6 @@ Oracle::Oracle(const Profile& profile)
       p.readings[open[i]] = combination & (1u << i) ? ReadingSide::kOther : ReadingSide::kReference;
     others_.emplace_back(receiver_options(p, FaultSet{}, Parity::kEvenBit7));
   }
-  others_accepted_.resize(others_.size());
 }
 
 void Oracle::reset() {
@@ -72,13 +71,15 @@ void Oracle::reset() {
 
 std::vector<Frame> Oracle::accept(const FuzzFrame& frame) {
   const Bytes wire = with_software_parity(frame.chars, frame.wrong_parity);
-  for (std::size_t i = 0; i < others_.size(); ++i) {
-    Sink other;
-    others_[i].feed(wire, other);
-    others_accepted_[i] = std::move(other.frames);
-  }
   Sink sink;
   receiver_.feed(wire, sink);
+  last_accepted_ = sink.frames;
+  others_accepted_.clear();
+  for (Receiver& r : others_) {
+    Sink other;
+    r.feed(wire, other);
+    if (other.frames != sink.frames) others_accepted_.push_back(std::move(other.frames));
+  }
   return sink.frames;
 }
 
@@ -139,9 +140,9 @@ std::optional<Verdict> Oracle::judge(const Frame& request, const Frame& reply) c
 
 std::optional<Verdict> Oracle::judge(const std::vector<Frame>& accepted, const Observation& seen) const {
   auto verdict = judge_frames(accepted, seen);
-  if (!verdict) return verdict;
+  if (!verdict || accepted != last_accepted_) return verdict;  // not the last write's frames
   for (const std::vector<Frame>& other : others_accepted_)
-    if (other != accepted && !judge_frames(other, seen)) return std::nullopt;
+    if (!judge_frames(other, seen)) return std::nullopt;
   return verdict;
 }
 

@@ -300,8 +300,9 @@ class Oracle {
   // Judges a whole write: one acceptable reply per accepted frame, in order;
   // silence for a write with none; no garbage. The receiver-level readings
   // the profile leaves open (ERRATA E-6, E-8) accept more frames on their
-  // other side: replies to the frames a combination of sides accepted from
-  // the last write pass as well.
+  // other side: where `accepted` is what accept() returned for the last
+  // write, replies to the frames a combination of sides accepted from it
+  // pass as well.
   std::optional<Verdict> judge(const std::vector<Frame>& accepted, const Observation& seen) const;
   void reset();
 
@@ -310,9 +311,11 @@ class Oracle {
   std::optional<Verdict> judge_frames(const std::vector<Frame>& accepted, const Observation& seen) const;
   Profile profile_;
   Receiver receiver_;
-  // One receiver per other combination of the open receiver-level readings,
-  // and what each accepted from the last write.
+  // One receiver per other combination of the open receiver-level readings;
+  // what the reference receiver accepted from the last write, and what each
+  // other one accepted where that differs.
   std::vector<Receiver> others_;
+  std::vector<Frame> last_accepted_;
   std::vector<std::vector<Frame>> others_accepted_;
 };
 
