@@ -184,6 +184,21 @@ bool Receiver::all_data(std::uint64_t w) const {
   return (v & kLow) == 0;
 }
 
+void Receiver::reconfigure(const ReceiverOptions& options) {
+  Receiver fresh(options);
+  fresh.state_ = state_;
+  fresh.buf_ = buf_;
+  fresh.len_ = len_;
+  fresh.lrc_ = lrc_;
+  fresh.pos_ = pos_;
+  fresh.frame_start_ = frame_start_;
+  fresh.unknown_start_ = unknown_start_;
+  fresh.unknown_len_ = unknown_len_;
+  fresh.unknown_first_ = unknown_first_;
+  fresh.unknown_reason_ = unknown_reason_;
+  *this = fresh;
+}
+
 void Receiver::reset() {
   state_ = ReceiverState::kSlaveIdle;
   len_ = 0;
@@ -298,8 +313,15 @@ void Receiver::step_slow(std::uint8_t wire, std::uint64_t at, ReceiverSink& sink
             discard_frame(DiscardReason::kIncomplete, at, at, wire, sink);
             return begin_frame(c, at);
           }
+          // E-7's state diagram (State 3 b), whatever E-6 reads: the STX is
+          // lost. An ACK or NAK inside a reply is data (master side, E-35).
+          if (c == STX) return discard_frame(DiscardReason::kControlCharacter, at + 1, at, wire, sink);
           [[fallthrough]];
         case kControl:
+          if (options_.skip_control_in_body && k == kControl) {  // a fault's, no reading
+            lrc_ ^= c;
+            return;
+          }
           if (options_.reject_control_in_body)  // E-6
             return discard_frame(DiscardReason::kControlCharacter, at + 1, at, wire, sink);
           [[fallthrough]];

@@ -13,7 +13,13 @@ ReceiverOptions receiver_options(const Profile& profile, const FaultSet& faults,
   o.parity = faults.has(Fault::kIgnoresParity) ? Parity::kUnchecked : parity;
   o.stx_restarts_in_data = profile.stx_restarts_in_data;                      // E-7
   o.check_byte_restarts_on_stx = faults.has(Fault::kCheckByteStxRestarts);
-  o.reject_control_in_body = !faults.has(Fault::kAcceptsControlInBody);
+  // E-6: the other side reads a control character in the body as data and
+  // NAKs the frame (Controller::execute); E-8: it reads a frame to its ETX,
+  // however long (up to the receiver's buffer), and NAKs its length.
+  const auto other = [&](std::string_view id) { return side_taken(profile.readings, id) == ReadingSide::kOther; };
+  o.reject_control_in_body = !other("E-6");
+  if (other("E-8")) o.max_frame_length = Receiver::kBufferSize;
+  o.skip_control_in_body = faults.has(Fault::kAcceptsControlInBody);
   o.stx_restarts_in_address = !faults.has(Fault::kNoStxStxRestart);
   return o;
 }
@@ -21,9 +27,11 @@ ReceiverOptions receiver_options(const Profile& profile, const FaultSet& faults,
 struct Bus::Unit : ReceiverSink {
   Unit(const Profile& p, const Clock& clock, FaultSet faults, Parity parity)
       : controller(p, clock, faults),
-        receiver(receiver_options(p, faults, parity)),
+        options(receiver_options(p, faults, parity)),
+        receiver(options),
         keeps_recent(faults.has(Fault::kNakBadCheckByte)) {}
   Controller controller;
+  ReceiverOptions options;  // the receiver's, from the controller's readings (E-6, E-8)
   Receiver receiver;
   std::vector<Frame> frames;
   std::vector<Discard> discards;
@@ -87,6 +95,12 @@ void Bus::receive(ByteView wire, Bytes& out) {
   constexpr std::size_t kRecent = 512;
   for (auto& u : units_) {
     if (u->keeps_recent) u->recent.insert(u->recent.end(), wire.begin(), wire.end());
+    // A reading taken late (Controller::set_reading, the live fuzzer's
+    // lockstep) from the next byte on.
+    if (ReceiverOptions now = receiver_options(u->controller.profile(), u->controller.faults(), parity_); !(now == u->options)) {
+      u->receiver.reconfigure(now);
+      u->options = now;
+    }
     u->receiver.feed(wire, *u);
     for (const Discard& d : u->discards) {
       if (transcript_) log_ += "ignored " + d.message() + "\n";

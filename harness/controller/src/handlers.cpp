@@ -95,6 +95,13 @@ Outcome Controller::execute(const Frame& f) {
       return unknown(NakRule::kWrongLength,
                      std::to_string(length) + " bytes, " + std::to_string(*info->request_length) + " expected");
   }
+  // ERRATA E-6, the other side: a control character in the data reached
+  // the controller (the receiver read the frame to its ETX) and is "invalid
+  // ... data" (§1 Message Protocol): NAKed, not "a valid command" (E-10 says
+  // what it gets offline). A control character as the command byte is an
+  // unknown code, NAKed above with that byte as CC.
+  if (reads_other("E-6") && std::any_of(f.data.begin(), f.data.end(), [](std::uint8_t c) { return is_control(c); }))
+    return unknown(NakRule::kMalformedData, "a control character in the data (ERRATA E-6)");
   // §3 Online/Offline Reply: a valid command while remote control is
   // disabled; whether one the controller does not implement is "valid" is
   // ERRATA E-97 (the other side NAKs it, offline or not).

@@ -396,6 +396,9 @@ struct FrameEnds : ReceiverSink {
 };
 
 std::vector<std::size_t> Lockstep::frame_cuts(const FuzzFrame& frame) {
+  // The model's receiver: the sides of E-6 and E-8 it reads now decide
+  // where a write's frames end.
+  splitter_->reconfigure(receiver_options(model().profile(), FaultSet{}, Parity::kEvenBit7));
   const std::uint64_t base = splitter_->offset();
   FrameEnds ends;
   splitter_->feed(with_software_parity(frame.chars, frame.wrong_parity), ends);
@@ -613,10 +616,16 @@ void Lockstep::note_reading(std::vector<std::string> ids, const Verdict& explain
 // explains the replies is the device's (a note), and the model keeps it.
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                       const std::vector<Frame>& device) {
-  cuts_ = frame_cuts(frame);  // the reference receiver reads each write once
+  const Receiver split_before = *splitter_;
+  cuts_ = frame_cuts(frame);  // the model's receiver reads each write once a side
   const std::vector<std::string> open = open_readings();
   if (open.empty()) return judge_write(frame, sent_at, uncertainty, device);
   const Memory before = remember();
+  // The write cut again by the receiver of the sides the model takes now.
+  auto recut = [&] {
+    *splitter_ = split_before;
+    cuts_ = frame_cuts(frame);
+  };
   std::optional<Verdict> finding = judge_write(frame, sent_at, uncertainty, device);
   if (!finding) return finding;
   auto flipped = [&](const std::string& id) {
@@ -626,6 +635,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   auto try_sides = [&](const std::vector<std::string>& ids) {
     recall(before);
     for (const auto& id : ids) model().set_reading(id, flipped(id));
+    recut();
     return !judge_write(frame, sent_at, uncertainty, device);
   };
   // E-90 decides only when a search ends: its other side (over within a
@@ -663,6 +673,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
     return std::nullopt;
   }
   recall(before);
+  recut();
   return judge_write(frame, sent_at, uncertainty, device);
 }
 

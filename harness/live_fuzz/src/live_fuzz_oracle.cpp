@@ -50,14 +50,36 @@ struct Oracle::Sink : ReceiverSink {
 // The reference receiver: the project's readings for this profile, no faults
 // (the same options the reference controller's receiver has).
 Oracle::Oracle(const Profile& profile)
-    : profile_(profile), receiver_(receiver_options(profile, FaultSet{}, Parity::kEvenBit7)) {}
+    : profile_(profile), receiver_(receiver_options(profile, FaultSet{}, Parity::kEvenBit7)) {
+  // The readings that decide which frames a receiver passes on (ERRATA E-6,
+  // E-8); those the profile pins keep their side.
+  std::vector<std::string> open;
+  for (const char* id : {"E-6", "E-8"})
+    if (!side_pinned(profile.readings, id)) open.emplace_back(id);
+  for (unsigned combination = 1; combination < (1u << open.size()); ++combination) {
+    Profile p = profile;
+    for (std::size_t i = 0; i < open.size(); ++i)
+      p.readings[open[i]] = combination & (1u << i) ? ReadingSide::kOther : ReadingSide::kReference;
+    others_.emplace_back(receiver_options(p, FaultSet{}, Parity::kEvenBit7));
+  }
+}
 
-void Oracle::reset() { receiver_.reset(); }
+void Oracle::reset() {
+  receiver_.reset();
+  for (Receiver& r : others_) r.reset();
+}
 
 std::vector<Frame> Oracle::accept(const FuzzFrame& frame) {
-  Sink sink;
   const Bytes wire = with_software_parity(frame.chars, frame.wrong_parity);
+  Sink sink;
   receiver_.feed(wire, sink);
+  last_accepted_ = sink.frames;
+  others_accepted_.clear();
+  for (Receiver& r : others_) {
+    Sink other;
+    r.feed(wire, other);
+    if (other.frames != sink.frames) others_accepted_.push_back(std::move(other.frames));
+  }
   return sink.frames;
 }
 
@@ -117,6 +139,14 @@ std::optional<Verdict> Oracle::judge(const Frame& request, const Frame& reply) c
 }
 
 std::optional<Verdict> Oracle::judge(const std::vector<Frame>& accepted, const Observation& seen) const {
+  auto verdict = judge_frames(accepted, seen);
+  if (!verdict || accepted != last_accepted_) return verdict;  // not the last write's frames
+  for (const std::vector<Frame>& other : others_accepted_)
+    if (!judge_frames(other, seen)) return std::nullopt;
+  return verdict;
+}
+
+std::optional<Verdict> Oracle::judge_frames(const std::vector<Frame>& accepted, const Observation& seen) const {
   if (!seen.garbage.empty()) return Verdict{FindingKind::kMalformedReply, "bytes that are no reply frame: " + seen.garbage.front()};
   if (accepted.empty() && !seen.replies.empty())
     return Verdict{FindingKind::kReplyToIgnored, "a frame the device must ignore drew " + summary(seen.replies.front())};

@@ -10,6 +10,12 @@ namespace {
 // One row per ERRATA entry of class *reading* with a `readings:` switch; the
 // entry says more, and names the vectors that accept both sides.
 constexpr std::array kPoints{
+    ReadingPoint{"E-6", "§1 Data Format; §1 Message Protocol",
+                 "a control character between the address and ETX is a protocol error: the frame is ignored",
+                 "the frame is read to its ETX and NAKed as invalid command or data"},
+    ReadingPoint{"E-8", "§1 Message Protocol",
+                 "a frame longer than the longest command (145 bytes) is an overrun: ignored",
+                 "overrun is the UART's: a long frame with a good check byte is NAKed for its length (§3)"},
     ReadingPoint{"E-33", "§3.2 bytes 14-31; §3.16; §3.22 bytes 30-34; §3.24 bytes 4-9",
                  "positions are right-justified and blank-padded; pulse counts and the 45h heading are zero-padded",
                  "positions are left-justified; pulse counts and the 45h heading are padded with blanks"},

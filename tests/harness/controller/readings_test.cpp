@@ -390,3 +390,103 @@ TEST(Readings, ASideTakenLateAppliesToASearchAndAClaimAlreadyBegun) {
 
 }  // namespace
 }  // namespace sabus::harness
+
+namespace sabus::harness {
+namespace {
+
+// ---- the receiver-level readings (E-6, E-8): a whole controller on its line ----
+
+// What a controller on a line answers to `chars` (7-bit characters; the line
+// adds even parity), one reply frame or none.
+struct Line {
+  explicit Line(Profile p) : bus({std::move(p)}, clock) { bus.set_transcript(false); }
+  VirtualClock clock;
+  Bus bus;
+  Bytes send(const Bytes& chars) {
+    Bytes out;
+    bus.receive(add_even_parity(chars), out);
+    for (auto& b : out) b &= 0x7F;
+    return out;
+  }
+  Bytes send(std::uint8_t code, const Bytes& data) {
+    return send(encode_frame({FrameKind::kCommand, bus.controller(0).profile().address, code, data}));
+  }
+};
+
+Bytes text(std::string_view s) { return Bytes(s.begin(), s.end()); }
+
+Bytes nak_for(std::uint8_t code) { return encode_frame(nak_reply('2', code)); }
+
+TEST(Readings, E6TheReferenceSideIgnoresAControlCharacterInTheBody) {
+  Line line{Profile{}};
+  EXPECT_TRUE(line.send(0x05, {}).empty());
+  EXPECT_TRUE(line.send(0x35, text("\x01" "1")).empty());
+  EXPECT_TRUE(line.send(0x31, text("\r")).empty());
+  EXPECT_EQ(line.send(0x31, {}).at(0), ACK) << "then a poll is answered";
+}
+
+TEST(Readings, E6TheOtherSideReadsToEtxAndNaksWithTheCommandByteAsCC) {
+  Line line{reading(Profile{}, "E-6")};
+  EXPECT_EQ(line.send(0x05, {}), nak_for(0x05)) << "a control command byte is an unknown code, echoed";
+  EXPECT_EQ(line.send(0x15, {}), nak_for(0x15));
+  EXPECT_EQ(line.send(0x1F, text("1")), nak_for(0x1F));
+  EXPECT_EQ(line.send(0x35, text("\x01" "1")), nak_for(0x35)) << "invalid data";
+  EXPECT_EQ(line.send(0x31, text("\r")), nak_for(0x31)) << "a length that does not fit 31h";
+  EXPECT_EQ(line.bus.take_nak_rules(),
+            (std::vector<std::string>{"UnknownCommand", "UnknownCommand", "UnknownCommand", "MalformedData", "WrongLength"}));
+  EXPECT_EQ(line.send(0x31, {}).at(0), ACK);
+}
+
+TEST(Readings, E8TheReferenceSideIgnoresAFrameLongerThan145Bytes) {
+  Line line{Profile{}};
+  EXPECT_EQ(line.send(0x31, Bytes(140, '0')), nak_for(0x31)) << "145 bytes: a wrong length";
+  EXPECT_TRUE(line.send(0x31, Bytes(141, '0')).empty()) << "146 bytes: an overrun";
+  EXPECT_TRUE(line.send(0x31, Bytes(200, '0')).empty());
+  EXPECT_EQ(line.send(0x31, {}).at(0), ACK);
+}
+
+TEST(Readings, E8TheOtherSideNaksALongFrameForItsLength) {
+  Line line{reading(Profile{}, "E-8")};
+  EXPECT_EQ(line.send(0x31, Bytes(141, '0')), nak_for(0x31));
+  EXPECT_EQ(line.send(0x31, Bytes(200, '0')), nak_for(0x31));
+  EXPECT_EQ(line.bus.take_nak_rules(), (std::vector<std::string>{"WrongLength", "WrongLength"}));
+  // Unterminated: still under way when the next poll's STX restarts
+  // reception (E-7), so the poll is answered.
+  Bytes open = encode_frame({FrameKind::kCommand, '2', 0x31, Bytes(200, '0')});
+  open.resize(open.size() - 2);
+  EXPECT_TRUE(line.send(open).empty());
+  EXPECT_EQ(line.send(0x31, {}).at(0), ACK);
+}
+
+// The bus's receiver follows a side taken late (the live fuzzer's model),
+// even in the middle of a frame.
+TEST(Readings, E6AndE8TakenLateReconfigureTheReceiver) {
+  Line line{Profile{}};
+  const Bytes frame = encode_frame({FrameKind::kCommand, '2', 0x31, Bytes(141, '0')});
+  EXPECT_TRUE(line.send(Bytes(frame.begin(), frame.begin() + 50)).empty());
+  line.bus.controller(0).set_reading("E-8", ReadingSide::kOther);
+  EXPECT_EQ(line.send(Bytes(frame.begin() + 50, frame.end())), nak_for(0x31));
+  EXPECT_TRUE(line.send(0x05, {}).empty());
+  line.bus.controller(0).set_reading("E-6", ReadingSide::kOther);
+  EXPECT_EQ(line.send(0x05, {}), nak_for(0x05));
+  line.bus.controller(0).set_reading("E-6", ReadingSide::kReference);
+  line.bus.controller(0).set_reading("E-8", ReadingSide::kReference);
+  EXPECT_TRUE(line.send(0x05, {}).empty());
+  EXPECT_TRUE(line.send(0x31, Bytes(141, '0')).empty());
+}
+
+// The fault accepts-control-in-body does what neither side does: it drops
+// the control character and executes the rest (the check byte covers it).
+TEST(Readings, E6TheFaultAcceptsControlInBodyExecutesWhatNeitherSideDoes) {
+  for (ReadingSide side : {ReadingSide::kReference, ReadingSide::kOther}) {
+    VirtualClock clock;
+    Bus bus({reading(Profile{}, "E-6", side)}, clock, FaultSet{Fault::kAcceptsControlInBody});
+    Bytes out;
+    bus.receive(add_even_parity(encode_frame({FrameKind::kCommand, '2', 0x31, text("\r")})), out);
+    ASSERT_FALSE(out.empty());
+    EXPECT_EQ(out[0] & 0x7F, ACK) << "a status poll, answered";
+  }
+}
+
+}  // namespace
+}  // namespace sabus::harness

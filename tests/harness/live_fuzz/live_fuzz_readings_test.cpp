@@ -195,6 +195,39 @@ TEST(LiveFuzzReadings, AnAxisWithoutAReadingIsTakenFromItsCountAfterASearch) {
   EXPECT_NEAR(s.lockstep()->model().state().el.position, t->bus().controller(0).state().el.position, 0.02);
 }
 
+// The receiver-level readings (E-6, E-8): a frame with a control character
+// in its body, and one of 146 bytes, each with a good check byte, then a
+// poll in the same write. A device on the other side NAKs them: the framing
+// oracle takes that from a side the profile leaves open (a note, the model
+// taking the side and cutting the write as it does), not from a pinned one.
+TEST(LiveFuzzReadings, AFrameTheOtherReceiverKeepsIsNotedUnlessPinned) {
+  const Profile model = default_profile();
+  const Bytes poll = encode_frame({FrameKind::kCommand, model.address, 0x31, {}});
+  for (const char* id : {"E-6", "E-8"}) {
+    const Bytes odd = encode_frame({FrameKind::kCommand, model.address, 0x35,
+                                    std::string_view(id) == "E-6" ? Bytes{'0', 0x01} : Bytes(141, '0')});
+    FuzzFrame write{odd, {}, "test"};
+    write.chars.insert(write.chars.end(), poll.begin(), poll.end());
+    for (bool pinned : {false, true}) {
+      Profile device = model;
+      device.readings[id] = ReadingSide::kOther;
+      Profile judged = model;
+      if (pinned) judged.readings[id] = ReadingSide::kReference;
+      auto t = make_in_process_transport({device}, {});
+      Session s(*t, judged, SessionOptions{});
+      const auto v = s.step(write);
+      if (pinned) {
+        ASSERT_TRUE(v) << id << " pinned: the NAK is a finding";
+        EXPECT_EQ(v->kind, FindingKind::kReplyToIgnored) << v->message;
+      } else {
+        EXPECT_FALSE(v) << id << ": " << to_string(v->kind) << ": " << v->message;
+        EXPECT_EQ(noted(s), std::string(id) + ":other");
+        EXPECT_EQ(side_taken(s.lockstep()->model().profile().readings, id), ReadingSide::kOther);
+      }
+    }
+  }
+}
+
 // Each switchable reading on its own (sabus sim --reading E-NN=other), on a
 // profile where it shows (a circular feed for E-91, remote control disabled
 // for E-97): 3,000 writes with motion and stored writes give no finding,
@@ -239,7 +272,9 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
-                         ::testing::Values(OneReading{"E-66", "rc3000-1.59.yaml", false},
+                         ::testing::Values(OneReading{"E-6", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-8", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-66", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},

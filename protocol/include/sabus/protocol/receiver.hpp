@@ -106,15 +106,20 @@ struct ReceiverOptions {
   LrcRule lrc_rule = LrcRule::kFromByte0;           // E-5
   bool check_byte_restarts_on_stx = false;          // E-5, E-7: in State 4 an STX is the check byte
   bool reject_control_in_body = true;               // E-6 (master side: false, E-35)
+  // No reading (fault accepts-control-in-body): a control character in
+  // State 3 is left out of the frame, the check byte still covering it.
+  bool skip_control_in_body = false;
   bool stx_restarts_in_data = true;                 // E-7: a start byte in State 3 restarts reception
   bool stx_restarts_in_address = true;              // §1 State 2 c (must); false: State 2 -> State 1
-  std::size_t max_frame_length = 0;                 // E-8: 0 = the catalog's longest frame for `starts`
+  std::size_t max_frame_length = 0;                 // E-8: 0 = the catalog's longest frame for `starts`;
+                                                    // the other side reads to ETX (kBufferSize at most)
   bool validate_command_in_receiver = false;        // E-9: true = state-diagram reading (silence)
 
   static ReceiverOptions slave(std::uint8_t address);
   static ReceiverOptions slave_any_address();
   static ReceiverOptions master();
   ReceiverOptions& accept_address(std::uint8_t address);
+  bool operator==(const ReceiverOptions&) const = default;
 };
 
 class Receiver {
@@ -130,6 +135,9 @@ class Receiver {
   void finish(ReceiverSink& sink);
   // Back to State 1 without reporting; the stream offset continues.
   void reset();
+  // New options from the next byte on (a reading taken late, ERRATA E-6,
+  // E-8): the state, a frame under way and the stream offset are kept.
+  void reconfigure(const ReceiverOptions& options);
 
   ReceiverState state() const { return state_; }
   std::uint64_t offset() const { return pos_; }

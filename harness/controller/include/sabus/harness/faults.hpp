@@ -26,7 +26,8 @@ namespace sabus::harness {
   X(kCheckByteStxRestarts, "check-byte-stx-restarts", "a check byte of 02h is taken as a new STX")                  \
   X(kModeEnumOffByOne, "mode-enum-off-by-one", "extended status mode values start at 0x21 instead of 0x20")         \
   X(kIgnoresParity, "ignores-parity", "characters with a parity error are accepted")                                \
-  X(kAcceptsControlInBody, "accepts-control-in-body", "control characters inside a frame are accepted as data")     \
+  X(kAcceptsControlInBody, "accepts-control-in-body",                                                              \
+    "control characters inside a frame are dropped from it, the check byte covering them: the rest is executed")  \
   X(kNoStxStxRestart, "no-stx-stx-restart", "an STX where the address belongs does not restart reception")          \
   X(kReplyAddressZero, "reply-address-0x30", "replies carry address 0x30 instead of the controller's")              \
   X(kExtendedStatus52, "extended-status-52", "the extended status reply is 52 bytes, as the text's count says")    \

@@ -298,14 +298,25 @@ class Oracle {
   // decoding), a NAK (§3), or the offline reply with remote control disabled.
   std::optional<Verdict> judge(const Frame& request, const Frame& reply) const;
   // Judges a whole write: one acceptable reply per accepted frame, in order;
-  // silence for a write with none; no garbage.
+  // silence for a write with none; no garbage. The receiver-level readings
+  // the profile leaves open (ERRATA E-6, E-8) accept more frames on their
+  // other side: where `accepted` is what accept() returned for the last
+  // write, replies to the frames a combination of sides accepted from it
+  // pass as well.
   std::optional<Verdict> judge(const std::vector<Frame>& accepted, const Observation& seen) const;
   void reset();
 
  private:
   struct Sink;
+  std::optional<Verdict> judge_frames(const std::vector<Frame>& accepted, const Observation& seen) const;
   Profile profile_;
   Receiver receiver_;
+  // One receiver per other combination of the open receiver-level readings;
+  // what the reference receiver accepted from the last write, and what each
+  // other one accepted where that differs.
+  std::vector<Receiver> others_;
+  std::vector<Frame> last_accepted_;
+  std::vector<std::vector<Frame>> others_accepted_;
 };
 
 // The longest reply `accepted` can draw (catalog lengths; the longest reply of
