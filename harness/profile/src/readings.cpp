@@ -10,6 +10,13 @@ namespace {
 // One row per ERRATA entry of class *reading* with a `readings:` switch; the
 // entry says more, and names the vectors that accept both sides.
 constexpr std::array kPoints{
+    ReadingPoint{"E-29", "§3.18, §3.19 byte 3 B",
+                 "byte 3 is 40h | A<<4 | tens, tens 0-2: preset index 20 can be sent",
+                 "B is one bit: a tens digit of 2 is malformed and NAKed (41h and 42h)"},
+    ReadingPoint{"E-60", "§3.23 NOTE", "valid navigation data takes latitude 90 deg 00 and longitude 180 deg 00 either way",
+                 "the poles and -180 deg 00 are NAKed: the antimeridian is +180 deg 00 only"},
+    ReadingPoint{"E-64", "§3.5", "34h with no satellite in memory is NAKed at once, even while TRACK peaks",
+                 "while TRACK peaks or searches 34h is deferred and ACKed; the check waits until it runs"},
     ReadingPoint{"E-66", "§3.19 byte 29 'C'",
                  "a LOCATE keeps its claim for 42h 'C' until an automatic function (STOW, DEPLOY, a search) starts",
                  "42h 'C' needs the LOCATE as the last command before it, status reads aside"},

@@ -239,7 +239,10 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
-                         ::testing::Values(OneReading{"E-66", "rc3000-1.59.yaml", false},
+                         ::testing::Values(OneReading{"E-29", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-60", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-64", "track-peaking.yaml", false},
+                                           OneReading{"E-66", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},
