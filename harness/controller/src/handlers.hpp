@@ -37,6 +37,12 @@ struct Handlers {
   // the Stop key) leaves a LOCATE, STOW, DEPLOY or search running.
   static bool stop_ignored_by_fault(const C& c);
   static bool implemented(const C& c, std::uint8_t code);
+  // §3.18/§3.19 byte 3 "B - Tens digit": the other side of ERRATA E-29 takes
+  // B as the single bit the diagram draws, so a preset's tens digit of 2 or
+  // more is malformed (41h and 42h alike, before any index range).
+  static bool tens_malformed(const C& c, const fields::PresetRef& p) {
+    return p.preset && p.index >= 20 && c.reads_other("E-29");
+  }
 
   static bool in_range(std::optional<std::int32_t> v, std::int32_t lo, std::int32_t hi) {
     return v && *v >= lo && *v <= hi;

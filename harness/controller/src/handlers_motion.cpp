@@ -170,9 +170,13 @@ Outcome Handlers::jog_position(C& c, AxisId a) {
 Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
   if (c.profile_.pol_type == PolType::kCircular && !c.faults_.has(Fault::kCircularPolAcked))
     return nak(c, 0x34, NakRule::kPolPresetCircular);
-  if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
-  // §3.5: during TRACK peaking or search the move waits, and the reply is an ACK.
+  // §3.5: during TRACK peaking or search the move waits, and the reply is an
+  // ACK. With no satellite in memory the reference NAKs at once, TRACK busy
+  // or not; the other side defers first and checks when it runs (ERRATA E-64).
+  const bool defer_first = c.reads_other("E-64");
+  if (!defer_first && c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
   if (track_busy(c)) return status(c, 0x34, "pol preset deferred until peaking ends");
+  if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
   const StoredSatellite sat = c.state_.last_target.value_or(c.state_.store.front());
   const bool dual = c.profile_.pol_type == PolType::kDualPort;
   take_remote_control(c);
@@ -187,6 +191,7 @@ Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
 Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
   SatelliteData sat;
   if (l.preset.preset) {
+    if (tens_malformed(c, l.preset)) return nak(c, 0x41, NakRule::kMalformedData, "tens digit 2 (E-29)");
     if (l.preset.index < c.profile_.locate_index_min || l.preset.index > c.profile_.locate_index_max)
       return nak(c, 0x41, NakRule::kLocateIndex, "index " + std::to_string(l.preset.index));
     const auto& p = l.preset.index >= 1 && l.preset.index <= 20 ? c.state_.presets[l.preset.index - 1] : std::nullopt;

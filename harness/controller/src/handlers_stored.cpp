@@ -118,6 +118,7 @@ Outcome Handlers::read_tle(C& c, const ReadTle& r) {
 Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
   SatelliteData sat;
   if (s.preset.preset) {
+    if (tens_malformed(c, s.preset)) return nak(c, 0x42, NakRule::kMalformedData, "tens digit 2 (E-29)");
     if (s.preset.index < 1 || s.preset.index > 20) return nak(c, 0x42, NakRule::kStoreIndex);
     const auto& p = c.state_.presets[s.preset.index - 1];
     if (!p) return nak(c, 0x42, NakRule::kStoreEmptyPreset);
@@ -198,8 +199,12 @@ Outcome Handlers::write_navigation(C& c, const WriteNavigation& w) {
   // sddmm / sdddmm: degrees and minutes in one integer (§3.23).
   const std::int32_t lat_deg = std::abs(w.latitude) / 100, lat_min = std::abs(w.latitude) % 100;
   const std::int32_t lon_deg = std::abs(w.longitude) / 100, lon_min = std::abs(w.longitude) % 100;
-  const bool lat_ok = lat_min < 60 && (lat_deg < 90 || (lat_deg == 90 && lat_min == 0));
-  const bool lon_ok = lon_min < 60 && (lon_deg < 180 || (lon_deg == 180 && lon_min == 0));
+  // "Valid" is ERRATA E-60: the reference takes 90°00' and 180°00' either
+  // way; the other side NAKs the poles and -180°00' (the antimeridian is
+  // +180°00' only, as a signpost's -179.9..180.0, E-62).
+  const bool other = c.reads_other("E-60");
+  const bool lat_ok = lat_min < 60 && (lat_deg < 90 || (lat_deg == 90 && lat_min == 0 && !other));
+  const bool lon_ok = lon_min < 60 && (lon_deg < 180 || (lon_deg == 180 && lon_min == 0 && !(other && w.longitude < 0)));
   const bool heading_ok = in_range(w.heading, 0, 3599);
   if (!lat_ok || !lon_ok || !heading_ok)
     return nak(c, 0x46, NakRule::kNavigationField,

@@ -233,11 +233,15 @@ void run_steps(Session& s, const Vector& v, Attempt& a) {
     // Where the failure was: "preset satellite 2: ...", "STORE entry 2: ...".
     const std::string where =
         v.each_slot.empty() ? "" : std::string(slot_what(v.each_slot).value_or(v.each_slot)) + " " + std::to_string(slot) + ": ";
-    for (const Step& step : v.steps)
+    for (const Step& step : v.steps) {
       if (auto e = s.run_step(step)) {
         record(a, s, step, where, *e);
         break;
       }
+      // A `readings:` alternative with `ends` held: the rest of the steps
+      // needs the reference side (vectors/README.md).
+      if (std::exchange(s.steps_ended, false)) break;
+    }
     if (!a.inconclusive.empty() || !a.error.empty()) return;
   }
 }
@@ -263,6 +267,7 @@ Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& trans
     return a;
   }
   s.captures.clear();
+  s.steps_ended = false;
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
       record(a, s, step, "setup: ", *e);

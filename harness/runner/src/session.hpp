@@ -42,6 +42,9 @@ class Session : public ReceiverSink {
   // The last send's exchange left unjudged by the line (RunOptions::retries):
   // its failure is then an error's reason (Verdict::kError), not the device's.
   bool line_error = false;
+  // The last send met a `readings:` alternative with `ends` (the reference
+  // side did not hold): the vector's steps end there, passed (runner.cpp).
+  bool steps_ended = false;
   bool measuring = false;  // a survey runs: no exchange is repeated, the faults are what it counts
   // Exchanges judged as the device's answer after a repeat (every try
   // silent, or the same bytes twice) that a line could still have made:

@@ -335,7 +335,14 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
   };
   if (reference_allowed && attempt(e, ids + " reference")) return std::nullopt;
   for (const auto& alt : e.readings)
-    if (pinned(alt.errata) != ReadingSide::kReference && attempt(alt.expect, alt.errata + " other")) return std::nullopt;
+    if (pinned(alt.errata) != ReadingSide::kReference && attempt(alt.expect, alt.errata + " other")) {
+      if (alt.expect.ends) {
+        steps_ended = true;
+        if (transcript)
+          transcript->push_back({t_ms(), false, {}, alt.errata + " other holds: the vector's steps end here (ends)", {}, ""});
+      }
+      return std::nullopt;
+    }
   captures = before;
   if (failures.empty()) return "no side of " + ids + " is left by the profile's readings: pins";
   return "no legal reading holds (ERRATA " + ids + "): " + failures;

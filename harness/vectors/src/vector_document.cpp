@@ -148,6 +148,7 @@ Vector read_vector(const YAML::Node& v, const At& at, const FileInfo& file, cons
     vec.setup.insert(vec.setup.end(), own.begin(), own.end());
   });
   StepContext steps_cx = cx;  // $slot is the steps' own: the teardown runs once, after every slot
+  steps_cx.steps = true;
   r.with("each_slot", [&](const YAML::Node& n, const At& a) {
     vec.each_slot = scalar(n, a, "a stored list");
     if (!slot_what(vec.each_slot)) fail(a, quoted_clip(vec.each_slot) + " is not a stored list: " + slot_list_names());

@@ -173,6 +173,9 @@ struct StepContext {
   // Reading a teardown: its steps carry no precondition (the vector's test
   // purpose is decided before the teardown runs).
   bool teardown = false;
+  // Reading a vector's `steps` (not a setup or teardown): an alternative's
+  // `ends` may end them.
+  bool steps = false;
 };
 
 [[noreturn]] inline void fail_missing(const At& map_at, std::string_view key, const std::string& message) {

@@ -161,6 +161,9 @@ std::vector<SchemaKey> reading_keys() {
     out.push_back({k.key, "", k.key == "reply" ? "its own reply kind; left out, the expectation's reply and checks are kept"
                                                 : k.meaning});
   }
+  out.push_back({"ends", "",
+                 "true: when this side holds and the reference does not, the vector's steps end here, passed (what "
+                 "follows needs the reference side: a move the other side refused); a send step's, in `steps` only"});
   return out;
 }
 

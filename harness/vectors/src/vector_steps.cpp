@@ -366,6 +366,11 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     if (!read) fail(a, "from_profile checks the reply of a read of stored data: 35h, 3Ah, 3Ch, 44h or 45h");
     e.from_profile = to_record(n, a, *command, cx);
   });
+  if (base) {
+    r.read("ends", e.ends, to_bool);
+    if (r.has("ends") && !e.ends) fail(r.at("ends"), "ends: false is the default; leave it out");
+    if (e.ends && !cx.steps) fail(r.at("ends"), "ends ends a vector's steps: not in a setup or teardown");
+  }
   // The other side of open points of the spec (ERRATA class reading,
   // readings.hpp): what a controller of that side answers instead.
   r.with("readings", [&](const YAML::Node& n, const At& a) {
@@ -630,6 +635,8 @@ Step read_poll(const YAML::Node& v, const At& at, StepContext& cx) {
   r.with("expect", [&](const YAML::Node& n, const At& a) {
     step.expect = read_expectation(n, a, send.sketch.command, cx);
     if (step.expect.kind == Expectation::Kind::kSilence) fail(a, "a poll needs a reply to test until against");
+    for (const ReadingAlternative& alt : step.expect.readings)
+      if (alt.expect.ends) fail(a, "a poll's readings cannot end the vector (ends): put it on a send");
   });
   r.with("until", [&](const YAML::Node& n, const At& a) {
     step.until = read_matchers(n, a, reply_fields(send.sketch.command, step.expect.kind), cx);

@@ -120,6 +120,82 @@ TEST(Readings, ABadPinNamesItsLineAndKey) {
 
 // ---- each point, both sides ---------------------------------------------------
 
+// E-29: §3.18/§3.19 byte 3, a preset's tens digit of 2 (41h and 42h alike).
+TEST(Readings, E29TheOtherSideTakesATensDigitOf2AsMalformed) {
+  Profile twenty = site_profile();
+  PresetSatellite p20;
+  p20.index = 20;
+  p20.data = {"GALAXY 20", -990, 0, '1', '0', 0};
+  twenty.presets.push_back(p20);
+  PresetSatellite p11 = p20;
+  p11.index = 11;
+  p11.data.name = "GALAXY 11";
+  twenty.presets.push_back(p11);
+  Rig ref(twenty), other(reading(twenty, "E-29"));
+  // 42h by preset 20: byte 3 is 40h | A=1 << 4 | tens 2 ('R'), byte 4 '0'.
+  const std::string store20 = "R0" + std::string(24, ' ') + "S20.0 -70.0V     ";
+  EXPECT_FALSE(is_nak(ref.send_raw(0x42, store20)));
+  EXPECT_EQ(other.send_raw(0x42, store20).nak, NakRule::kMalformedData);
+  // Index 21 is out of range on one side, malformed on the other; the same for 41h.
+  const std::string store21 = "R1" + std::string(24, ' ') + "S20.0 -70.0V     ";
+  EXPECT_EQ(ref.send_raw(0x42, store21).nak, NakRule::kStoreIndex);
+  EXPECT_EQ(other.send_raw(0x42, store21).nak, NakRule::kMalformedData);
+  const std::string locate21 = "R1" + std::string(24, ' ') + "NA    ";
+  EXPECT_EQ(ref.send_raw(0x41, locate21).nak, NakRule::kLocateIndex);
+  EXPECT_EQ(other.send_raw(0x41, locate21).nak, NakRule::kMalformedData);
+  // Tens 0 and 1 are read alike; with A = 0 the index bytes carry no meaning.
+  const std::string store1 = "Q1" + std::string(24, ' ') + "S20.0 -70.0V     ";
+  EXPECT_FALSE(is_nak(other.send_raw(0x42, store1)));
+  RemoteStore data;
+  data.preset = {false, 20};
+  data.sat = {"DATA TWENTY", -970, 0, '1', '0', 0};
+  data.pol_selection = 'S';
+  data.h_pos = 100;
+  data.v_pos = -800;
+  EXPECT_FALSE(is_nak(other.send(data)));
+  // A side taken late is the side the next command meets.
+  ref.c.set_reading("E-29", ReadingSide::kOther);
+  EXPECT_EQ(ref.send_raw(0x42, store20).nak, NakRule::kMalformedData);
+}
+
+// E-60: §3.23 what "valid" navigation data is.
+TEST(Readings, E60TheOtherSideNaksThePolesAndMinus180) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-60"));
+  const WriteNavigation north_pole{9000, 7530, 0, ""}, south_pole{-9000, 7530, 0, ""};
+  const WriteNavigation west180{1234, -18000, 0, ""}, east180{1234, 18000, 0, ""}, near_pole{-8959, 0, 0, ""};
+  for (const WriteNavigation& w : {north_pole, south_pole, west180, east180, near_pole})
+    EXPECT_FALSE(is_nak(ref.send(w))) << w.latitude << " " << w.longitude;
+  for (const WriteNavigation& w : {north_pole, south_pole, west180})
+    EXPECT_EQ(other.send(w).nak, NakRule::kNavigationField) << w.latitude << " " << w.longitude;
+  EXPECT_EQ(other.c.state().navigation.latitude_min, 40 * 60) << "a NAK changes nothing";
+  EXPECT_FALSE(other.c.state().store.empty()) << "a NAK deletes no STOREd satellite";
+  for (const WriteNavigation& w : {east180, near_pole})
+    EXPECT_FALSE(is_nak(other.send(w))) << w.latitude << " " << w.longitude;
+  EXPECT_EQ(other.c.state().navigation.latitude_min, -(89 * 60 + 59));
+  ref.c.set_reading("E-60", ReadingSide::kOther);
+  EXPECT_EQ(ref.send(north_pole).nak, NakRule::kNavigationField) << "a side taken late";
+}
+
+// E-64: §3.5 34h with an empty STORE list while TRACK peaks.
+TEST(Readings, E64TheOtherSideDefersAnEmptyListWhileTrackPeaks) {
+  Profile peaking = site_profile();
+  peaking.store.clear();
+  peaking.track.active = true;
+  peaking.track.activity = TrackActivity::kPeaking;
+  Rig ref(peaking), other(reading(peaking, "E-64"));
+  EXPECT_EQ(ref.send(PolPreset{'H'}).nak, NakRule::kPolPresetNoSatellites);
+  const Outcome deferred = other.send(PolPreset{'H'});
+  EXPECT_FALSE(is_nak(deferred)) << deferred.note;
+  EXPECT_EQ(other.c.state().pol.motion, AxisState::Motion::kIdle) << "nothing moves";
+  // TRACK idle: nothing defers the command, and both sides NAK it.
+  Profile idle = peaking;
+  idle.track.activity = TrackActivity::kIdle;
+  Rig other_idle(reading(idle, "E-64"));
+  EXPECT_EQ(other_idle.send(PolPreset{'H'}).nak, NakRule::kPolPresetNoSatellites);
+  ref.c.set_reading("E-64", ReadingSide::kOther);
+  EXPECT_FALSE(is_nak(ref.send(PolPreset{'H'}))) << "a side taken late";
+}
+
 // E-90: the reference search lasts 20 s; the other gives up within a second.
 TEST(Readings, E90TheOtherSearchEndsWithinASecond) {
   Rig ref(site_profile()), other(reading(site_profile(), "E-90"));

@@ -247,6 +247,31 @@ TEST(Runner, AReadingsAlternativeAcceptsEitherSideUnlessThePofilePinsOne) {
   EXPECT_NE(neither.failures[0].find("; E-91 other:"), std::string::npos) << neither.failures[0];
 }
 
+// An alternative with `ends` (vectors/README.md): when it holds and the
+// reference side does not, the steps end there, passed; when the reference
+// side holds, or the alternative has no `ends`, the steps go on.
+TEST(Runner, AReadingsAlternativeThatEndsEndsTheStepsOnlyWhenItIsTheSideThatHeld) {
+  auto with_start = [](std::string byte) {
+    Step s = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+    s.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {std::move(byte)}));
+    return s;
+  };
+  const Step never = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);  // the status poll is ACKed
+  auto run = [&](std::string reference_start, bool ends, std::optional<ReadingSide> pin = std::nullopt) {
+    Step step = with_start(std::move(reference_start));
+    step.expect.readings.push_back(ReadingAlternative{"E-91", with_start("0x06").expect});
+    step.expect.readings[0].expect.ends = ends;
+    Profile p = load_profile_file(default_profile_path()).profile.value();
+    if (pin) p.readings["E-91"] = *pin;
+    auto t = make_in_process_transport({p}, {});
+    return Runner(*t, p, RunOptions{}).run({vector_with("ends", {step, never})}).vectors.at(0);
+  };
+  EXPECT_EQ(run("0x15", true).verdict, Verdict::kPass) << "the other side held: the rest is not run";
+  EXPECT_EQ(run("0x15", false).verdict, Verdict::kFail) << "without ends the steps go on";
+  EXPECT_EQ(run("0x06", true).verdict, Verdict::kFail) << "the reference side held: the steps go on";
+  EXPECT_EQ(run("0x15", true, ReadingSide::kReference).verdict, Verdict::kFail) << "pinned away";
+}
+
 TEST(Runner, PassFailSkipAndLiveness) {
   auto status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
   status.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {"0x06"}));

@@ -162,6 +162,27 @@ TEST(vectors, SchemaReadingAlternativeHasNoReadings) {
   EXPECT_NE(r.errors[0].message.find("unknown key \"readings\""), std::string::npos) << r.errors[0].text();
 }
 
+// `ends` (vectors/README.md): an alternative's, on a send of a vector's
+// steps; true or left out.
+TEST(vectors, SchemaReadingAlternativeEndsOnlyASendInSteps) {
+  EXPECT_TRUE(load_vector_text(with_line(SchemaNode::kReading, "ends: true"), "schema.yaml").ok());
+  const LoadResult off = load_vector_text(with_line(SchemaNode::kReading, "ends: false"), "schema.yaml");
+  ASSERT_EQ(off.errors.size(), 1u) << errors_of(off);
+  EXPECT_NE(off.errors[0].message.find("default"), std::string::npos) << off.errors[0].text();
+  const auto keys = schema_keys(SchemaNode::kExpect);
+  EXPECT_EQ(std::find(keys.begin(), keys.end(), "ends"), keys.end()) << "the reference side ends nothing";
+  // In a setup, and on a poll, it is refused.
+  const std::string alt = std::string(reading_points().front().id) + ": {reply: nak, ends: true}";
+  const std::string in_setup = with_line(SchemaNode::kVector, "setup: [{send: {command: status}, expect: {reply: ack, readings: {" + alt + "}}}]");
+  const LoadResult setup = load_vector_text(in_setup, "schema.yaml");
+  ASSERT_EQ(setup.errors.size(), 1u) << errors_of(setup);
+  EXPECT_NE(setup.errors[0].message.find("not in a setup or teardown"), std::string::npos) << setup.errors[0].text();
+  const std::string on_poll = with_line(SchemaNode::kPoll, "expect: {reply: ack, readings: {" + alt + "}}");
+  const LoadResult poll = load_vector_text(on_poll, "schema.yaml");
+  ASSERT_EQ(poll.errors.size(), 1u) << errors_of(poll);
+  EXPECT_NE(poll.errors[0].message.find("put it on a send"), std::string::npos) << poll.errors[0].text();
+}
+
 TEST(vectors, SchemaTableHasEveryNodeOnceWithMeanings) {
   std::set<SchemaNode> seen;
   for (const auto& n : vector_schema()) {

@@ -137,6 +137,10 @@ struct Expectation {
   // any side the device's profile does not pin away (side_pinned), and a
   // failure names every side it was held to.
   std::vector<ReadingAlternative> readings;
+  // An alternative's `ends: true`: when it holds and the reference side does
+  // not, the vector's steps end there, passed (the rest needs the reference
+  // side, e.g. a move the other side refused).
+  bool ends = false;
 };
 struct ReadingAlternative {
   std::string errata;  // "E-91"
