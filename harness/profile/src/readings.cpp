@@ -10,6 +10,8 @@ namespace {
 // One row per ERRATA entry of class *reading* with a `readings:` switch; the
 // entry says more, and names the vectors that accept both sides.
 constexpr std::array kPoints{
+    ReadingPoint{"E-30", "§3.17 bytes 49-50", "without 0.01 deg feedback the hundredths digits are '0'",
+                 "without 0.01 deg feedback the hundredths bytes are blank"},
     ReadingPoint{"E-66", "§3.19 byte 29 'C'",
                  "a LOCATE keeps its claim for 42h 'C' until an automatic function (STOW, DEPLOY, a search) starts",
                  "42h 'C' needs the LOCATE as the last command before it, status reads aside"},

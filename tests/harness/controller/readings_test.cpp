@@ -120,6 +120,39 @@ TEST(Readings, ABadPinNamesItsLineAndKey) {
 
 // ---- each point, both sides ---------------------------------------------------
 
+// E-30: §3.17 bytes 49-50 on a mount without 0.01 deg feedback: '0' on the
+// reference side, blanks on the other (and the reply still decodes); with
+// the feedback both sides show the digit. A side taken late shows in the
+// next reply.
+TEST(Readings, E30TheOtherSideLeavesTheHundredthsBlankWithoutTheFeedback) {
+  Profile tenths = site_profile();
+  ASSERT_FALSE(tenths.hundredths);
+  Rig ref(tenths), other(reading(tenths, "E-30"));
+  auto bytes_49_50 = [](Rig& r) {
+    const Outcome o = r.send(ExtendedStatusPoll{});
+    EXPECT_TRUE(o.reply && o.reply->size() == 58u);
+    return std::string(o.reply->begin() + 49, o.reply->begin() + 51);
+  };
+  EXPECT_EQ(bytes_49_50(ref), "00");
+  EXPECT_EQ(bytes_49_50(other), "  ");
+  EXPECT_EQ(ref.extended().az_hundredths, 0);
+  EXPECT_EQ(other.extended().az_hundredths, std::nullopt);
+  EXPECT_EQ(other.extended().el_hundredths, std::nullopt);
+  ref.c.set_reading("E-30", ReadingSide::kOther);
+  EXPECT_EQ(bytes_49_50(ref), "  ") << "taken late";
+  other.c.set_reading("E-30", ReadingSide::kReference);
+  EXPECT_EQ(bytes_49_50(other), "00") << "taken back late";
+
+  Profile fine = site_profile();
+  fine.hundredths = true;
+  Rig fine_ref(fine), fine_other(reading(fine, "E-30"));
+  for (Rig* r : {&fine_ref, &fine_other}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMoveAxis{'A', 1234}})));
+    r->wait(300s);
+    EXPECT_EQ(r->extended().az_hundredths, 4) << "12.34: the digit on both sides";
+  }
+}
+
 // E-90: the reference search lasts 20 s; the other gives up within a second.
 TEST(Readings, E90TheOtherSearchEndsWithinASecond) {
   Rig ref(site_profile()), other(reading(site_profile(), "E-90"));

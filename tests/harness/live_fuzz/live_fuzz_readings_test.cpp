@@ -166,6 +166,43 @@ TEST(LiveFuzzReadings, YOutsideTrackIsTheDevicesEvenPinned) {
   EXPECT_EQ(noted(s), "");
 }
 
+// §3.17 bytes 49-50 on a mount without 0.01 deg feedback (ERRATA E-30): a
+// device showing blanks is on the other side (a note, no finding), unless
+// the profile pins the reference side; on the other side any digit (a stale
+// one) is the device's too, so a model pinned there accepts the '0'.
+TEST(LiveFuzzReadings, E30BlankHundredthsAreNotedAndPinnedSidesAreStrict) {
+  Profile model = default_profile();
+  ASSERT_FALSE(model.hundredths);
+  ASSERT_FALSE(side_pinned(model.readings, "E-30"));
+  Profile other = model;
+  other.readings["E-30"] = ReadingSide::kOther;
+  const FuzzFrame extended = raw("02 32 40 03 73");
+  {
+    auto t = make_in_process_transport({other}, {});
+    Session s(*t, model, SessionOptions{});
+    for (int i = 0; i < 2; ++i) {
+      const auto v = s.step(extended);
+      EXPECT_FALSE(v) << v->message;
+    }
+    EXPECT_EQ(noted(s), "E-30:other");
+  }
+  {
+    Profile pinned = model;
+    pinned.readings["E-30"] = ReadingSide::kReference;
+    auto t = make_in_process_transport({other}, {});
+    Session s(*t, pinned, SessionOptions{});
+    const auto v = s.step(extended);
+    ASSERT_TRUE(v) << "blanks where the profile pins '0'";
+    EXPECT_EQ(v->field, "az hundredths") << v->message;
+  }
+  {
+    auto t = make_in_process_transport({model}, {});
+    Session s(*t, other, SessionOptions{});
+    const auto v = s.step(extended);
+    EXPECT_FALSE(v) << "a digit is the other side's too: " << v->message;
+  }
+}
+
 // A search over within a second (E-90's other side) on a mount whose
 // elevation reads '*' (an A/D error, E-42): where the device's search left
 // the axis shows first in its pulse count, which the model takes after the
@@ -239,7 +276,8 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
-                         ::testing::Values(OneReading{"E-66", "rc3000-1.59.yaml", false},
+                         ::testing::Values(OneReading{"E-30", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-66", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},

@@ -170,7 +170,8 @@ class Controller {
   // §3.2 bytes 14-31 / §3.24 bytes 4-9: the tenths shown (a heading for a
   // fluxgate azimuth), nullopt for '*': an A/D error or no rotating feed.
   std::optional<std::int32_t> reading(AxisId a) const;
-  std::uint32_t hundredths_digit(AxisId a) const;
+  // §3.17 bytes 49-50; nullopt: a blank (E-30's other side, no 0.01 deg feedback).
+  std::optional<std::int32_t> hundredths_digit(AxisId a) const;
   double position_of_counts(std::uint32_t count) const;
   std::uint8_t axis_status_bits(AxisId a) const;
   bool pol_moves_allowed() const;

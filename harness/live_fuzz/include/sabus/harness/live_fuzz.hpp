@@ -442,6 +442,7 @@ class Lockstep {
   std::optional<std::string> judge_locate_end(const AckJudging& r, const ReplyField& f) const;
   bool mode_outside_locate(const AckJudging& r, const ReplyField& f) const;
   bool y_outside_track(const AckJudging& r, const ReplyField& f, const std::vector<const std::string*>& values) const;
+  bool no_hundredths(const ReplyField& f, const std::vector<const std::string*>& values) const;
   bool lower_case_while_moving(const AckJudging& r, const ReplyField& f,
                                const std::vector<const std::string*>& values) const;
   // The i-th reply, and an ACK's fields: false once judging stops (a finding).
