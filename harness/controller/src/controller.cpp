@@ -195,6 +195,11 @@ bool Controller::reads_other(std::string_view errata_id) const {
   return side_taken(profile_.readings, errata_id) == ReadingSide::kOther;
 }
 
+std::optional<Duration> Controller::inter_character_timeout() const {
+  if (!reads_other("E-67")) return std::nullopt;
+  return std::chrono::duration_cast<Duration>(kInterCharacterTimeout);
+}
+
 void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   update();
   profile_.readings[errata_id] = side;

@@ -52,13 +52,35 @@ struct Oracle::Sink : ReceiverSink {
 Oracle::Oracle(const Profile& profile)
     : profile_(profile), receiver_(receiver_options(profile, FaultSet{}, Parity::kEvenBit7)) {}
 
-void Oracle::reset() { receiver_.reset(); }
+void Oracle::reset() {
+  receiver_.reset();
+  dropped_.reset();
+}
 
 std::vector<Frame> Oracle::accept(const FuzzFrame& frame) {
   Sink sink;
   const Bytes wire = with_software_parity(frame.chars, frame.wrong_parity);
+  dropped_.reset();
+  dropped_frames_.clear();
+  if (receiver_.state() != ReceiverState::kSlaveIdle && side_pinned(profile_.readings, "E-67") != ReadingSide::kReference) {
+    dropped_ = receiver_;
+    dropped_->reset();
+    Sink alternative;
+    dropped_->feed(wire, alternative);
+    dropped_frames_ = std::move(alternative.frames);
+  }
   receiver_.feed(wire, sink);
   return sink.frames;
+}
+
+std::optional<Verdict> Oracle::judge_write(const std::vector<Frame>& accepted, const Observation& seen) {
+  std::optional<Verdict> v = judge(accepted, seen);
+  if (v && dropped_ && !judge(dropped_frames_, seen)) {
+    receiver_ = *dropped_;
+    v.reset();
+  }
+  dropped_.reset();
+  return v;
 }
 
 namespace {

@@ -12,6 +12,8 @@ namespace {
 constexpr std::array kPoints{
     ReadingPoint{"E-30", "§3.17 bytes 49-50", "without 0.01 deg feedback the hundredths digits are '0'",
                  "without 0.01 deg feedback the hundredths bytes are blank"},
+    ReadingPoint{"E-67", "§1 Message Protocol", "no inter-character timeout: a frame whose bytes pause is answered",
+                 "an inter-character timeout of 20 ms: a frame whose bytes pause longer is dropped"},
     ReadingPoint{"E-66", "§3.19 byte 29 'C'",
                  "a LOCATE keeps its claim for 42h 'C' until an automatic function (STOW, DEPLOY, a search) starts",
                  "42h 'C' needs the LOCATE as the last command before it, status reads aside"},

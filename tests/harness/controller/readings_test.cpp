@@ -120,6 +120,48 @@ TEST(Readings, ABadPinNamesItsLineAndKey) {
 
 // ---- each point, both sides ---------------------------------------------------
 
+// E-67: a status poll fed to a bus as STX A CC, then `pause`, then ETX and
+// the check byte; 100 ms later a whole one. Whether each was answered.
+struct Pieces {
+  bool pieces = false, whole = false;
+};
+Pieces poll_in_pieces(Bus& bus, VirtualClock& clock, std::chrono::milliseconds pause) {
+  const Bytes poll = encode_frame({FrameKind::kCommand, bus.controller(0).profile().address, 0x31, {}});
+  Pieces r;
+  Bytes out;
+  bus.receive(ByteView(poll).first(3), out);
+  clock.advance(pause);
+  bus.receive(ByteView(poll).subspan(3), out);
+  r.pieces = !out.empty();
+  out.clear();
+  clock.advance(100ms);
+  bus.receive(poll, out);
+  r.whole = !out.empty();
+  return r;
+}
+
+TEST(Readings, E67TheOtherSideDropsAFrameWhoseBytesPauseLongerThanItsTimeout) {
+  VirtualClock clock;
+  Bus ref({site_profile()}, clock, {}, Parity::kNone), other({reading(site_profile(), "E-67")}, clock, {}, Parity::kNone);
+  auto answered = [&](Bus& bus, std::chrono::milliseconds pause) { return poll_in_pieces(bus, clock, pause); };
+  Pieces r = answered(ref, 500ms);
+  EXPECT_TRUE(r.pieces) << "no inter-character timeout";
+  EXPECT_TRUE(r.whole);
+  r = answered(other, 50ms);
+  EXPECT_FALSE(r.pieces) << "dropped after " << kInterCharacterTimeout.count() << " ms";
+  EXPECT_TRUE(r.whole) << "the receiver recovered";
+  EXPECT_NE(other.take_log().find("inter-character timeout"), std::string::npos);
+  r = answered(other, kInterCharacterTimeout);
+  EXPECT_TRUE(r.pieces) << "a pause of the timeout itself is waited out";
+  r = answered(other, kInterCharacterTimeout + 1ms);
+  EXPECT_FALSE(r.pieces);
+  // A side taken late applies to the next byte.
+  ref.controller(0).set_reading("E-67", ReadingSide::kOther);
+  EXPECT_FALSE(answered(ref, 50ms).pieces);
+  other.controller(0).set_reading("E-67", ReadingSide::kReference);
+  EXPECT_TRUE(answered(other, 500ms).pieces);
+}
+
 // E-30: §3.17 bytes 49-50 on a mount without 0.01 deg feedback: '0' on the
 // reference side, blanks on the other (and the reply still decodes); with
 // the feedback both sides show the digit. A side taken late shows in the

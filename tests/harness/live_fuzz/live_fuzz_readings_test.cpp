@@ -203,6 +203,38 @@ TEST(LiveFuzzReadings, E30BlankHundredthsAreNotedAndPinnedSidesAreStrict) {
   }
 }
 
+// A status poll begun by one write and ended by the next (ERRATA E-67): a
+// device with an inter-character timeout drops it, since the writes are
+// further apart than 20 ms (the first waits out its silence window). The
+// framing oracle accepts the silence and the model notes the side; the
+// next whole poll is answered. Where the profile pins the reference side
+// the silence is a finding.
+TEST(LiveFuzzReadings, E67AFrameEndedByALaterWriteMayBeDropped) {
+  Profile model = default_profile();
+  ASSERT_FALSE(side_pinned(model.readings, "E-67"));
+  Profile device = model;
+  device.readings["E-67"] = ReadingSide::kOther;
+  {
+    auto t = make_in_process_transport({device}, {});
+    Session s(*t, model, SessionOptions{});
+    for (std::string_view hex : {"02 32 31", "03 02", "02 32 31 03 02"}) {
+      const auto v = s.step(raw(hex));
+      EXPECT_FALSE(v) << hex << ": " << v->message;
+    }
+    EXPECT_EQ(noted(s), "E-67:other");
+  }
+  {
+    Profile pinned = model;
+    pinned.readings["E-67"] = ReadingSide::kReference;
+    auto t = make_in_process_transport({device}, {});
+    Session s(*t, pinned, SessionOptions{});
+    EXPECT_FALSE(s.step(raw("02 32 31")));
+    const auto v = s.step(raw("03 02"));
+    ASSERT_TRUE(v) << "silence where the profile pins the reference side";
+    EXPECT_EQ(v->kind, FindingKind::kNoReply) << v->message;
+  }
+}
+
 // A search over within a second (E-90's other side) on a mount whose
 // elevation reads '*' (an A/D error, E-42): where the device's search left
 // the axis shows first in its pulse count, which the model takes after the
@@ -278,6 +310,7 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
 INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                          ::testing::Values(OneReading{"E-30", "rc3000-1.59.yaml", true},
                                            OneReading{"E-66", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-67", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},

@@ -300,12 +300,23 @@ class Oracle {
   // Judges a whole write: one acceptable reply per accepted frame, in order;
   // silence for a write with none; no garbage.
   std::optional<Verdict> judge(const std::vector<Frame>& accepted, const Observation& seen) const;
+  // judge() of the write accept() last took. Where that write went on with a
+  // frame an earlier write began, a device with an inter-character timeout
+  // (ERRATA E-67's other side; the pause between two writes is longer) has
+  // dropped that frame: unless the profile pins E-67's reference side, the
+  // replies of a receiver that dropped it are acceptable too, and the
+  // oracle's receiver then goes on as the device's.
+  std::optional<Verdict> judge_write(const std::vector<Frame>& accepted, const Observation& seen);
   void reset();
 
  private:
   struct Sink;
   Profile profile_;
   Receiver receiver_;
+  // The write's frames for a receiver that dropped the frame begun before
+  // it (E-67), and that receiver; nullopt when none was begun.
+  std::optional<Receiver> dropped_;
+  std::vector<Frame> dropped_frames_;
 };
 
 // The longest reply `accepted` can draw (catalog lengths; the longest reply of
