@@ -193,6 +193,36 @@ TEST(ExtendedStatus, EnumerationsAndHundredths) {
   EXPECT_EQ(meanings::exit_name(0x25, 0x38), "LOCATE_FUNCTION_COMPLETED");
 }
 
+// ERRATA E-30: on a mount without 0.01 deg feedback bytes 49-50 may hold a
+// blank ("no digit") instead of '0'; it decodes to no value and encodes back
+// as a blank. A letter or a control byte there is still no digit and fails.
+TEST(ExtendedStatus, AHundredthsByteMayBeBlankButNothingElse) {
+  ExtendedStatusReply x;
+  x.status = example_status();
+  x.az_hundredths = std::nullopt;
+  x.el_hundredths = std::nullopt;
+  Bytes bytes = encode_reply(x, '2', 0x40).value();
+  EXPECT_EQ(bytes[49], ' ');
+  EXPECT_EQ(bytes[50], ' ');
+  auto back = decode_reply(decode_frame(bytes).value());
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_EQ(std::get<ExtendedStatusReply>(back.value()), x);
+
+  for (std::uint8_t wrong : {std::uint8_t{'A'}, std::uint8_t{'-'}, std::uint8_t{0x01}, std::uint8_t{0x7F}}) {
+    for (std::size_t at : {std::size_t{49}, std::size_t{50}}) {
+      Bytes bad = bytes;
+      bad[at] = wrong;
+      bad.back() = lrc(ByteView(bad).first(bad.size() - 1));
+      auto frame = decode_frame(bad);
+      ASSERT_TRUE(frame.ok()) << frame.error().message();
+      auto r = decode_reply(frame.value());
+      ASSERT_FALSE(r.ok()) << "byte " << at << " = " << int(wrong);
+      EXPECT_EQ(r.error().offset, at);
+      EXPECT_EQ(r.error().field, at == 49 ? "az hundredths" : "el hundredths");
+    }
+  }
+}
+
 TEST(Jog, RequestAndMinimalReply) {
   auto j = request_of<Jog>(command('2', 0x33, "EF0050"));
   EXPECT_EQ(j.direction, 'E');

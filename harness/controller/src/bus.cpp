@@ -39,6 +39,7 @@ struct Bus::Unit : ReceiverSink {
   // nak-bad-check-byte answers one); kept only under that fault.
   bool keeps_recent;
   std::size_t replies = 0;  // replies sent, for fault garbles-replies
+  TimePoint last_byte{};    // when the receiver last took bytes (E-67)
   Bytes recent;
   std::uint64_t recent_base = 0;
 
@@ -91,9 +92,25 @@ void Bus::watch_parity(ByteView wire) {
   }
 }
 
+// ERRATA E-67's other side: a frame whose next byte comes later than the
+// controller's inter-character timeout after the one before is dropped
+// (reported as incomplete) and the receiver is back in State 1 for the next
+// STX. The bytes of one receive() come at one instant.
+void Bus::time_out_frame(Unit& u, ByteView wire) {
+  if (wire.empty()) return;
+  const TimePoint now = u.controller.now();
+  const auto limit = u.controller.inter_character_timeout();
+  if (limit && u.receiver.state() != ReceiverState::kSlaveIdle && now - u.last_byte > *limit) {
+    if (transcript_) log_ += "inter-character timeout (ERRATA E-67): the frame begun is dropped\n";
+    u.receiver.finish(u);
+  }
+  u.last_byte = now;
+}
+
 void Bus::receive(ByteView wire, Bytes& out) {
   constexpr std::size_t kRecent = 512;
   for (auto& u : units_) {
+    time_out_frame(*u, wire);
     if (u->keeps_recent) u->recent.insert(u->recent.end(), wire.begin(), wire.end());
     // A reading taken late (Controller::set_reading, the live fuzzer's
     // lockstep) from the next byte on.

@@ -195,6 +195,11 @@ bool Controller::reads_other(std::string_view errata_id) const {
   return side_taken(profile_.readings, errata_id) == ReadingSide::kOther;
 }
 
+std::optional<Duration> Controller::inter_character_timeout() const {
+  if (!reads_other("E-67")) return std::nullopt;
+  return std::chrono::duration_cast<Duration>(kInterCharacterTimeout);
+}
+
 void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   update();
   profile_.readings[errata_id] = side;
@@ -648,13 +653,16 @@ std::optional<std::int32_t> Controller::reading(AxisId a) const {
   return tenths(a);
 }
 
-std::uint32_t Controller::hundredths_digit(AxisId a) const {
-  if (!profile_.hundredths || axis_profile(a).ad_error || faults_.has(Fault::kHundredthsAlwaysZero)) return 0;
+std::optional<std::int32_t> Controller::hundredths_digit(AxisId a) const {
+  // ERRATA E-30: without 0.01 deg feedback '0', or on the other side a blank
+  // (the text gives the byte's content only "for mounts with the ability").
+  if (!profile_.hundredths) return reads_other("E-30") ? std::nullopt : std::optional<std::int32_t>(0);
+  if (axis_profile(a).ad_error || faults_.has(Fault::kHundredthsAlwaysZero)) return 0;
   long h = std::lround(axis(a).position * 100);
   // A fluxgate heading's own hundredths: -2.63 deg is heading 357.37, read
   // 357.3 and '7' (§3.2 NOTE, E-72; ERRATA E-87), not the position's '3'.
   if (a == AxisId::kAz && profile_.az_sensor == AzSensor::kFluxgate) h = ((h % 36000) + 36000) % 36000;
-  return static_cast<std::uint32_t>(std::labs(h) % 10);
+  return static_cast<std::int32_t>(std::labs(h) % 10);
 }
 
 // §3.16 (ERRATA E-85): the counts of the position, count_offset at 0 deg and

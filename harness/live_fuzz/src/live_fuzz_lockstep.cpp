@@ -260,8 +260,9 @@ std::optional<double> reading_of(const Controller& c, std::size_t axis) {
 // extended by its hundredths `digit` lies within `window` of `target`: the
 // digit extends the magnitude (tenths truncated toward zero; a reading of
 // 0.0 either way) or is added to it (tenths rounded down).
-bool hundredths_within(double tenths_deg, std::uint32_t digit, double target, double window) {
-  const double d = digit / 100.0;
+bool hundredths_within(double tenths_deg, std::optional<std::int32_t> digit, double target, double window) {
+  if (!digit) return false;  // a blank on a mount with 0.01 deg feedback
+  const double d = *digit / 100.0;
   if (std::abs(tenths_deg + d - target) <= window + 1e-9) return true;    // added (or a positive magnitude extended)
   return tenths_deg <= 0 && std::abs(tenths_deg - d - target) <= window + 1e-9;  // a negative magnitude extended
 }
@@ -935,6 +936,17 @@ bool Lockstep::y_outside_track(const AckJudging& r, const ReplyField& f,
                      [&](const std::string* v) { return v && ((hex_byte(*v) ^ hex_byte(f.raw)) & ~0x08ul) == 0; });
 }
 
+// §3.17 bytes 49-50 on a mount without 0.01 deg feedback (ERRATA E-30):
+// on the other side, which the model's blank shows it has taken, the byte
+// holds "something else": a blank or a stale digit of the device's, any
+// digit. A letter or a control byte does not decode (the oracle's).
+bool Lockstep::no_hundredths(const ReplyField& f, const std::vector<const std::string*>& values) const {
+  if (profile_.hundredths || !f.name.ends_with(" hundredths")) return false;
+  const unsigned long dev = hex_byte(f.raw);
+  return (dev == 0x20 || (dev >= 0x30 && dev <= 0x39)) &&
+         std::any_of(values.begin(), values.end(), [](const std::string* v) { return v && hex_byte(*v) == 0x20; });
+}
+
 // An axis the device's own episode drove, at a speed the model does not
 // know, ramps down after the stop (§3.2 bytes 36-38: movement in progress
 // until it rests) for as long as its fast speed takes to stop at the
@@ -1115,10 +1127,15 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
     return report(FindingKind::kEffect, *judged);
   }
   if (std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; })) return true;
-  if (y_outside_track(r, f, values) || lower_case_while_moving(r, f, values)) return true;
+  if (y_outside_track(r, f, values) || lower_case_while_moving(r, f, values) || no_hundredths(f, values)) return true;
   // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
-  // reports an optional's value as maybe unset through this loop).
-  const std::size_t axis = cls->cls == FieldClass::kMotion ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
+  // reports an optional's value as maybe unset through this loop). Without
+  // 0.01 deg feedback the hundredths bytes follow no position (E-30: '0', or
+  // on the other side a blank or a stale digit): compared as they are,
+  // wherever the axis is.
+  const bool positional = profile_.hundredths || !f.name.ends_with(" hundredths");
+  const std::size_t axis =
+      cls->cls == FieldClass::kMotion && positional ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
   const bool has_axis = axis != kNoAxis;
   if (device_led_ && (has_axis || is_mode_byte(f.name)) && !held_by_a_command(r, f) &&
       !(has_axis && locate_ended_alike(r)) && !mode_outside_locate(r, f)) {

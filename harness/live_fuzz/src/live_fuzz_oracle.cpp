@@ -67,10 +67,20 @@ Oracle::Oracle(const Profile& profile)
 void Oracle::reset() {
   receiver_.reset();
   for (Receiver& r : others_) r.reset();
+  dropped_.reset();
 }
 
 std::vector<Frame> Oracle::accept(const FuzzFrame& frame) {
   const Bytes wire = with_software_parity(frame.chars, frame.wrong_parity);
+  dropped_.reset();
+  dropped_frames_.clear();
+  if (receiver_.state() != ReceiverState::kSlaveIdle && side_pinned(profile_.readings, "E-67") != ReadingSide::kReference) {
+    dropped_ = receiver_;
+    dropped_->reset();
+    Sink alternative;
+    dropped_->feed(wire, alternative);
+    dropped_frames_ = std::move(alternative.frames);
+  }
   Sink sink;
   receiver_.feed(wire, sink);
   last_accepted_ = sink.frames;
@@ -81,6 +91,16 @@ std::vector<Frame> Oracle::accept(const FuzzFrame& frame) {
     if (other.frames != sink.frames) others_accepted_.push_back(std::move(other.frames));
   }
   return sink.frames;
+}
+
+std::optional<Verdict> Oracle::judge_write(const std::vector<Frame>& accepted, const Observation& seen) {
+  std::optional<Verdict> v = judge(accepted, seen);
+  if (v && dropped_ && !judge(dropped_frames_, seen)) {
+    receiver_ = *dropped_;
+    v.reset();
+  }
+  dropped_.reset();
+  return v;
 }
 
 namespace {

@@ -124,7 +124,7 @@ std::optional<Verdict> Session::step(const FuzzFrame& frame) {
   const Observation seen = exchange(frame, accepted.size(), expected_reply_bytes(accepted));
   tail_.assign(frame.chars.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(4, frame.chars.size())), frame.chars.end());
   const std::optional<Verdict> model = lockstep_step(frame, seen);
-  if (auto v = oracle_.judge(accepted, seen)) return v;
+  if (auto v = oracle_.judge_write(accepted, seen)) return v;
   // Late: the first reply byte after the profile's turnaround, the allowance
   // and what the host adds (timing.hpp kHostLatency).
   if (seen.first_byte_after && !transport_.in_process()) {
@@ -148,7 +148,7 @@ std::optional<Verdict> Session::probe() {
   // No byte at all: dead. Bytes that are no reply frame are judged below.
   if (seen.replies.empty() && seen.garbage.empty())
     return Verdict{FindingKind::kDead, "no answer to the liveness probe (device type query, §3.1)"};
-  if (auto v = oracle_.judge(accepted, seen)) return v;
+  if (auto v = oracle_.judge_write(accepted, seen)) return v;
   const Frame& reply = seen.replies.front();
   if (reply.kind == FrameKind::kAck && !is_offline_reply(reply)) {
     if (!first_device_type_) first_device_type_ = reply;
@@ -173,7 +173,7 @@ std::optional<Verdict> Session::synchronize(std::vector<FuzzFrame>* sent, std::s
     tail_.clear();
     const std::string t = lockstep_->adopt(q, first_byte_at_ ? *first_byte_at_ : sent_at_, seen.replies);
     if (taken && !t.empty()) *taken += (taken->empty() ? "" : "; ") + t;
-    if (auto v = oracle_.judge(accepted, seen)) return v;
+    if (auto v = oracle_.judge_write(accepted, seen)) return v;
   }
   return std::nullopt;
 }

@@ -122,7 +122,7 @@ TEST(Controller, AutoMoveForm2BAnd2CNeedTheirSensors) {
   r.wait(300s);
   auto x = r.extended();
   EXPECT_EQ(x.status.azimuth.tenths, -1234);
-  EXPECT_EQ(x.az_hundredths, 5u) << "READING-NOTES 30";
+  EXPECT_EQ(x.az_hundredths, 5) << "READING-NOTES 30";
 }
 
 TEST(Controller, AutoMoveForm3MovesPolarization) {

@@ -194,6 +194,80 @@ TEST(Readings, E64TheOtherSideDefersAnEmptyListWhileTrackPeaks) {
   EXPECT_EQ(other_idle.send(PolPreset{'H'}).nak, NakRule::kPolPresetNoSatellites);
   ref.c.set_reading("E-64", ReadingSide::kOther);
   EXPECT_FALSE(is_nak(ref.send(PolPreset{'H'}))) << "a side taken late";
+
+// E-67: a status poll fed to a bus as STX A CC, then `pause`, then ETX and
+// the check byte; 100 ms later a whole one. Whether each was answered.
+struct Pieces {
+  bool pieces = false, whole = false;
+};
+Pieces poll_in_pieces(Bus& bus, VirtualClock& clock, std::chrono::milliseconds pause) {
+  const Bytes poll = encode_frame({FrameKind::kCommand, bus.controller(0).profile().address, 0x31, {}});
+  Pieces r;
+  Bytes out;
+  bus.receive(ByteView(poll).first(3), out);
+  clock.advance(pause);
+  bus.receive(ByteView(poll).subspan(3), out);
+  r.pieces = !out.empty();
+  out.clear();
+  clock.advance(100ms);
+  bus.receive(poll, out);
+  r.whole = !out.empty();
+  return r;
+}
+
+TEST(Readings, E67TheOtherSideDropsAFrameWhoseBytesPauseLongerThanItsTimeout) {
+  VirtualClock clock;
+  Bus ref({site_profile()}, clock, {}, Parity::kNone), other({reading(site_profile(), "E-67")}, clock, {}, Parity::kNone);
+  auto answered = [&](Bus& bus, std::chrono::milliseconds pause) { return poll_in_pieces(bus, clock, pause); };
+  Pieces r = answered(ref, 500ms);
+  EXPECT_TRUE(r.pieces) << "no inter-character timeout";
+  EXPECT_TRUE(r.whole);
+  r = answered(other, 50ms);
+  EXPECT_FALSE(r.pieces) << "dropped after " << kInterCharacterTimeout.count() << " ms";
+  EXPECT_TRUE(r.whole) << "the receiver recovered";
+  EXPECT_NE(other.take_log().find("inter-character timeout"), std::string::npos);
+  r = answered(other, kInterCharacterTimeout);
+  EXPECT_TRUE(r.pieces) << "a pause of the timeout itself is waited out";
+  r = answered(other, kInterCharacterTimeout + 1ms);
+  EXPECT_FALSE(r.pieces);
+  // A side taken late applies to the next byte.
+  ref.controller(0).set_reading("E-67", ReadingSide::kOther);
+  EXPECT_FALSE(answered(ref, 50ms).pieces);
+  other.controller(0).set_reading("E-67", ReadingSide::kReference);
+  EXPECT_TRUE(answered(other, 500ms).pieces);
+}
+
+// E-30: §3.17 bytes 49-50 on a mount without 0.01 deg feedback: '0' on the
+// reference side, blanks on the other (and the reply still decodes); with
+// the feedback both sides show the digit. A side taken late shows in the
+// next reply.
+TEST(Readings, E30TheOtherSideLeavesTheHundredthsBlankWithoutTheFeedback) {
+  Profile tenths = site_profile();
+  ASSERT_FALSE(tenths.hundredths);
+  Rig ref(tenths), other(reading(tenths, "E-30"));
+  auto bytes_49_50 = [](Rig& r) {
+    const Outcome o = r.send(ExtendedStatusPoll{});
+    EXPECT_TRUE(o.reply && o.reply->size() == 58u);
+    return std::string(o.reply->begin() + 49, o.reply->begin() + 51);
+  };
+  EXPECT_EQ(bytes_49_50(ref), "00");
+  EXPECT_EQ(bytes_49_50(other), "  ");
+  EXPECT_EQ(ref.extended().az_hundredths, 0);
+  EXPECT_EQ(other.extended().az_hundredths, std::nullopt);
+  EXPECT_EQ(other.extended().el_hundredths, std::nullopt);
+  ref.c.set_reading("E-30", ReadingSide::kOther);
+  EXPECT_EQ(bytes_49_50(ref), "  ") << "taken late";
+  other.c.set_reading("E-30", ReadingSide::kReference);
+  EXPECT_EQ(bytes_49_50(other), "00") << "taken back late";
+
+  Profile fine = site_profile();
+  fine.hundredths = true;
+  Rig fine_ref(fine), fine_other(reading(fine, "E-30"));
+  for (Rig* r : {&fine_ref, &fine_other}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMoveAxis{'A', 1234}})));
+    r->wait(300s);
+    EXPECT_EQ(r->extended().az_hundredths, 4) << "12.34: the digit on both sides";
+  }
 }
 
 // E-90: the reference search lasts 20 s; the other gives up within a second.

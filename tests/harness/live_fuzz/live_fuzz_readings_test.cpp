@@ -166,6 +166,75 @@ TEST(LiveFuzzReadings, YOutsideTrackIsTheDevicesEvenPinned) {
   EXPECT_EQ(noted(s), "");
 }
 
+// §3.17 bytes 49-50 on a mount without 0.01 deg feedback (ERRATA E-30): a
+// device showing blanks is on the other side (a note, no finding), unless
+// the profile pins the reference side; on the other side any digit (a stale
+// one) is the device's too, so a model pinned there accepts the '0'.
+TEST(LiveFuzzReadings, E30BlankHundredthsAreNotedAndPinnedSidesAreStrict) {
+  Profile model = default_profile();
+  ASSERT_FALSE(model.hundredths);
+  ASSERT_FALSE(side_pinned(model.readings, "E-30"));
+  Profile other = model;
+  other.readings["E-30"] = ReadingSide::kOther;
+  const FuzzFrame extended = raw("02 32 40 03 73");
+  {
+    auto t = make_in_process_transport({other}, {});
+    Session s(*t, model, SessionOptions{});
+    for (int i = 0; i < 2; ++i) {
+      const auto v = s.step(extended);
+      EXPECT_FALSE(v) << v->message;
+    }
+    EXPECT_EQ(noted(s), "E-30:other");
+  }
+  {
+    Profile pinned = model;
+    pinned.readings["E-30"] = ReadingSide::kReference;
+    auto t = make_in_process_transport({other}, {});
+    Session s(*t, pinned, SessionOptions{});
+    const auto v = s.step(extended);
+    ASSERT_TRUE(v) << "blanks where the profile pins '0'";
+    EXPECT_EQ(v->field, "az hundredths") << v->message;
+  }
+  {
+    auto t = make_in_process_transport({model}, {});
+    Session s(*t, other, SessionOptions{});
+    const auto v = s.step(extended);
+    EXPECT_FALSE(v) << "a digit is the other side's too: " << v->message;
+  }
+}
+
+// A status poll begun by one write and ended by the next (ERRATA E-67): a
+// device with an inter-character timeout drops it, since the writes are
+// further apart than 20 ms (the first waits out its silence window). The
+// framing oracle accepts the silence and the model notes the side; the
+// next whole poll is answered. Where the profile pins the reference side
+// the silence is a finding.
+TEST(LiveFuzzReadings, E67AFrameEndedByALaterWriteMayBeDropped) {
+  Profile model = default_profile();
+  ASSERT_FALSE(side_pinned(model.readings, "E-67"));
+  Profile device = model;
+  device.readings["E-67"] = ReadingSide::kOther;
+  {
+    auto t = make_in_process_transport({device}, {});
+    Session s(*t, model, SessionOptions{});
+    for (std::string_view hex : {"02 32 31", "03 02", "02 32 31 03 02"}) {
+      const auto v = s.step(raw(hex));
+      EXPECT_FALSE(v) << hex << ": " << v->message;
+    }
+    EXPECT_EQ(noted(s), "E-67:other");
+  }
+  {
+    Profile pinned = model;
+    pinned.readings["E-67"] = ReadingSide::kReference;
+    auto t = make_in_process_transport({device}, {});
+    Session s(*t, pinned, SessionOptions{});
+    EXPECT_FALSE(s.step(raw("02 32 31")));
+    const auto v = s.step(raw("03 02"));
+    ASSERT_TRUE(v) << "silence where the profile pins the reference side";
+    EXPECT_EQ(v->kind, FindingKind::kNoReply) << v->message;
+  }
+}
+
 // A search over within a second (E-90's other side) on a mount whose
 // elevation reads '*' (an A/D error, E-42): where the device's search left
 // the axis shows first in its pulse count, which the model takes after the
@@ -275,9 +344,12 @@ INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                          ::testing::Values(OneReading{"E-6", "rc3000-1.59.yaml", true},
                                            OneReading{"E-8", "rc3000-1.59.yaml", true},
                                            OneReading{"E-29", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-30", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-33", "rc3000-1.59.yaml", false},
                                            OneReading{"E-60", "rc3000-1.59.yaml", false},
                                            OneReading{"E-64", "track-peaking.yaml", false},
                                            OneReading{"E-66", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-67", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},

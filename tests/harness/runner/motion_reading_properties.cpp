@@ -39,7 +39,7 @@ FrameDescription extended_status(std::int64_t reading, int per) {
   ExtendedStatusReply r;
   r.status.azimuth = {fields::AzimuthReading::Kind::kPosition,
                       static_cast<std::int32_t>(motion::tenths_of(reading, per)), 0};
-  r.az_hundredths = per == motion::kHundredths ? static_cast<std::uint32_t>(std::llabs(reading) % 10) : 0;
+  r.az_hundredths = per == motion::kHundredths ? static_cast<std::int32_t>(std::llabs(reading) % 10) : 0;
   return describe_frame(encode_reply(r, '2', 0x40).value());
 }
 

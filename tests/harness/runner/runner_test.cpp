@@ -659,7 +659,7 @@ TEST(Matchers, JoggedIsWhereTheJogCanEndAndAHeadingIsModulo360) {
   EXPECT_FALSE(check_field(d, resolve_matcher(matcher("azimuth", FieldMatcher::Kind::kNear, {"0"}), ExprContext{p}).matcher, c));
 }
 
-FrameDescription extended_status_reply(std::int32_t az_tenths, std::uint32_t az_digit) {
+FrameDescription extended_status_reply(std::int32_t az_tenths, std::int32_t az_digit) {
   ExtendedStatusReply r;
   r.status.azimuth = {fields::AzimuthReading::Kind::kPosition, az_tenths, 0};
   r.status.elevation = 300;

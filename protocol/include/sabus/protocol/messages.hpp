@@ -81,6 +81,10 @@ inline constexpr LeftDecimal kLongitude{6, 1};
 inline constexpr LeftDecimal kInclination{2, 0};
 inline constexpr LeftDecimal kPolOffset{5, 1};
 inline constexpr Bits kStatusReserved{0x40, 0x00};
+// §3.17 bytes 49-50: one digit '0'-'9', or a blank, "no digit", on a mount
+// without 0.01 deg feedback (ERRATA E-30); a letter or a control byte does
+// not decode.
+inline constexpr RightDecimal kHundredthsDigit{1, 0, true};
 }  // namespace layouts
 
 // ---------------------------------------------------------------------------
@@ -541,7 +545,9 @@ struct ExtendedStatusReply {  // §3.17
   static constexpr ReplyKind kKind = ReplyKind::kExtendedStatus;
   StatusBlock status;
   std::uint8_t mode = 0x20, state = 0x20, last_mode = 0x20, exit_status = 0x20;
-  std::uint32_t az_hundredths = 0, el_hundredths = 0;
+  // The hundredths digit 0-9; nullopt: a blank, "no digit" (ERRATA E-30's
+  // other side, a mount without 0.01 deg feedback).
+  std::optional<std::int32_t> az_hundredths = 0, el_hundredths = 0;
   std::string spare;
   bool operator==(const ExtendedStatusReply&) const = default;
   template <class S, class V>
@@ -555,9 +561,9 @@ struct ExtendedStatusReply {  // §3.17
       [](const std::uint8_t& x) { return meanings::mode_name(x); });  // 47
     v("exit status", EnumByte{}, m.exit_status,
       [&m](const std::uint8_t& x) { return meanings::exit_name(m.last_mode, x); });  // 48 (ERRATA E-39)
-    v("az hundredths", Digits{1}, m.az_hundredths);  // 49 (ERRATA E-30)
-    v("el hundredths", Digits{1}, m.el_hundredths);  // 50
-    v("spare", Reserved{5, 0x40}, m.spare);          // 51-55
+    v("az hundredths", layouts::kHundredthsDigit, m.az_hundredths);  // 49 (ERRATA E-30)
+    v("el hundredths", layouts::kHundredthsDigit, m.el_hundredths);  // 50
+    v("spare", Reserved{5, 0x40}, m.spare);                          // 51-55
   }
 };
 

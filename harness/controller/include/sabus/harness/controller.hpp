@@ -83,6 +83,14 @@ struct Outcome {
   bool stored_data_changed = false;       // for --state-file
 };
 
+// ERRATA E-67's other side: the receiver drops a frame whose next byte
+// comes more than this after the one before, and waits for a new STX. 20 ms
+// is about 19 character times at 9600 baud (E-2) and more than the 16 ms a
+// USB serial adapter may hold bytes back (its latency timer), so a master
+// that writes a frame at once is never cut; the vectors' pauses inside a
+// frame (50 ms and more) are longer.
+inline constexpr std::chrono::milliseconds kInterCharacterTimeout{20};
+
 class Controller {
  public:
   Controller(const Profile& profile, const Clock& clock, FaultSet faults = {});
@@ -102,6 +110,11 @@ class Controller {
   // completed LOCATE's mode (E-93), a LOCATE's movements so far (E-94).
   void set_reading(const std::string& errata_id, ReadingSide side);
   const FaultSet& faults() const { return faults_; }
+  // ERRATA E-67: the longest pause between two bytes of one frame that the
+  // receiver waits out (kInterCharacterTimeout on the other side); nullopt:
+  // none, the reference side. The bus asks it at every byte it feeds.
+  std::optional<Duration> inter_character_timeout() const;
+  TimePoint now() const { return clock_.now(); }
 
   // Replies as the codecs build them from the state (also used by tests).
   StatusBlock status_block() const;
@@ -170,7 +183,8 @@ class Controller {
   // §3.2 bytes 14-31 / §3.24 bytes 4-9: the tenths shown (a heading for a
   // fluxgate azimuth), nullopt for '*': an A/D error or no rotating feed.
   std::optional<std::int32_t> reading(AxisId a) const;
-  std::uint32_t hundredths_digit(AxisId a) const;
+  // §3.17 bytes 49-50; nullopt: a blank (E-30's other side, no 0.01 deg feedback).
+  std::optional<std::int32_t> hundredths_digit(AxisId a) const;
   double position_of_counts(std::uint32_t count) const;
   std::uint8_t axis_status_bits(AxisId a) const;
   bool pol_moves_allowed() const;
@@ -247,6 +261,7 @@ class Bus : public LineDevice {
   struct Unit;
   void trim_log();
   void watch_parity(ByteView wire);
+  void time_out_frame(Unit& u, ByteView wire);
   // Appends a reply's bytes as the line carries them (even parity in bit 7
   // unless the line has none).
   void append_to_line(Bytes& out, ByteView reply) const;

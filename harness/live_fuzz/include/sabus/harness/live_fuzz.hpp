@@ -304,6 +304,13 @@ class Oracle {
   // write, replies to the frames a combination of sides accepted from it
   // pass as well.
   std::optional<Verdict> judge(const std::vector<Frame>& accepted, const Observation& seen) const;
+  // judge() of the write accept() last took. Where that write went on with a
+  // frame an earlier write began, a device with an inter-character timeout
+  // (ERRATA E-67's other side; the pause between two writes is longer) has
+  // dropped that frame: unless the profile pins E-67's reference side, the
+  // replies of a receiver that dropped it are acceptable too, and the
+  // oracle's receiver then goes on as the device's.
+  std::optional<Verdict> judge_write(const std::vector<Frame>& accepted, const Observation& seen);
   void reset();
 
  private:
@@ -317,6 +324,10 @@ class Oracle {
   std::vector<Receiver> others_;
   std::vector<Frame> last_accepted_;
   std::vector<std::vector<Frame>> others_accepted_;
+  // The write's frames for a receiver that dropped the frame begun before
+  // it (E-67), and that receiver; nullopt when none was begun.
+  std::optional<Receiver> dropped_;
+  std::vector<Frame> dropped_frames_;
 };
 
 // The longest reply `accepted` can draw (catalog lengths; the longest reply of
@@ -453,6 +464,7 @@ class Lockstep {
   std::optional<std::string> judge_locate_end(const AckJudging& r, const ReplyField& f) const;
   bool mode_outside_locate(const AckJudging& r, const ReplyField& f) const;
   bool y_outside_track(const AckJudging& r, const ReplyField& f, const std::vector<const std::string*>& values) const;
+  bool no_hundredths(const ReplyField& f, const std::vector<const std::string*>& values) const;
   bool lower_case_while_moving(const AckJudging& r, const ReplyField& f,
                                const std::vector<const std::string*>& values) const;
   // The i-th reply, and an ACK's fields: false once judging stops (a finding).
