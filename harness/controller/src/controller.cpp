@@ -243,6 +243,16 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
     start_locate_movements();
     update();  // to the clock's time again, the side's way
   }
+  // E-63: a dual-port feed still on its way to a satellite's one position
+  // (32h form 1, 34h): on to the position the side taken gives it.
+  if (errata_id == "E-63" && profile_.pol_type == PolType::kDualPort &&
+      state_.pol.motion == AxisState::Motion::kRemoteAutoMove && !state_.store.empty()) {
+    const StoredSatellite sat = state_.last_target.value_or(state_.store.front());
+    const AxisProfile& p = axis_profile(AxisId::kPol);
+    const double was = std::clamp(side == ReadingSide::kOther ? sat.h_pol_deg : sat.v_pol_deg, p.min_deg, p.max_deg);
+    if (std::abs(state_.pol.target - was) < 1e-9)
+      start_move(AxisId::kPol, side == ReadingSide::kOther ? sat.v_pol_deg : sat.h_pol_deg, true);
+  }
 }
 
 void Controller::start_locate_movements() {
@@ -679,8 +689,11 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
   std::uint8_t code = 0;
   switch (s.motion) {
     case AxisState::Motion::kIdle: code = 0x0; break;
-    // ERRATA E-53: a remote jog reports "movement in progress" (0100/0101).
+    // ERRATA E-53: a remote jog reports "movement in progress" (0100/0101),
+    // or (other side) "jog movement pending" (0010/0011) while its time runs.
     case AxisState::Motion::kJog:
+      code = reads_other("E-53") ? (s.direction > 0 ? 0x3 : 0x2) : (s.direction > 0 ? 0x5 : 0x4);
+      break;
     case AxisState::Motion::kStopping:
     case AxisState::Motion::kAutoMove: code = s.direction > 0 ? 0x5 : 0x4; break;
     case AxisState::Motion::kRemoteAutoMove: code = 0x7; break;
