@@ -61,7 +61,6 @@ struct Handlers {
   static std::optional<StoredSatellite> find_stored(const C& c, std::string_view name);
   static bool target_ok(const C& c, AxisId a, double deg);
   static std::optional<double> target_within(const C& c, AxisId a, double deg);
-  static double dual_port_pol(const C& c, const StoredSatellite& sat);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveStored& m);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveAzEl& m);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveCounts& m);

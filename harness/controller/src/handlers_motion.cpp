@@ -63,13 +63,6 @@ std::optional<double> Handlers::target_within(const C& c, AxisId a, double deg) 
   return std::clamp(deg, p.min_deg, p.max_deg);
 }
 
-// §3.5: a dual-port feed has one polarization position per satellite, for
-// 'H' and 'V' alike: its horizontal one, or on ERRATA E-63's other side its
-// vertical one.
-double Handlers::dual_port_pol(const C& c, const StoredSatellite& sat) {
-  return c.reads_other("E-63") ? sat.v_pol_deg : sat.h_pol_deg;
-}
-
 bool Handlers::lower_case_refused(const C& c, std::string_view name) {
   return c.reads_other("E-68") && std::any_of(name.begin(), name.end(), [](char ch) { return ch >= 'a' && ch <= 'z'; });
 }
@@ -85,7 +78,8 @@ Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveStored& m) {
   if (m.pol != ' ' && c.profile_.pol_type != PolType::kCircular) {
     // §3.5: a dual-port feed has one position per satellite (ERRATA E-63).
     const bool dual = c.profile_.pol_type == PolType::kDualPort;
-    c.start_move(AxisId::kPol, dual ? dual_port_pol(c, *sat) : m.pol == 'H' ? sat->h_pol_deg : sat->v_pol_deg, true);
+    if (dual) c.start_dual_port_move(*sat);
+    else c.start_move(AxisId::kPol, m.pol == 'H' ? sat->h_pol_deg : sat->v_pol_deg, true);
     c.state_.pol_code = m.pol;
   }
   c.state_.displayed_sat = sat->name;
@@ -200,7 +194,8 @@ Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
   const bool dual = c.profile_.pol_type == PolType::kDualPort;
   take_remote_control(c);
   if (c.profile_.pol_type != PolType::kCircular) {
-    c.start_move(AxisId::kPol, dual ? dual_port_pol(c, sat) : p.pol == 'H' ? sat.h_pol_deg : sat.v_pol_deg, true);
+    if (dual) c.start_dual_port_move(sat);
+    else c.start_move(AxisId::kPol, p.pol == 'H' ? sat.h_pol_deg : sat.v_pol_deg, true);
     c.state_.pol_code = p.pol;
   }
   return status(c, 0x34, std::string("pol preset ") + p.pol);

@@ -473,7 +473,9 @@ TEST(Readings, ASideTakenLateRetargetsADualPortFeedOnItsWay) {
   ASSERT_FALSE(is_nak(r.send(PolPreset{'V'})));
   r.wait(1s);
   ASSERT_NE(r.c.state().pol.motion, AxisState::Motion::kIdle);
+  ASSERT_NEAR(r.c.state().pol.position, 5.0, 0.01) << "1 s at 5 deg/s towards H (10.0)";
   r.c.set_reading("E-63", ReadingSide::kOther);
+  EXPECT_NEAR(r.c.state().pol.position, -5.0, 0.01) << "the move again from its start, towards V (-80.0)";
   r.wait(300s);
   EXPECT_NEAR(r.c.state().pol.position, -80.0, 0.1);
   // And back: on its way to the vertical position, the reference side taken.
