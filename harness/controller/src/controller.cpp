@@ -248,6 +248,29 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
     start_locate_movements();
     update();  // to the clock's time again, the side's way
   }
+  // E-63: a dual-port feed still on its way to a satellite's one position
+  // (32h form 1, 34h): that move again, from where and when it began, to the
+  // position the side taken gives it.
+  const DualPortMove m = dual_port_move_;  // a copy: the move starts afresh
+  if (errata_id == "E-63" && profile_.pol_type == PolType::kDualPort &&
+      state_.pol.motion == AxisState::Motion::kRemoteAutoMove) {
+    const AxisProfile& p = axis_profile(AxisId::kPol);
+    const double was = std::clamp(side == ReadingSide::kOther ? m.sat.h_pol_deg : m.sat.v_pol_deg, p.min_deg, p.max_deg);
+    if (std::abs(state_.pol.target - was) < 1e-9) {
+      state_.pol = m.pol_from;
+      start_dual_port_move(m.sat);
+      dual_port_move_ = m;
+      step_axis(AxisId::kPol, m.began, last_update_);
+    }
+  }
+}
+
+// §3.5: a dual-port feed has one polarization position per satellite, for
+// 'H' and 'V' alike: its horizontal one, or on ERRATA E-63's other side its
+// vertical one.
+void Controller::start_dual_port_move(const StoredSatellite& sat) {
+  dual_port_move_ = DualPortMove{last_update_, state_.pol, sat};
+  start_move(AxisId::kPol, reads_other("E-63") ? sat.v_pol_deg : sat.h_pol_deg, true);
 }
 
 void Controller::start_locate_movements() {
@@ -687,8 +710,11 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
   std::uint8_t code = 0;
   switch (s.motion) {
     case AxisState::Motion::kIdle: code = 0x0; break;
-    // ERRATA E-53: a remote jog reports "movement in progress" (0100/0101).
+    // ERRATA E-53: a remote jog reports "movement in progress" (0100/0101),
+    // or (other side) "jog movement pending" (0010/0011) while its time runs.
     case AxisState::Motion::kJog:
+      code = reads_other("E-53") ? (s.direction > 0 ? 0x3 : 0x2) : (s.direction > 0 ? 0x5 : 0x4);
+      break;
     case AxisState::Motion::kStopping:
     case AxisState::Motion::kAutoMove: code = s.direction > 0 ? 0x5 : 0x4; break;
     case AxisState::Motion::kRemoteAutoMove: code = 0x7; break;

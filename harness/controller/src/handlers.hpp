@@ -54,6 +54,9 @@ struct Handlers {
       if (ch >= 'a' && ch <= 'z') ch = static_cast<char>(ch - 'a' + 'A');
     return name;
   }
+  // ERRATA E-68's other side: a name with a lower-case letter is an error in
+  // the supplied data (41h, 42h).
+  static bool lower_case_refused(const C& c, std::string_view name);
   // §3.10 field bounds: longitude -179.9..179.9, inclination 0..19, pol offset -90.0..90.0.
   static bool satellite_fields_ok(const SatelliteData& s) {
     return in_range(s.longitude, -1799, 1799) && in_range(s.inclination, 0, 19) && in_range(s.pol_offset, -900, 900);
@@ -63,6 +66,7 @@ struct Handlers {
   static Outcome auto_move(C& c, const Frame& f, const AutoMove& m);
   static std::optional<StoredSatellite> find_stored(const C& c, std::string_view name);
   static bool target_ok(const C& c, AxisId a, double deg);
+  static std::optional<double> target_within(const C& c, AxisId a, double deg);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveStored& m);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveAzEl& m);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveCounts& m);

@@ -11,6 +11,8 @@ namespace {
 constexpr std::chrono::milliseconds kKeyJogHold{500};    // §2 REMOTE JOG HOLD 20 x 1/40 s
 
 bool valid_key(char k) { return (k >= '0' && k <= '9') || (k >= 'A' && k <= 'G'); }
+// §3.25: 3Ah-3Fh are marked "unused" and 40h lies between the table's rows.
+bool unused_key(char k) { return k >= 0x3A && k <= 0x40; }
 
 }  // namespace
 
@@ -125,6 +127,10 @@ Outcome Handlers::track_command(C& c, char param) {
 
 // ---- §3.25 / §3.7 'K' keypad -----------------------------------------------------
 Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
+  // ERRATA E-43: an unused key is NAKed, or (other side) ACKed and does
+  // nothing; a code outside 30h-47h is no key code on either side.
+  if (unused_key(key) && c.reads_other("E-43"))
+    return ack(c, 0x48, AckReply{}, "unused key " + describe_byte(static_cast<std::uint8_t>(key)));
   if (!valid_key(key)) return nak(c, code, NakRule::kKeyCode, describe_byte(static_cast<std::uint8_t>(key)));
   c.state_.last_key = key;
   // The keys act as on the front panel in MANUAL mode: jog keys move for the

@@ -53,6 +53,20 @@ bool Handlers::target_ok(const C& c, AxisId a, double deg) {
   return deg >= p.min_deg - 1e-9 && deg <= p.max_deg + 1e-9;
 }
 
+// §3.3 "not specified properly": a well-formed target outside the axis's
+// limits is NAKed (nullopt), or on ERRATA E-54's other side driven to the
+// limit it lies beyond.
+std::optional<double> Handlers::target_within(const C& c, AxisId a, double deg) {
+  if (target_ok(c, a, deg)) return deg;
+  if (!c.reads_other("E-54")) return std::nullopt;
+  const AxisProfile& p = c.axis_profile(a);
+  return std::clamp(deg, p.min_deg, p.max_deg);
+}
+
+bool Handlers::lower_case_refused(const C& c, std::string_view name) {
+  return c.reads_other("E-68") && std::any_of(name.begin(), name.end(), [](char ch) { return ch >= 'a' && ch <= 'z'; });
+}
+
 Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveStored& m) {
   const auto sat = find_stored(c, m.name);
   if (!sat) return nak(c, 0x32, NakRule::kUnknownSatellite, "\"" + m.name + "\"");
@@ -62,9 +76,10 @@ Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveStored& m) {
   c.start_move(AxisId::kAz, sat->az_deg, true);
   c.start_move(AxisId::kEl, sat->el_deg, true);
   if (m.pol != ' ' && c.profile_.pol_type != PolType::kCircular) {
-    // §3.5: a dual-port feed has one position per satellite.
+    // §3.5: a dual-port feed has one position per satellite (ERRATA E-63).
     const bool dual = c.profile_.pol_type == PolType::kDualPort;
-    c.start_move(AxisId::kPol, m.pol == 'H' || dual ? sat->h_pol_deg : sat->v_pol_deg, true);
+    if (dual) c.start_dual_port_move(*sat);
+    else c.start_move(AxisId::kPol, m.pol == 'H' ? sat->h_pol_deg : sat->v_pol_deg, true);
     c.state_.pol_code = m.pol;
   }
   c.state_.displayed_sat = sat->name;
@@ -83,11 +98,11 @@ Outcome Handlers::auto_move_form(C& c, const Frame& f, const AutoMoveAzEl& m) {
 
 // Forms 2A and 2B: both axes to a target, or NAK when it is outside the limits.
 Outcome Handlers::move_az_el(C& c, double az, double el, std::string note) {
-  if (!target_ok(c, AxisId::kAz, az) || !target_ok(c, AxisId::kEl, el))
-    return nak(c, 0x32, NakRule::kTargetOutOfRange);
+  const auto az_to = target_within(c, AxisId::kAz, az), el_to = target_within(c, AxisId::kEl, el);
+  if (!az_to || !el_to) return nak(c, 0x32, NakRule::kTargetOutOfRange);
   take_remote_control(c);
-  c.start_move(AxisId::kAz, az, true);
-  c.start_move(AxisId::kEl, el, true);
+  c.start_move(AxisId::kAz, *az_to, true);
+  c.start_move(AxisId::kEl, *el_to, true);
   c.state_.displayed_sat.clear();
   return status(c, 0x32, std::move(note));
 }
@@ -103,9 +118,10 @@ Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveAxis& m) {
   const AxisId a = m.axis == 'A' ? AxisId::kAz : AxisId::kEl;
   // Fault form2c-sign-dropped: the digits without their '-'.
   const double target = (c.faults_.has(Fault::kForm2CSignDropped) ? std::abs(m.target) : m.target) / 100.0;
-  if (!target_ok(c, a, target)) return nak(c, 0x32, NakRule::kTargetOutOfRange);
+  const auto to = target_within(c, a, target);
+  if (!to) return nak(c, 0x32, NakRule::kTargetOutOfRange);
   take_remote_control(c);
-  c.start_move(a, target, true);
+  c.start_move(a, *to, true);
   return status(c, 0x32, "auto move (form 2C)");
 }
 
@@ -113,9 +129,10 @@ Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMovePol& m) {
   if (c.profile_.pol_type == PolType::kCircular && !c.faults_.has(Fault::kCircularPolAcked))
     return nak(c, 0x32, NakRule::kPolWithCircularFeed);
   const double target = m.pol / 10.0;
-  if (!target_ok(c, AxisId::kPol, target)) return nak(c, 0x32, NakRule::kTargetOutOfRange);
+  const auto to = target_within(c, AxisId::kPol, target);
+  if (!to) return nak(c, 0x32, NakRule::kTargetOutOfRange);
   take_remote_control(c);
-  if (c.profile_.pol_type != PolType::kCircular) c.start_move(AxisId::kPol, target, true);
+  if (c.profile_.pol_type != PolType::kCircular) c.start_move(AxisId::kPol, *to, true);
   return status(c, 0x32, "auto move (form 3)");
 }
 
@@ -181,7 +198,8 @@ Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
   const bool dual = c.profile_.pol_type == PolType::kDualPort;
   take_remote_control(c);
   if (c.profile_.pol_type != PolType::kCircular) {
-    c.start_move(AxisId::kPol, p.pol == 'H' || dual ? sat.h_pol_deg : sat.v_pol_deg, true);
+    if (dual) c.start_dual_port_move(sat);
+    else c.start_move(AxisId::kPol, p.pol == 'H' ? sat.h_pol_deg : sat.v_pol_deg, true);
     c.state_.pol_code = p.pol;
   }
   return status(c, 0x34, std::string("pol preset ") + p.pol);
@@ -206,6 +224,9 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
     // an error in the supplied data is ERRATA E-92 (the other side ACKs).
     if (!satellite_fields_ok(l.sat) || (l.sat.name.empty() && !c.reads_other("E-92")))
       return nak(c, 0x41, NakRule::kLocateField);
+    // ERRATA E-68: a lower-case name is accepted and shown in capitals, or
+    // (other side) an error in the supplied data.
+    if (lower_case_refused(c, l.sat.name)) return nak(c, 0x41, NakRule::kLocateField, "a lower-case name (E-68)");
     sat = l.sat;
   }
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");

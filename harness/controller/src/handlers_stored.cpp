@@ -85,7 +85,8 @@ Outcome Handlers::read_iess(C& c, const ReadIess& r) {
 Outcome Handlers::write_satellite(C& c, const WriteSatellite& w) {
   if (w.index < 1 || w.index > 20) return nak(c, 0x39, NakRule::kSatelliteIndex, "index " + std::to_string(w.index));
   if (!satellite_fields_ok(w.sat)) return nak(c, 0x39, NakRule::kSatelliteField);
-  if (w.sat.ephemeris != '0' && w.index > 10) return nak(c, 0x39, NakRule::kEphemerisIndex);
+  // ERRATA E-51: ephemeris data for the first 10 sets only; the other side stores the code.
+  if (w.sat.ephemeris != '0' && w.index > 10 && !c.reads_other("E-51")) return nak(c, 0x39, NakRule::kEphemerisIndex);
   const std::size_t slot = slot_written(c, w.index);
   PresetSatellite p{static_cast<std::uint8_t>(slot), w.sat, false};
   if (const auto& old = c.state_.presets[slot - 1]) p.dual_band = old->dual_band;
@@ -126,6 +127,7 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
     sat = p->data;
   } else {
     if (!satellite_fields_ok(s.sat) || s.sat.name.empty()) return nak(c, 0x42, NakRule::kStoreField);
+    if (lower_case_refused(c, s.sat.name)) return nak(c, 0x42, NakRule::kStoreField, "a lower-case name (E-68)");
     sat = s.sat;
   }
   // §3.6: stored names are in capital letters (ERRATA E-68).

@@ -484,6 +484,128 @@ TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
   EXPECT_FALSE(is_nak(other.send(s))) << "status reads between are no command";
 }
 
+// E-43: the "unused" key codes of §3.25 (48h) and §3.7 'K' (36h).
+TEST(Readings, E43TheOtherSideAcksAnUnusedKeyAndDoesNothing) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-43"));
+  for (char key : {'\x3A', '\x3F', '\x40'}) {
+    EXPECT_EQ(ref.send(RemoteKeypress{key}).nak, NakRule::kKeyCode) << int(key);
+    EXPECT_EQ(ref.send(Misc{'K', key}).nak, NakRule::kKeyCode) << int(key);
+    const ControllerState before = other.c.state();  // a copy
+    const Outcome o = other.send(RemoteKeypress{key});
+    ASSERT_TRUE(o.reply.has_value());
+    EXPECT_EQ((*o.reply)[0], ACK) << int(key);
+    EXPECT_EQ((*o.reply)[2], 0x48);
+    const Outcome k = other.send(Misc{'K', key});
+    ASSERT_TRUE(k.reply.has_value());
+    EXPECT_EQ((*k.reply)[0], ACK) << int(key);
+    const ControllerState& after = other.c.state();
+    EXPECT_EQ(after.mode, before.mode) << "an unused key does nothing";
+    EXPECT_EQ(after.last_key, before.last_key);
+    EXPECT_EQ(after.az, before.az);
+    EXPECT_EQ(after.el, before.el);
+    EXPECT_EQ(after.pol, before.pol);
+  }
+  // Codes outside the table's 30h-47h are no key codes on either side.
+  for (char key : {'\x2F', '\x48', 'a'}) {
+    EXPECT_EQ(other.send(RemoteKeypress{key}).nak, NakRule::kKeyCode) << int(key);
+    EXPECT_EQ(other.send(Misc{'K', key}).nak, NakRule::kKeyCode) << int(key);
+  }
+}
+
+// E-51: an ephemeris code for a preset above index 10.
+TEST(Readings, E51TheOtherSideStoresEphemerisAboveIndexTen) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-51"));
+  WriteSatellite w;
+  w.index = 11;
+  w.sat = {"EPHEM 11", -740, 0, '1', '1', 0};
+  EXPECT_EQ(ref.send(w).nak, NakRule::kEphemerisIndex);
+  EXPECT_FALSE(is_nak(other.send(w)));
+  EXPECT_EQ(other.reply<SatelliteDataReply>(ReadSatellite{{11}}).sat.ephemeris, '1');
+  w.sat.ephemeris = '0';
+  EXPECT_FALSE(is_nak(ref.send(w))) << "no ephemeris: stored on both sides";
+}
+
+// E-53: the axis status during a remote jog (33h) and a key jog (48h).
+TEST(Readings, E53TheOtherSideShowsJogMovementPending) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-53"));
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(Jog{{'W', 'F', 3000}})));
+  ref.wait(1s);
+  other.wait(1s);
+  EXPECT_EQ(ref.status().az_status, 0x15) << "fast, cw movement in progress";
+  EXPECT_EQ(other.status().az_status, 0x13) << "fast, cw jog movement pending";
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(Jog{{'D', 'S', 3000}})));
+  ref.wait(1s);
+  other.wait(1s);
+  EXPECT_EQ(ref.status().el_status, 0x04) << "slow, down movement in progress";
+  EXPECT_EQ(other.status().el_status, 0x02) << "slow, down jog movement pending";
+  ref.wait(10s);
+  other.wait(10s);
+  EXPECT_EQ(other.status().el_status, 0x00) << "at rest once its time has run";
+  // An auto move shows 0111 on both sides.
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMoveAzEl{300, 450}})));
+  EXPECT_EQ(ref.status().az_status & 0x0F, 0x07);
+  EXPECT_EQ(other.status().az_status & 0x0F, 0x07);
+}
+
+// E-54: an auto-move target outside the axis's limits (el -5..90).
+TEST(Readings, E54TheOtherSideDrivesAnOutOfRangeTargetToTheLimit) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-54"));
+  const AutoMove too_high{AutoMoveAzEl{0, 905}};
+  EXPECT_EQ(ref.send(too_high).nak, NakRule::kTargetOutOfRange);
+  EXPECT_FALSE(is_nak(other.send(too_high)));
+  other.wait(600s);
+  EXPECT_NEAR(other.c.state().el.position, 90.0, 0.1);
+  EXPECT_EQ(other.status().el_limits & 0x04, 0x04) << "at the upper limit";
+  // Form 2C and form 3 alike.
+  EXPECT_EQ(ref.send(AutoMove{AutoMovePol{-905}}).nak, NakRule::kTargetOutOfRange);
+  EXPECT_FALSE(is_nak(other.send(AutoMove{AutoMovePol{-905}})));
+  other.wait(600s);
+  EXPECT_NEAR(other.c.state().pol.position, -90.0, 0.1);
+}
+
+// E-63: 34h 'V' on a dual-port feed (SBS 6: H 10.0, V -80.0).
+TEST(Readings, E63TheOtherSideMovesADualPortFeedToItsVerticalPosition) {
+  Profile dual = site_profile();
+  dual.pol_type = PolType::kDualPort;
+  Rig ref(dual), other(reading(dual, "E-63"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(PolPreset{'V'})));
+    r->wait(300s);
+  }
+  EXPECT_NEAR(ref.c.state().pol.position, 10.0, 0.1);
+  EXPECT_NEAR(other.c.state().pol.position, -80.0, 0.1);
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(PolPreset{'H'})));
+    r->wait(300s);
+  }
+  EXPECT_NEAR(ref.c.state().pol.position, 10.0, 0.1) << "'H' too";
+  EXPECT_NEAR(other.c.state().pol.position, -80.0, 0.1) << "'H' too";
+  // A single-port feed keeps 'V' vertical on both sides.
+  Rig single(reading(site_profile(), "E-63"));
+  ASSERT_FALSE(is_nak(single.send(PolPreset{'V'})));
+  single.wait(300s);
+  EXPECT_NEAR(single.c.state().pol.position, -80.0, 0.1);
+}
+
+// E-68: a lower-case name in the data forms of 41h and 42h.
+TEST(Readings, E68TheOtherSideNaksALowerCaseName) {
+  RemoteLocate lower = locate_on_meridian();
+  lower.sat.name = "probe loc";
+  Rig ref(site_profile()), other(reading(site_profile(), "E-68"));
+  EXPECT_FALSE(is_nak(ref.send(lower)));
+  EXPECT_EQ(ref.status().sat_name, "PROBE LOC");
+  EXPECT_EQ(other.send(lower).nak, NakRule::kLocateField);
+  EXPECT_EQ(other.mode(), "MANUAL_MODE") << "no LOCATE";
+  EXPECT_FALSE(is_nak(other.send(locate_on_meridian()))) << "a name in capitals is located";
+  RemoteStore st;
+  st.preset = {false, 0};
+  st.sat = {"store low", -740, 0, '1', '0', 0};
+  st.pol_selection = 'H';
+  EXPECT_FALSE(is_nak(ref.send(st)));
+  EXPECT_EQ(ref.c.state().store.back().name, "STORE LOW");
+  EXPECT_EQ(other.send(st).nak, NakRule::kStoreField);
+}
+
 }  // namespace
 }  // namespace sabus::harness
 
@@ -492,6 +614,34 @@ namespace {
 
 // A side taken mid-session (the live fuzzer's model, once a device has
 // shown it) redoes what it decides and has already happened.
+// E-63 taken while a dual-port feed moves to its 34h position: on to the
+// position of the side taken.
+TEST(Readings, ASideTakenLateRetargetsADualPortFeedOnItsWay) {
+  Profile dual = site_profile();
+  dual.pol_type = PolType::kDualPort;
+  Rig r(dual);
+  ASSERT_FALSE(is_nak(r.send(PolPreset{'V'})));
+  r.wait(1s);
+  ASSERT_NE(r.c.state().pol.motion, AxisState::Motion::kIdle);
+  ASSERT_NEAR(r.c.state().pol.position, 5.0, 0.01) << "1 s at 5 deg/s towards H (10.0)";
+  r.c.set_reading("E-63", ReadingSide::kOther);
+  EXPECT_NEAR(r.c.state().pol.position, -5.0, 0.01) << "the move again from its start, towards V (-80.0)";
+  r.wait(300s);
+  EXPECT_NEAR(r.c.state().pol.position, -80.0, 0.1);
+  // And back: on its way to the vertical position, the reference side taken.
+  Rig back(reading(dual, "E-63"));
+  ASSERT_FALSE(is_nak(back.send(PolPreset{'V'})));
+  back.wait(1s);
+  ASSERT_NE(back.c.state().pol.motion, AxisState::Motion::kIdle);
+  back.c.set_reading("E-63", ReadingSide::kReference);
+  back.wait(300s);
+  EXPECT_NEAR(back.c.state().pol.position, 10.0, 0.1);
+  // A feed at rest stays where it is.
+  back.c.set_reading("E-63", ReadingSide::kOther);
+  back.wait(300s);
+  EXPECT_NEAR(back.c.state().pol.position, 10.0, 0.1);
+}
+
 TEST(Readings, ASideTakenLateRedoesALocatesMovementsAndItsMode) {
   Rig late(site_profile()), early(reading(site_profile(), "E-94"));
   for (Rig* r : {&late, &early}) {

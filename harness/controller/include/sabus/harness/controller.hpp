@@ -225,6 +225,16 @@ class Controller {
   // Begins the LOCATE's movements to `locate_` as the side of E-94 taken
   // orders them (ERRATA E-94, §3.17 locate_states).
   void start_locate_movements();
+  // §3.5 on a dual-port feed: the move to a satellite's one polarization
+  // position, from where and when it began (E-63 decides which position;
+  // set_reading redoes it).
+  struct DualPortMove {
+    TimePoint began{};
+    AxisState pol_from;
+    StoredSatellite sat;
+  } dual_port_move_;
+  // Starts that move (32h form 1, 34h).
+  void start_dual_port_move(const StoredSatellite& sat);
   int signal_strength_ = 0;  // §3.9, when a profile implements 38h
   std::array<std::optional<std::string>, 10> iess_;  // §3.14, when a profile implements 3Dh/3Eh
 };
