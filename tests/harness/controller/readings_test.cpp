@@ -194,6 +194,7 @@ TEST(Readings, E64TheOtherSideDefersAnEmptyListWhileTrackPeaks) {
   EXPECT_EQ(other_idle.send(PolPreset{'H'}).nak, NakRule::kPolPresetNoSatellites);
   ref.c.set_reading("E-64", ReadingSide::kOther);
   EXPECT_FALSE(is_nak(ref.send(PolPreset{'H'}))) << "a side taken late";
+}
 
 // E-67: a status poll fed to a bus as STX A CC, then `pause`, then ETX and
 // the check byte; 100 ms later a whole one. Whether each was answered.
