@@ -17,6 +17,7 @@
 #include <functional>
 
 #include "sabus/harness/locate_targets.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/motion.hpp"
 #include "sabus/protocol/enumerations.hpp"
 #include "sabus/protocol/frame.hpp"
@@ -574,11 +575,18 @@ const Function kFunctions[] = {
        return unavailable("room for " + format_number(c.args[0].number) + " more names in the STORE list: the profile's holds " +
                           std::to_string(c.cx.profile.store.size()) + " of 50");
      }},
-    {{"has_navigation", "", "1 when the profile holds navigation data (latitude, longitude and heading, §3.22)"}, 0,
+    {{"has_navigation", "",
+      "1 when the profile holds navigation data (latitude, longitude and heading, §3.22) that 46h can write back on every "
+      "side of E-60 the profile leaves open (not a pole or -180 deg 00, which E-60's other side NAKs)"},
+     0,
      [](const Call& c) {
        const Navigation& n = c.cx.profile.navigation;
-       if (n.latitude_min && n.longitude_min && n.heading_tenths) return number(1);
-       return unavailable("navigation data (latitude, longitude and heading) in the profile, to write back after 46h");
+       if (!n.latitude_min || !n.longitude_min || !n.heading_tenths)
+         return unavailable("navigation data (latitude, longitude and heading) in the profile, to write back after 46h");
+       const bool boundary = std::abs(*n.latitude_min) == 90 * 60 || *n.longitude_min == -180 * 60;
+       if (boundary && side_pinned(c.cx.profile.readings, "E-60") != ReadingSide::kReference)
+         return unavailable("navigation data off the poles and -180 deg 00 (E-60's other side NAKs them, so 46h could not write them back), or E-60 pinned to reference");
+       return number(1);
      }},
     {{"negative", "axis", "a negative position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
      [](const Call& c) { return position_of_sign(c, -1); }},
