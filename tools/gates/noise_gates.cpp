@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "sabus/harness/profile_loader.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/runner.hpp"
 #include "sabus/harness/transports.hpp"
 #include "sabus/harness/vector_loader.hpp"
@@ -187,6 +188,15 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < profiles.size() && where.empty(); ++i)
       if (fails_must(run_suite(profiles[i], vectors, set, LineFaultSpec{1e-3, kAllLineFaultKinds, seed + i}, 1).result))
         where = profiles[i].name;
+    // A fault that is itself a legal side of an open point (left-justified-
+    // position is E-33's other side) is a defect only where the profile pins
+    // the reference side, as in suite_gates.
+    for (std::size_t i = 0; i < profiles.size() && where.empty(); ++i) {
+      Profile strict = profiles[i];
+      for (const ReadingPoint& point : reading_points()) strict.readings[std::string(point.id)] = ReadingSide::kReference;
+      if (fails_must(run_suite(strict, vectors, set, LineFaultSpec{1e-3, kAllLineFaultKinds, seed + i}, 1).result))
+        where = profiles[i].name + " (every reading pinned to reference)";
+    }
     caught += !where.empty();
     std::cout << fmt::format("{:<30} {}\n", f.name, where.empty() ? "NOT CAUGHT" : where);
   }
