@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
     if (reference.empty() && flipped.empty())
       for (const Profile& p : profiles) {
         Profile strict = p;
-        for (const ReadingPoint& point : reading_points()) strict.readings[std::string(point.id)] = ReadingSide::kReference;
+        (void)apply_reading_spec("reference", strict.readings);  // every point pinned to reference
         const auto failed = failed_must_vectors(
             run_suite(strict, vectors, set, fmt::format("{} on {} (reference readings pinned)", f.name, p.name)));
         if (!failed.empty()) {

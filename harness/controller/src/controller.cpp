@@ -251,9 +251,9 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   // E-63: a dual-port feed still on its way to a satellite's one position
   // (32h form 1, 34h): that move again, from where and when it began, to the
   // position the side taken gives it.
-  const DualPortMove m = dual_port_move_;  // a copy: the move starts afresh
   if (errata_id == "E-63" && profile_.pol_type == PolType::kDualPort &&
       state_.pol.motion == AxisState::Motion::kRemoteAutoMove) {
+    const DualPortMove m = dual_port_move_;  // a copy: the move starts afresh
     const AxisProfile& p = axis_profile(AxisId::kPol);
     const double was = std::clamp(side == ReadingSide::kOther ? m.sat.h_pol_deg : m.sat.v_pol_deg, p.min_deg, p.max_deg);
     if (std::abs(state_.pol.target - was) < 1e-9) {
@@ -877,14 +877,14 @@ Bytes Controller::finish_reply(Frame f) const {
     // for them). The fault left-justified-position is the same bend on a
     // device whose profile pins the reference side.
     const bool other_justification = reads_other("E-33");
+    const bool full_reply = info && !is_offline_reply(f);
     if (other_justification || faults_.has(Fault::kLeftJustifiedPosition)) {
       if (status) {
         for (std::size_t first : {14, 20, 26}) left_justify(f, first, 6);
-      } else if (info && info->reply == ReplyKind::kJogPosition && !is_offline_reply(f)) {
+      } else if (full_reply && info->reply == ReplyKind::kJogPosition) {
         left_justify(f, 4, 6);
       }
     }
-    const bool full_reply = info && !is_offline_reply(f);
     if (other_justification && full_reply && info->reply == ReplyKind::kPulseCount) {
       blank_pad(f, 3, 5);
       blank_pad(f, 8, 5);

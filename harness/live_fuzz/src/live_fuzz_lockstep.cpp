@@ -937,11 +937,19 @@ bool Lockstep::y_outside_track(const AckJudging& r, const ReplyField& f,
 }
 
 // §3.17 bytes 49-50 on a mount without 0.01 deg feedback (ERRATA E-30):
-// on the other side, which the model's blank shows it has taken, the byte
-// holds "something else": a blank or a stale digit of the device's, any
+// they follow no position ('0', or on the other side a blank or a stale
+// digit).
+namespace {
+bool hundredths_without_feedback(const Profile& p, const ReplyField& f) {
+  return !p.hundredths && f.name.ends_with(" hundredths");
+}
+}  // namespace
+
+// Those bytes on the other side, which the model's blank shows it has
+// taken: "something else", a blank or a stale digit of the device's, any
 // digit. A letter or a control byte does not decode (the oracle's).
 bool Lockstep::no_hundredths(const ReplyField& f, const std::vector<const std::string*>& values) const {
-  if (profile_.hundredths || !f.name.ends_with(" hundredths")) return false;
+  if (!hundredths_without_feedback(profile_, f)) return false;
   const unsigned long dev = hex_byte(f.raw);
   return (dev == 0x20 || (dev >= 0x30 && dev <= 0x39)) &&
          std::any_of(values.begin(), values.end(), [](const std::string* v) { return v && hex_byte(*v) == 0x20; });
@@ -1133,7 +1141,7 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
   // 0.01 deg feedback the hundredths bytes follow no position (E-30: '0', or
   // on the other side a blank or a stale digit): compared as they are,
   // wherever the axis is.
-  const bool positional = profile_.hundredths || !f.name.ends_with(" hundredths");
+  const bool positional = !hundredths_without_feedback(profile_, f);
   const std::size_t axis =
       cls->cls == FieldClass::kMotion && positional ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
   const bool has_axis = axis != kNoAxis;
