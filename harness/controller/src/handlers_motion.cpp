@@ -232,6 +232,7 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
   c.enter_mode("LOCATE_MODE", "INITIALIZING_LOCATE_MODE");
   c.state_.displayed_sat = capitals(sat.name);  // §3.2 bytes 3-12, ERRATA E-68
   c.state_.last_located = sat;
+  c.state_.located_out_of_range = false;
   c.state_.commands_since_locate = 0;
   // ERRATA E-59, E-80: the site and how a true azimuth becomes the mount's.
   const look::SiteOf site =
@@ -260,7 +261,9 @@ Outcome Handlers::remote_locate(C& c, const RemoteLocate& l) {
   if (!error.empty() && !c.faults_.has(Fault::kLocateMovesOutOfRange)) {
     c.stop_all();
     c.set_state(error);
-    c.state_.last_located.reset();  // no LOCATE performed for 42h 'C' (E-83)
+    // ERRATA E-83: no LOCATE performed for 42h 'C' (the other side counts
+    // it, and 'C' calculates for its satellite).
+    c.state_.located_out_of_range = true;
     return ack(c, 0x41, AckReply{}, "locate " + sat.name + ": " + std::string(error));
   }
   // Clamped at the limits under the fault locate-moves-out-of-range.

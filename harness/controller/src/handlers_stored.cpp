@@ -138,7 +138,9 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
       case 'C':
         // ERRATA E-66: the LOCATE must be "immediately prior"; the other side
         // takes no command in between, reads aside.
-        if (!c.state_.last_located || (c.reads_other("E-66") && c.state_.commands_since_locate > 0))
+        // ERRATA E-83: one that ended in a range error counts on the other side only.
+        if (!c.state_.last_located || (c.state_.located_out_of_range && !c.reads_other("E-83")) ||
+            (c.reads_other("E-66") && c.state_.commands_since_locate > 0))
           return nak(c, 0x42, NakRule::kStoreNeedsLocate);
         entry.h_pol_deg = c.state_.last_located->pol_offset.value_or(0) / 10.0;
         entry.v_pol_deg = wrap_pol(entry.h_pol_deg + 90);
@@ -160,8 +162,14 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
   }
   auto it = std::find_if(c.state_.store.begin(), c.state_.store.end(),
                          [&](const StoredSatellite& x) { return x.name == entry.name; });
-  if (it == c.state_.store.end() && c.state_.store.size() >= C::kMaxStored)
-    return nak(c, 0x42, NakRule::kStoreListFull);
+  if (it == c.state_.store.end() && c.state_.store.size() >= C::kMaxStored) {
+    // ERRATA E-65: the reference side NAKs at once; the other starts the
+    // STORE ("will be initiated"), which ends STORE_LIST_FULL storing nothing.
+    if (!c.reads_other("E-65")) return nak(c, 0x42, NakRule::kStoreListFull);
+    c.enter_mode("STORE_SAT_MODE", "STORE_ENTERING_MODE");
+    c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STORE_LIST_FULL");
+    return ack(c, 0x42, AckReply{}, "STORE list full: " + entry.name + " not stored (E-65)");
+  }
   // "If a particular satellite name has already been STOREd, its data will be overwritten."
   if (it != c.state_.store.end()) *it = entry;
   else c.state_.store.push_back(entry);

@@ -2,6 +2,8 @@
 // (readings.hpp, the protocol/ERRATA.md entries of class reading): each
 // switch changes what its entry says and nothing else, and the profile's
 // `readings:` pins load, write back and parse from --reading.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "controller_rig.hpp"
@@ -483,6 +485,57 @@ TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
   ASSERT_FALSE(is_nak(other.send(l)));
   (void)other.extended();
   EXPECT_FALSE(is_nak(other.send(s))) << "status reads between are no command";
+}
+
+// E-65: a Remote Store of a new name with the STORE list full.
+TEST(Readings, E65TheOtherSideAcksAStoreIntoAFullListAndStoresNothing) {
+  Profile full = site_profile();
+  full.store.clear();
+  for (int i = 0; i < 50; ++i) full.store.push_back({"SAT " + std::to_string(i), 0, 0, 0, 0});
+  Rig ref(full), other(reading(full, "E-65"));
+  RemoteStore s;
+  s.sat = {"NEW ONE", 0, 0, '1', '0', 0};
+  s.pol_selection = 'H';
+  EXPECT_EQ(ref.send(s).nak, NakRule::kStoreListFull);
+  const Outcome o = other.send(s);
+  ASSERT_TRUE(o.reply.has_value());
+  EXPECT_EQ((*o.reply)[0], ACK);
+  EXPECT_EQ(other.c.state().store.size(), 50u) << "nothing stored";
+  EXPECT_EQ(other.mode(), "MANUAL_MODE");
+  const auto x = other.extended();
+  EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "STORE_LIST_FULL");
+  // A name already in the full list is overwritten on both sides.
+  s.sat.name = "SAT 7";
+  for (Rig* r : {&ref, &other}) {
+    EXPECT_FALSE(is_nak(r->send(s)));
+    const auto y = r->extended();
+    EXPECT_EQ(meanings::exit_name(y.last_mode, y.exit_status), "STORE_SAT_DATA_STORED_OK");
+  }
+}
+
+// E-83: 42h 'C' after a LOCATE that ended in a range error (E-81).
+TEST(Readings, E83TheOtherSideCountsALocateThatEndedInARangeErrorAsPerformed) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-83"));
+  RemoteLocate low = locate_on_meridian();
+  low.sat.name = "LOW";
+  low.sat.longitude = 1050;  // 105.0 E: below the horizon from 40 N 75 W
+  RemoteStore s;
+  s.sat = low.sat;
+  s.pol_selection = 'C';
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(low)));
+    r->wait(60s);
+    EXPECT_TRUE(r->state().ends_with("_RANGE_ERROR")) << r->state();
+  }
+  EXPECT_EQ(ref.send(s).nak, NakRule::kStoreNeedsLocate);
+  EXPECT_FALSE(is_nak(other.send(s)));
+  const auto& store = other.c.state().store;
+  EXPECT_TRUE(std::any_of(store.begin(), store.end(), [](const StoredSatellite& x) { return x.name == "LOW"; }))
+      << "'C' stores the failed LOCATE's satellite";
+  // A side taken late judges the same history (the lockstep flips a side
+  // after the writes that show it).
+  ref.c.set_reading("E-83", ReadingSide::kOther);
+  EXPECT_FALSE(is_nak(ref.send(s)));
 }
 
 // E-43: the "unused" key codes of §3.25 (48h) and §3.7 'K' (36h).

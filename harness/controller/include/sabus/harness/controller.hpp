@@ -64,6 +64,10 @@ struct ControllerState {
   char pol_code = 0;                      // §3.2 byte 35 ZZZ: 'H', 'h', 'V', 'v' or 0 (none)
   std::optional<StoredSatellite> last_target;   // §3.5: the last target of an auto move
   std::optional<SatelliteData> last_located;    // §3.19 'C': a LOCATE performed before
+  // That LOCATE ended in a range error (E-81): not performed for 'C' on
+  // ERRATA E-83's reference side. Kept on both sides, so that a side taken
+  // late (the live fuzzer's lockstep) judges the same history.
+  bool located_out_of_range = false;
   // Commands taken since that LOCATE, reads aside: E-66's other side wants
   // none ("immediately prior").
   int commands_since_locate = 0;
