@@ -162,19 +162,17 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
   }
   auto it = std::find_if(c.state_.store.begin(), c.state_.store.end(),
                          [&](const StoredSatellite& x) { return x.name == entry.name; });
-  if (it == c.state_.store.end() && c.state_.store.size() >= C::kMaxStored) {
-    // ERRATA E-65: the reference side NAKs at once; the other starts the
-    // STORE ("will be initiated"), which ends STORE_LIST_FULL storing nothing.
-    if (!c.reads_other("E-65")) return nak(c, 0x42, NakRule::kStoreListFull);
-    c.enter_mode("STORE_SAT_MODE", "STORE_ENTERING_MODE");
-    c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STORE_LIST_FULL");
-    return ack(c, 0x42, AckReply{}, "STORE list full: " + entry.name + " not stored (E-65)");
-  }
+  // ERRATA E-65: a new name with the list full is NAKed at once, or (other
+  // side) the STORE starts ("will be initiated") and ends STORE_LIST_FULL,
+  // storing nothing.
+  const bool full = it == c.state_.store.end() && c.state_.store.size() >= C::kMaxStored;
+  if (full && !c.reads_other("E-65")) return nak(c, 0x42, NakRule::kStoreListFull);
+  c.enter_mode("STORE_SAT_MODE", "STORE_ENTERING_MODE");
+  c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", full ? "STORE_LIST_FULL" : "STORE_SAT_DATA_STORED_OK");
+  if (full) return ack(c, 0x42, AckReply{}, "STORE list full: " + entry.name + " not stored (E-65)");
   // "If a particular satellite name has already been STOREd, its data will be overwritten."
   if (it != c.state_.store.end()) *it = entry;
   else c.state_.store.push_back(entry);
-  c.enter_mode("STORE_SAT_MODE", "STORE_ENTERING_MODE");
-  c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STORE_SAT_DATA_STORED_OK");
   return stored(ack(c, 0x42, AckReply{}, "stored " + entry.name));
 }
 
