@@ -151,6 +151,88 @@ Expected<T> decode_layout(ByteView data) {
 }
 
 // ---- auto move: byte 3 selects the form (§3.3; READING-NOTES 13, 31) -------
+// The SignedDigits fields of one layout, by their place in the data.
+struct SignedSpans {
+  std::vector<DataSpan>& out;
+  std::size_t pos = 0;
+  template <class C, class T, class... M>
+  void operator()(std::string_view, const C& c, T&, M&&...) {
+    const std::size_t w = width_for_decode(c, 0);  // the forms' fields all have fixed widths
+    if constexpr (std::is_same_v<C, fields::SignedDigits>) out.push_back({pos, w});
+    pos += w;
+  }
+};
+
+}  // namespace
+
+std::vector<DataSpan> auto_move_signed_targets(std::uint8_t form_byte) {
+  std::vector<DataSpan> spans;
+  SignedSpans collect{spans};
+  auto walk = [&]<class Form>(Form form) { Form::layout(form, collect); };
+  switch (form_byte) {
+    case ' ': walk(AutoMoveAzEl{}); break;
+    case 'A':
+    case 'E': walk(AutoMoveAxis{}); break;
+    case 'P': walk(AutoMovePol{}); break;
+    default: break;  // forms 1 and 2B have no signed field
+  }
+  return spans;
+}
+
+std::optional<TargetSpelling> spelling_of(ByteView t) {
+  const auto minus = std::find(t.begin(), t.end(), '-');
+  if (minus == t.end()) return std::nullopt;
+  auto digit = [](std::uint8_t c) { return c >= '0' && c <= '9'; };
+  const bool digits_after = std::all_of(minus + 1, t.end(), digit);
+  if (minus == t.begin()) {
+    if (t.size() > 1 && t[1] == '0' && digits_after) return TargetSpelling::kSignFirst;
+    return std::nullopt;
+  }
+  if (digits_after && minus + 1 != t.end() && std::all_of(t.begin(), minus, [](std::uint8_t c) { return c == '0'; }))
+    return TargetSpelling::kZerosFirst;
+  return std::nullopt;
+}
+
+namespace {
+// Each signed target of 32h `data` the data holds whole.
+template <class T, class F>
+void for_each_target(std::span<T> data, F&& f) {
+  if (data.empty()) return;
+  for (const DataSpan& t : auto_move_signed_targets(data[0]))
+    if (t.first + t.width <= data.size()) f(data.subspan(t.first, t.width));
+}
+}  // namespace
+
+bool auto_move_spells(ByteView data, TargetSpelling spelling) {
+  bool found = false;
+  for_each_target(data, [&](ByteView t) { found = found || spelling_of(t) == spelling; });
+  return found;
+}
+
+bool respell_target(std::span<std::uint8_t> t, TargetSpelling to) {
+  const auto now = spelling_of(t);
+  if (!now || *now == to) return false;
+  const auto minus = std::find(t.begin(), t.end(), '-');
+  if (to == TargetSpelling::kSignFirst) {
+    std::rotate(t.begin(), minus, minus + 1);  // "00-50" -> "-0050"
+  } else {
+    // "-0050" -> "00-50": the sign moves right up to the digits without
+    // their padding, zeros fill its place.
+    const auto digits = std::find_if(t.begin() + 1, t.end() - 1, [](std::uint8_t c) { return c != '0'; });
+    std::fill(t.begin(), digits - 1, '0');
+    *(digits - 1) = '-';
+  }
+  return true;
+}
+
+bool respell_auto_move(Bytes& data, TargetSpelling to) {
+  bool changed = false;
+  for_each_target(std::span<std::uint8_t>(data), [&](std::span<std::uint8_t> t) { changed = respell_target(t, to) || changed; });
+  return changed;
+}
+
+namespace {
+
 Bytes encode_auto_move(const AutoMove& a) {
   return std::visit([](const auto& form) { return encode_layout(form); }, a.form);
 }

@@ -112,6 +112,19 @@ Outcome Controller::execute(const Frame& f) {
   // §3.18 byte 29, §3.19 bytes 29-39: "Not applicable if feed type is
   // circular"; the other side of ERRATA E-91 does not read them there.
   if (reads_other("E-91") && profile_.pol_type == PolType::kCircular) blank_polarization_fields(command);
+  // ERRATA E-45's other side: §3.3's "right justified and left padded with
+  // zeroes" read literally, the zeros left of a target's sign ("00-50" is
+  // -5.0), respelled sign first for the codec; "-0050" is malformed there.
+  // A field that names a stored satellite is form 1 whatever it spells
+  // (READING-NOTES 31).
+  // Fault target-spellings-both: zeros left of the sign read on the
+  // reference side too, and '-' first on the other.
+  const bool both_spellings = faults_.has(Fault::kTargetSpellingsBoth);
+  if ((reads_other("E-45") || both_spellings) && command.command == AutoMove::kCode && !Handlers::names_stored(*this, command)) {
+    if (!both_spellings && auto_move_spells(command.data, TargetSpelling::kSignFirst))
+      return Handlers::nak(*this, f.command, NakRule::kMalformedData, "'-' before a padding zero (E-45: zeros go left of the sign)");
+    respell_auto_move(command.data, TargetSpelling::kSignFirst);
+  }
   auto request = decode_request(command);
   if (!request) return Handlers::nak(*this, f.command, NakRule::kMalformedData, request.error().message());
   Outcome o = dispatch(command, request.value());

@@ -65,6 +65,10 @@ struct Handlers {
   // ---- motion (handlers_motion.cpp) ----------------------------------------------
   static Outcome auto_move(C& c, const Frame& f, const AutoMove& m);
   static std::optional<StoredSatellite> find_stored(const C& c, std::string_view name);
+  // A 32h ' ' frame whose bytes 4-13 name a stored satellite (form 1 then,
+  // READING-NOTES 31).
+  static bool names_stored(const C& c, const Frame& f);
+  static std::string form_one_name(const Frame& f);  // bytes 4-13, trailing blanks off
   static bool target_ok(const C& c, AxisId a, double deg);
   static std::optional<double> target_within(const C& c, AxisId a, double deg);
   static Outcome auto_move_form(C& c, const Frame& f, const AutoMoveStored& m);

@@ -87,12 +87,19 @@ Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveStored& m) {
   return status(c, 0x32, "auto move (form 1) to " + sat->name);
 }
 
+std::string Handlers::form_one_name(const Frame& f) {
+  std::string name(f.data.begin() + 1, f.data.end());
+  while (!name.empty() && name.back() == ' ') name.pop_back();
+  return name;
+}
+
+bool Handlers::names_stored(const C& c, const Frame& f) {
+  return f.command == AutoMove::kCode && !f.data.empty() && f.data[0] == ' ' && find_stored(c, form_one_name(f));
+}
+
 Outcome Handlers::auto_move_form(C& c, const Frame& f, const AutoMoveAzEl& m) {
   // READING-NOTES 31: a field that names a stored satellite is form 1.
-  const std::string field(f.data.begin() + 1, f.data.end());
-  std::string name = field;
-  while (!name.empty() && name.back() == ' ') name.pop_back();
-  if (find_stored(c, name)) return auto_move_form(c, f, AutoMoveStored{' ', name});
+  if (names_stored(c, f)) return auto_move_form(c, f, AutoMoveStored{' ', form_one_name(f)});
   return move_az_el(c, m.az / 10.0, m.el / 10.0, "auto move (form 2A)");
 }
 

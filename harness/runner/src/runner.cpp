@@ -268,6 +268,7 @@ Attempt attempt(Session& s, const Vector& v, std::vector<TranscriptEntry>& trans
   }
   s.captures.clear();
   s.steps_ended = false;
+  s.sides_shown.clear();
   for (const Step& step : v.setup)
     if (auto e = s.run_step(step)) {
       record(a, s, step, "setup: ", *e);

@@ -45,6 +45,16 @@ class Session : public ReceiverSink {
   // The last send met a `readings:` alternative with `ends` (the reference
   // side did not hold): the vector's steps end there, passed (runner.cpp).
   bool steps_ended = false;
+  // The side of a reading a step of this vector showed (one alternative
+  // listed, and only one side held): the rest of the vector is held to it,
+  // as a device takes one side of a point (check_sides).
+  ReadingPins sides_shown;
+  // The side of a reading the device's answers showed for the whole run
+  // (ERRATA E-45: the spelling of a negative target it ACKed), and the side
+  // known from the profile's pins or from the run.
+  ReadingPins run_sides;
+  std::optional<ReadingSide> side_known(const std::string& errata) const;
+  std::optional<std::string> send_and_judge(const Step& s, const Bytes& wire, std::vector<Frame>& replies_judged);
   bool measuring = false;  // a survey runs: no exchange is repeated, the faults are what it counts
   // Exchanges judged as the device's answer after a repeat (every try
   // silent, or the same bytes twice) that a line could still have made:

@@ -229,6 +229,17 @@ std::optional<std::string> check_record(const Expectation& e, const Frame& reply
   return std::nullopt;
 }
 
+// A 32h frame's targets (ERRATA E-45): whether one is spelled so, and the
+// frame respelled.
+bool spells(const Bytes& frame, TargetSpelling spelling) {
+  const auto f = decode_frame(frame);
+  return f && f.value().command == AutoMove::kCode && auto_move_spells(f.value().data, spelling);
+}
+void respell(Bytes& frame, TargetSpelling to) {
+  auto f = decode_frame(frame);
+  if (f && f.value().command == AutoMove::kCode && respell_auto_move(f.value().data, to)) frame = encode_frame(f.value());
+}
+
 }  // namespace
 
 std::optional<std::string> Session::check_matchers(const FrameDescription& d, const std::vector<FieldMatcher>& matchers) {
@@ -254,7 +265,37 @@ std::optional<std::string> Session::run_send(const Step& step) {
   auto bytes = s.command && !s.command->from_profile.empty() ? record_bytes(*s.command, expr_context(), profile.address)
                                                              : step_bytes(s, profile.address, captures);
   if (!bytes) return "cannot build the command: " + bytes.error().message();
-  const Bytes wire = apply_modifiers(bytes.value(), s.modifiers);
+  // ERRATA E-45: a negative 32h target built from fields is spelled as the
+  // device reads it, once the profile or the run has shown how (run_sides).
+  Bytes frame = bytes.value();
+  const bool spelled = s.command && spells(frame, TargetSpelling::kSignFirst);
+  const auto e45 = spelled ? side_known("E-45") : std::nullopt;
+  if (e45 == ReadingSide::kOther) respell(frame, TargetSpelling::kZerosFirst);
+  std::vector<Frame> replies;
+  auto failure = send_and_judge(s, apply_modifiers(frame, s.modifiers), replies);
+  // Neither side known yet: the codec's spelling ('-' first) went first. A
+  // NAK that fails the step may be the other side's "malformed": the command
+  // goes again with the zeros left of the sign (a NAKed command has no
+  // effect), and judged by that reply. The spelling the device ACKs is its
+  // side for the rest of the run.
+  if (!spelled || e45 || line_error) return failure;
+  auto answered = [&](FrameKind kind) { return replies.size() == 1 && replies[0].kind == kind; };
+  if (!failure || !answered(FrameKind::kNak)) {
+    if (answered(FrameKind::kAck)) run_sides["E-45"] = ReadingSide::kReference;
+    return failure;
+  }
+  respell(frame, TargetSpelling::kZerosFirst);
+  if (transcript)
+    transcript->push_back({t_ms(), false, {}, "E-45: NAKed with the target '-' first; sent again with the zeros left of the sign", {}, ""});
+  auto again = send_and_judge(s, apply_modifiers(frame, s.modifiers), replies);
+  if (!line_error && answered(FrameKind::kAck)) run_sides["E-45"] = ReadingSide::kOther;
+  if (!again || line_error) return again;
+  return *failure + "; sent again with the zeros left of the sign (ERRATA E-45): " + *again;
+}
+
+// One exchange of a send step and its judgement: the failure, if any, and
+// the replies judged.
+std::optional<std::string> Session::send_and_judge(const Step& s, const Bytes& wire, std::vector<Frame>& replies_judged) {
   const bool silence = s.expect.kind == Expectation::Kind::kSilence;
   const auto window = silence ? silence_window() : reply_timeout(wire.size());
   const TimePoint listen_start = transport.now();
@@ -263,6 +304,7 @@ std::optional<std::string> Session::run_send(const Step& step) {
   const std::size_t faults_before = line.faults;
   const Judged judged = exchange_judged(wire, s.modifiers, window, due_of(s.expect));
   const auto& replies = judged.replies;
+  replies_judged = replies;
   expect.clear();
   const auto nak_rules = transport.take_nak_rules();
   if (silence) {
@@ -293,6 +335,11 @@ std::optional<std::string> Session::run_send(const Step& step) {
   return failure;
 }
 
+std::optional<ReadingSide> Session::side_known(const std::string& errata) const {
+  if (auto side = side_pinned(profile.readings, errata)) return side;
+  return side_pinned(run_sides, errata);
+}
+
 std::optional<std::string> Session::check_reply(const Expectation& e, const Reply& got) {
   if (auto err = check_kind(e, got.replies, got.address, got.command)) return err;
   if (auto err = check_nak_rule(e, got.nak_rules)) return err;
@@ -317,14 +364,23 @@ std::optional<std::string> Session::check_reply(const Expectation& e, const Repl
 // when it meets the side of some point the profile has not pinned away —
 // the reference side (`e` itself) unless a listed point is pinned `other`,
 // or a point's other side unless it is pinned `reference`. The captures are
-// those of the side that passed.
+// those of the side that passed. A step that lists one point and meets only
+// one of its sides shows the device's side: the rest of the vector is held
+// to it (sides_shown), so that two steps each allowing both sides cannot
+// pass a device that takes neither (ERRATA E-45's two spellings).
 std::optional<std::string> Session::check_sides(const Expectation& e, const Reply& got) {
-  auto pinned = [&](const std::string& id) { return side_pinned(profile.readings, id); };
-  std::string ids, failures;
+  auto pinned = [&](const std::string& id) {
+    if (auto side = side_known(id)) return side;
+    return side_pinned(sides_shown, id);
+  };
+  std::string ids, failures, shown;
   bool reference_allowed = true;
   for (const auto& alt : e.readings) {
     ids += (ids.empty() ? "" : ", ") + alt.errata;
     if (pinned(alt.errata) == ReadingSide::kOther) reference_allowed = false;
+    // A side the device showed (not one the profile pins) is named.
+    const auto by_device = side_pinned(profile.readings, alt.errata) ? std::nullopt : pinned(alt.errata);
+    if (by_device) shown += (shown.empty() ? "" : ", ") + alt.errata + " " + std::string(to_string(*by_device));
   }
   const Captures before = captures;
   auto attempt = [&](const Expectation& side, const std::string& name) {
@@ -333,9 +389,27 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
     if (failure) failures += (failures.empty() ? "" : "; ") + name + ": " + *failure;
     return !failure;
   };
-  if (reference_allowed && attempt(e, ids + " reference")) return std::nullopt;
+  // One open point: the side that held alone is the device's from here on.
+  const bool one_open = e.readings.size() == 1 && !pinned(e.readings.front().errata);
+  auto show = [&](ReadingSide side) {
+    sides_shown[e.readings.front().errata] = side;
+    if (transcript)
+      transcript->push_back({t_ms(), false, {}, e.readings.front().errata + " " + std::string(to_string(side)) +
+                                                    " shown: the rest of the vector is held to it", {}, ""});
+  };
+  if (reference_allowed && attempt(e, ids + " reference")) {
+    if (one_open) {
+      const Captures passed = captures;
+      const std::string kept = failures;
+      if (!attempt(e.readings.front().expect, e.readings.front().errata + " other")) show(ReadingSide::kReference);
+      captures = passed;
+      failures = kept;
+    }
+    return std::nullopt;
+  }
   for (const auto& alt : e.readings)
     if (pinned(alt.errata) != ReadingSide::kReference && attempt(alt.expect, alt.errata + " other")) {
+      if (one_open) show(ReadingSide::kOther);
       if (alt.expect.ends) {
         steps_ended = true;
         if (transcript)
@@ -345,7 +419,7 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
     }
   captures = before;
   if (failures.empty()) return "no side of " + ids + " is left by the profile's readings: pins";
-  return "no legal reading holds (ERRATA " + ids + "): " + failures;
+  return "no legal reading holds (ERRATA " + ids + (shown.empty() ? "" : "; the device showed " + shown + " earlier") + "): " + failures;
 }
 
 // A poll without a timeout of its own waits as long as the longest moves it

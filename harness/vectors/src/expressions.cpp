@@ -19,6 +19,7 @@
 #include "sabus/harness/locate_targets.hpp"
 #include "sabus/harness/readings.hpp"
 #include "sabus/harness/motion.hpp"
+#include "sabus/protocol/codec.hpp"
 #include "sabus/protocol/enumerations.hpp"
 #include "sabus/protocol/frame.hpp"
 #include "sabus/protocol/lrc.hpp"
@@ -318,6 +319,35 @@ Result position_of_sign(const Call& c, int sign) {
   });
 }
 
+// A negative position inside the axis's range whose digits leave a padding
+// zero in a 32h target (down to -99.9 deg), where ERRATA E-45's two
+// spellings differ.
+Result padded_negative(const Call& c) {
+  return with_read_axis(c, [](motion::Axis axis, const AxisProfile& a) {
+    const double margin = a.tolerance_deg + 0.5;
+    const double bottom = std::max(a.min_deg + margin, -99.9), top = std::min(a.max_deg, 0.0) - margin;
+    if (top - bottom < 0.1)
+      return unavailable("a negative " + std::string(motion::name_of(axis)) + " above -100.0 inside its range");
+    return number(std::floor((top + bottom) / 2 * 10) / 10);
+  });
+}
+
+// x as a 32h signed target of `width` characters at `decimals` (§3.3), in
+// one of ERRATA E-45's spellings, as text for a raw template.
+Result target_text(const Call& c, TargetSpelling spelling) {
+  if (auto e = c.numbers({0, 1, 2})) return error(*e);
+  const int width = c.integer(1), decimals = c.integer(2);
+  if (width < 2 || width > 10 || decimals < 0 || decimals > 2)
+    return error("a target is 2-10 characters with 0-2 decimals (§3.3 forms 2A, 2C, 3)");
+  const double scaled = std::round(c.args[0].number * std::pow(10.0, decimals));
+  const double room = std::pow(10.0, scaled < 0 ? width - 1 : width);
+  if (std::abs(scaled) >= room) return error(format_number(c.args[0].number) + " does not fit " + std::to_string(width) + " characters");
+  Bytes t(static_cast<std::size_t>(width));
+  fields::SignedDigits{static_cast<std::size_t>(width), decimals}.encode(static_cast<std::int32_t>(scaled), t);
+  respell_target(t, spelling);
+  return text(std::string(t.begin(), t.end()));
+}
+
 // The hundredths digit of §3.17 bytes 49-50 after a form 2C move (ERRATA
 // E-86, E-87): the digits d (0-9) for which the tenths reading `reading`
 // (bytes 14-25, captured) extended by d lies within the axis's arrival
@@ -590,6 +620,15 @@ const Function kFunctions[] = {
      }},
     {{"negative", "axis", "a negative position inside the axis's range, in tenths; unavailable when the range has none"}, 1,
      [](const Call& c) { return position_of_sign(c, -1); }},
+    {{"padded_negative", "axis",
+      "a negative position inside the axis's range above -100.0, whose 32h target has a padding zero (E-45); unavailable "
+      "when the range has none"},
+     1, [](const Call& c) { return padded_negative(c); }},
+    {{"sign_first", "x, width, decimals", "x as a 32h target, '-' first then zero-padded digits: -5.0 in 5 at 1 is -0050 (§3.3, E-45), as text"},
+     3, [](const Call& c) { return target_text(c, TargetSpelling::kSignFirst); }},
+    {{"zeros_first", "x, width, decimals",
+      "x as a 32h target right-justified with the zeros left of its sign: -5.0 in 5 at 1 is 00-50 (E-45's other side), as text"},
+     3, [](const Call& c) { return target_text(c, TargetSpelling::kZerosFirst); }},
     {{"min", "a, b", "the smaller number"}, 2,
      [](const Call& c) {
        if (auto e = c.numbers({0, 1})) return error(*e);

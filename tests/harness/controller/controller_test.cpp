@@ -1187,6 +1187,8 @@ TEST(Faults, EveryFaultChangesTheWire) {
       // -1.5 deg of azimuth at 2 deg/s: there after 1 s, or at +1.5.
       {Fault::kForm2CSignDropped, [](Profile& p) { p.hundredths = true; p.az.initial_deg = 0; },
        wire(AutoMove{AutoMoveAxis{'A', -150}}, '2')},
+      // Form 3 to -5.0 with the zeros left of the sign (E-45's other spelling): NAKed, or a move.
+      {Fault::kTargetSpellingsBoth, none, raw(0x32, "P00-5000000")},
       // The default scale (10000 at 0 deg, 100 a degree): -1.5 deg of azimuth, the elevation where it is.
       {Fault::kForm2BMirrored, [](Profile& p) { p.az_sensor = AzSensor::kPulse; p.az.initial_deg = 0; },
        wire(AutoMove{AutoMoveCounts{9850, 14500}}, '2')},

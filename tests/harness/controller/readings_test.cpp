@@ -487,6 +487,54 @@ TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
   EXPECT_FALSE(is_nak(other.send(s))) << "status reads between are no command";
 }
 
+// E-45: the spelling of a negative 32h target (forms 2A, 2C, 3).
+TEST(Readings, E45TheOtherSideReadsZerosLeftOfTheSign) {
+  Profile p = site_profile();
+  p.hundredths = true;
+  Rig ref(p), other(reading(p, "E-45"));
+  // Form 3 to -5.0: the reference spelling, then the other side's.
+  EXPECT_FALSE(is_nak(ref.send_raw(0x32, "P-005000000")));
+  EXPECT_EQ(other.send_raw(0x32, "P-005000000").nak, NakRule::kMalformedData);
+  EXPECT_TRUE(is_nak(ref.send_raw(0x32, "P00-5000000")));
+  ASSERT_FALSE(is_nak(other.send_raw(0x32, "P00-5000000")));
+  other.wait(60s);
+  ref.wait(60s);
+  EXPECT_NEAR(other.c.state().pol.position, -5.0, 0.05);
+  EXPECT_NEAR(ref.c.state().pol.position, -5.0, 0.05);
+  // Form 2C to az -12.34 and form 2A to az -2.0, el -1.5.
+  EXPECT_TRUE(is_nak(other.send_raw(0x32, "A-01234    ")));
+  ASSERT_FALSE(is_nak(other.send_raw(0x32, "A0-1234    ")));
+  other.wait(120s);
+  EXPECT_NEAR(other.c.state().az.position, -12.34, 0.01);
+  ASSERT_FALSE(is_nak(other.send_raw(0x32, " 00-2000-15")));
+  other.wait(120s);
+  EXPECT_NEAR(other.c.state().az.position, -2.0, 0.05);
+  EXPECT_NEAR(other.c.state().el.position, -1.5, 0.05);
+  // Digits that fill the field read alike: §3.3's own "-152500456".
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send_raw(0x32, " -152500456"))) << "§3.3's example";
+    r->wait(300s);
+    EXPECT_NEAR(r->c.state().az.position, -152.5, 0.05);
+    EXPECT_NEAR(r->c.state().el.position, 45.6, 0.05);
+  }
+  // A '-' anywhere else, or after a nonzero digit, is malformed on both.
+  for (Rig* r : {&ref, &other}) {
+    EXPECT_EQ(r->send_raw(0x32, "P1-00000000").nak, NakRule::kMalformedData);
+    EXPECT_EQ(r->send_raw(0x32, "P0050-00000").nak, NakRule::kMalformedData);
+  }
+}
+
+// A field that names a stored satellite is form 1 on both sides of E-45
+// (READING-NOTES 31), whatever it spells.
+TEST(Readings, E45LeavesAStoredNameThatLooksSignedToFormOne) {
+  Profile p = site_profile();
+  p.store.push_back({"-0050", -60.0, 30.0, 0, 0});
+  Rig other(reading(p, "E-45"));
+  ASSERT_FALSE(is_nak(other.send_raw(0x32, " -0050     ")));
+  other.wait(300s);
+  EXPECT_NEAR(other.c.state().az.position, -60.0, 0.05);
+}
+
 // E-65: a Remote Store of a new name with the STORE list full.
 TEST(Readings, E65TheOtherSideAcksAStoreIntoAFullListAndStoresNothing) {
   Profile full = site_profile();

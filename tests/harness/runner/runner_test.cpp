@@ -272,6 +272,80 @@ TEST(Runner, AReadingsAlternativeThatEndsEndsTheStepsOnlyWhenItIsTheSideThatHeld
   EXPECT_EQ(run("0x15", true, ReadingSide::kReference).verdict, Verdict::kFail) << "pinned away";
 }
 
+// A device takes one side of a point: a step that lists one entry and meets
+// only one side binds the rest of its vector to it (Session::sides_shown),
+// so two steps that each accept both sides fail a device that takes neither.
+TEST(Runner, AStepThatShowsOneSideHoldsTheRestOfItsVectorToIt) {
+  auto with_start = [](std::string byte) {
+    Step s = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+    s.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {std::move(byte)}));
+    return s;
+  };
+  auto either = [&](std::string reference, std::string other) {
+    Step step = with_start(std::move(reference));
+    step.expect.readings.push_back(ReadingAlternative{"E-91", with_start(std::move(other)).expect});
+    return step;
+  };
+  const Step shows_reference = either("0x06", "0x15"), needs_other = either("0x15", "0x06");
+  const RunResult r = run_in_process({vector_with("alone", {needs_other}), vector_with("bound", {shows_reference, needs_other}),
+                                      vector_with("both", {either("0x06", "0x06"), needs_other})});
+  EXPECT_EQ(r.vectors.at(0).verdict, Verdict::kPass) << "on its own the step takes either side";
+  ASSERT_EQ(r.vectors.at(1).verdict, Verdict::kFail) << "the first step showed the reference side";
+  EXPECT_NE(r.vectors.at(1).failures[0].find("no legal reading holds (ERRATA E-91; the device showed E-91 reference earlier): "
+                                              "E-91 reference: byte 0 start"),
+            std::string::npos)
+      << r.vectors.at(1).failures[0];
+  EXPECT_EQ(r.vectors.at(2).verdict, Verdict::kPass) << "a step that both sides pass shows neither";
+}
+
+// ERRATA E-45: a negative 32h target built from fields goes out '-' first
+// while the device's spelling is unknown; a NAK that fails the step sends it
+// again with the zeros left of the sign, and the spelling the device ACKs is
+// its side for the rest of the run. A pinned profile sends its side's
+// spelling at once; a target NAKed in both spellings fails, naming both.
+TEST(Runner, ANegativeTargetGoesOutInTheSpellingTheDeviceAcks) {
+  const Profile p = load_profile_file(default_profile_path()).profile.value();
+  Step to_minus_five = send_command("auto_move", "3", {{"pol target", "-5.0"}}, Expectation::Kind::kAck);
+  const std::vector<Vector> twice = {vector_with("first", {to_minus_five}, {"motion"}),
+                                     vector_with("second", {to_minus_five}, {"motion"})};
+  struct Sent {
+    std::vector<std::string> targets;  // each 32h's bytes 4-8, in order
+    RunResult result;
+  };
+  auto run = [&](std::optional<ReadingSide> device, std::optional<ReadingSide> pin) {
+    Profile d = p, m = p;
+    if (device) d.readings["E-45"] = *device;
+    if (pin) m.readings["E-45"] = *pin;
+    auto t = make_in_process_transport({d}, {});
+    RunOptions o;
+    o.allow_motion = true;
+    o.record_transcripts = true;
+    Sent s{{}, Runner(*t, m, o).run(twice)};
+    for (const auto& v : s.result.vectors)
+      for (const auto& e : v.transcript)
+        if (e.sent && e.bytes.size() == 16 && e.bytes[2] == 0x32) s.targets.emplace_back(e.bytes.begin() + 4, e.bytes.begin() + 9);
+    return s;
+  };
+  const Sent learned = run(ReadingSide::kOther, std::nullopt);
+  for (const auto& v : learned.result.vectors) EXPECT_EQ(v.verdict, Verdict::kPass) << v.id;
+  EXPECT_EQ(learned.targets, (std::vector<std::string>{"-0050", "00-50", "00-50"})) << "NAKed once, then the device's spelling";
+  EXPECT_EQ(run(ReadingSide::kReference, std::nullopt).targets, (std::vector<std::string>{"-0050", "-0050"}));
+  EXPECT_EQ(run(ReadingSide::kOther, ReadingSide::kOther).targets, (std::vector<std::string>{"00-50", "00-50"}));
+  const Sent wrong_pin = run(ReadingSide::kOther, ReadingSide::kReference);
+  EXPECT_EQ(wrong_pin.targets, (std::vector<std::string>{"-0050", "-0050"})) << "a pinned side is never sent the other way";
+  EXPECT_EQ(wrong_pin.result.vectors.at(0).verdict, Verdict::kFail);
+  // Out of the feed's range (-90.0 to 90.0): NAKed in both spellings.
+  to_minus_five.command->fields["pol target"] = "-95.0";
+  auto t = make_in_process_transport({p}, {});
+  RunOptions o;
+  o.allow_motion = true;
+  const RunResult out = Runner(*t, p, o).run({vector_with("out", {to_minus_five}, {"motion"})});
+  ASSERT_EQ(out.vectors.at(0).verdict, Verdict::kFail);
+  EXPECT_NE(out.vectors.at(0).failures[0].find("; sent again with the zeros left of the sign (ERRATA E-45): expected an ACK"),
+            std::string::npos)
+      << out.vectors.at(0).failures[0];
+}
+
 TEST(Runner, PassFailSkipAndLiveness) {
   auto status = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
   status.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {"0x06"}));

@@ -21,6 +21,30 @@ Frame request_frame(const Request& request, std::uint8_t address);
 // contradicts the catalog, or the first field that does not decode.
 Expected<Request> decode_request(const Frame& frame);
 
+// The signed targets of a 32h request (§3.3: forms 2A, 2C and 3, in the form
+// its byte 3 selects, whether or not the data decodes): each one's first data
+// byte (0 = byte 3) and width. Their spelling is ERRATA E-45's reading.
+struct DataSpan {
+  std::size_t first = 0;
+  std::size_t width = 0;
+};
+std::vector<DataSpan> auto_move_signed_targets(std::uint8_t form_byte);
+
+// ERRATA E-45's two spellings of a negative target: '-' first, then
+// zero-padded digits ("-0050" is -5.0; the codec's), or the value
+// right-justified with the zeros left of its sign ("00-50"). A target whose
+// digits fill the field ("-1525"), or has no '-', reads alike in both and
+// has no spelling of its own.
+enum class TargetSpelling : std::uint8_t { kSignFirst, kZerosFirst };
+std::optional<TargetSpelling> spelling_of(ByteView target);
+// One target respelled `to` when it is spelled the other way; whether it was.
+bool respell_target(std::span<std::uint8_t> target, TargetSpelling to);
+// Whether a target of 32h `data` (from byte 3) is spelled so.
+bool auto_move_spells(ByteView data, TargetSpelling spelling);
+// Rewrites each target of 32h `data` spelled the other way into `to`;
+// returns whether one changed.
+bool respell_auto_move(Bytes& data, TargetSpelling to);
+
 // The reply frame for `command` (ACK with data, NAK, or the offline reply).
 // The reply type must be the catalog's reply kind for `command`.
 Expected<Frame> reply_frame(const Reply& reply, std::uint8_t address, std::uint8_t command);

@@ -56,6 +56,8 @@ namespace sabus::harness {
   X(kPulseCountNoOffset, "pulse-count-no-offset", "pulse counts leave out count_offset: position x counts_per_degree") \
   X(kHundredthsAlwaysZero, "hundredths-always-zero", "extended status bytes 49-50 are '0' on a mount with 0.01 deg feedback") \
   X(kForm2CSignDropped, "form2c-sign-dropped", "auto move form 2C ignores the target's sign: -2.57 moves to 2.57")   \
+  X(kTargetSpellingsBoth, "target-spellings-both",                                                               \
+    "a negative auto-move target is taken in both of E-45's spellings, '-0050' and '00-50'")                       \
   X(kForm2BMirrored, "form2b-negative-mirrored", "auto move form 2B takes a count below count_offset as as far above it") \
   X(kStopKeyIgnoredInRemote, "stop-key-ignored-in-remote", "the Stop key (36h 'K', 48h) does not stop a remote auto move") \
   X(kXReentersRemote, "x-reenters-remote", "'X' in REMOTE mode enters it again: the state reads INITIALIZING_MODE") \
