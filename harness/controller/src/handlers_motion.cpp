@@ -114,17 +114,20 @@ Outcome Handlers::move_az_el(C& c, double az, double el, std::string note) {
   return status(c, 0x32, std::move(note));
 }
 
+// Forms 2B and 2C need their sensors (§3.3); ERRATA E-50's other side takes
+// them anyway, as well as the mount can.
 Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveCounts& m) {
-  if (c.profile_.az_sensor != AzSensor::kPulse && c.profile_.az_sensor != AzSensor::kResolver)
+  if (c.profile_.az_sensor != AzSensor::kPulse && c.profile_.az_sensor != AzSensor::kResolver && !c.reads_other("E-50"))
     return nak(c, 0x32, NakRule::kNoCountSensors);
   return move_az_el(c, c.position_of_counts(m.az), c.position_of_counts(m.el), "auto move (form 2B)");
 }
 
 Outcome Handlers::auto_move_form(C& c, const Frame&, const AutoMoveAxis& m) {
-  if (!c.profile_.hundredths) return nak(c, 0x32, NakRule::kNoHundredths);
+  if (!c.profile_.hundredths && !c.reads_other("E-50")) return nak(c, 0x32, NakRule::kNoHundredths);
   const AxisId a = m.axis == 'A' ? AxisId::kAz : AxisId::kEl;
   // Fault form2c-sign-dropped: the digits without their '-'.
-  const double target = (c.faults_.has(Fault::kForm2CSignDropped) ? std::abs(m.target) : m.target) / 100.0;
+  double target = (c.faults_.has(Fault::kForm2CSignDropped) ? std::abs(m.target) : m.target) / 100.0;
+  if (!c.profile_.hundredths) target = std::round(target * 10) / 10;  // E-50: the mount's 0.1 deg
   const auto to = target_within(c, a, target);
   if (!to) return nak(c, 0x32, NakRule::kTargetOutOfRange);
   take_remote_control(c);

@@ -535,6 +535,26 @@ TEST(Readings, E45LeavesAStoredNameThatLooksSignedToFormOne) {
   EXPECT_NEAR(other.c.state().az.position, -60.0, 0.05);
 }
 
+// E-50: forms 2B and 2C on a mount without their sensors.
+TEST(Readings, E50TheOtherSideMovesByFormsWhoseSensorsTheMountLacks) {
+  Profile p = site_profile();
+  p.az_sensor = AzSensor::kPot;
+  p.hundredths = false;
+  Rig ref(p), other(reading(p, "E-50"));
+  const AutoMove counts{AutoMoveCounts{static_cast<std::uint32_t>(p.count_offset + 10 * p.counts_per_degree),
+                                       static_cast<std::uint32_t>(p.count_offset + 20 * p.counts_per_degree)}};
+  EXPECT_EQ(ref.send(counts).nak, NakRule::kNoCountSensors);
+  ASSERT_FALSE(is_nak(other.send(counts)));
+  other.wait(300s);
+  EXPECT_NEAR(other.c.state().az.position, 10.0, 0.05) << "by the profile's scale";
+  EXPECT_NEAR(other.c.state().el.position, 20.0, 0.05);
+  const AutoMove hundredths{AutoMoveAxis{'E', 2537}};
+  EXPECT_EQ(ref.send(hundredths).nak, NakRule::kNoHundredths);
+  ASSERT_FALSE(is_nak(other.send(hundredths)));
+  other.wait(300s);
+  EXPECT_NEAR(other.c.state().el.position, 25.4, 0.001) << "to the mount's tenth";
+}
+
 // E-65: a Remote Store of a new name with the STORE list full.
 TEST(Readings, E65TheOtherSideAcksAStoreIntoAFullListAndStoresNothing) {
   Profile full = site_profile();
