@@ -328,16 +328,30 @@ TEST(Navigation, WriteFromTheManualAndRead) {
   EXPECT_EQ(std::get<NavigationDataReply>(decode_reply(decode_frame(reply).value()).value()), r);
 }
 
-TEST(Signpost, FecCodesOfReadingNotes32) {
+// §3.20 byte 21 "1 - 9": the codec reads the whole range, 4 and 8 too
+// (whether a controller takes them is ERRATA E-32's reading); 0 is outside.
+TEST(Signpost, FecCodesOfTheRangeOneToNine) {
   WriteSignpost w;
-  w.signpost.fec = '4';
+  for (char fec : {'1', '4', '8', '9'}) {
+    w.signpost.fec = fec;
+    const auto d = decode_request(decode_frame(encode_request(w, '2')).value());
+    ASSERT_TRUE(d.ok()) << fec;
+    EXPECT_EQ(std::get<WriteSignpost>(d.value()).signpost.fec, fec);
+  }
+  w.signpost.fec = '9';
   Bytes f = encode_request(w, '2');
   ASSERT_EQ(f.size(), 36u);
+  f[21] = '0';
+  f.back() = lrc(ByteView(f).first(f.size() - 1));
   auto e = decode_request(decode_frame(f).value());
   ASSERT_FALSE(e.ok());
   EXPECT_EQ(e.error().field, "fec");
-  w.signpost.fec = '9';
-  EXPECT_TRUE(decode_request(decode_frame(encode_request(w, '2')).value()).ok());
+  w.signpost.fec = '8';
+  const FrameDescription d = describe_frame(encode_request(w, '2'));
+  const auto fec = std::find_if(d.fields.begin(), d.fields.end(), [](const FieldDescription& x) { return x.name == "fec"; });
+  ASSERT_NE(fec, d.fields.end());
+  EXPECT_TRUE(fec->ok);
+  EXPECT_NE(fec->meaning.find("not defined (E-32)"), std::string::npos) << fec->meaning;
 }
 
 TEST(Display, ReplyIs169Bytes) {

@@ -186,6 +186,12 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
   if (!in_range(d.longitude, -1799, 1800) || !in_range(d.frequency, 10700, 12750) ||
       !in_range(d.symbol_rate, 1000, 30000))
     return nak(c, 0x43, NakRule::kSignpostField);
+  // ERRATA E-32: 4 and 8 lie in the field's range "1 - 9" but name no code;
+  // the reference side NAKs them as invalid data, the other stores them.
+  const bool defined = std::any_of(std::begin(layouts::kFec), std::end(layouts::kFec),
+                                   [&](const fields::ChoiceItem& i) { return i.ch == d.fec; });
+  if (!defined && !c.reads_other("E-32"))
+    return nak(c, 0x43, NakRule::kMalformedData, std::string("FEC code ") + d.fec + " is not defined (E-32)");
   const std::size_t slot = slot_written(c, w.index);
   c.state_.signposts[slot - 1] = Signpost{static_cast<std::uint8_t>(slot), d};
   return stored(ack(c, 0x43, AckReply{}, "signpost " + std::to_string(w.index) + " written"));

@@ -463,6 +463,21 @@ void Lockstep::take_positions(const std::vector<Frame>& device, const std::funct
         }
         continue;
       }
+      // ... or, at rest, in its limit bits (§3.2 bytes 32-34: 4 the upper
+      // limit, 2 the lower) where it stands at one.
+      const auto axis_of_limits = f.name.ends_with(" limits") ? axis_of(f.name, dev) : std::nullopt;
+      if (axis_of_limits && position_unknown_[*axis_of_limits] && !device_moving(dev, *axis_of_limits) &&
+          motion_of(m, *axis_of_limits) == AxisState::Motion::kIdle) {
+        const int bits = f.raw.starts_with("0x") ? std::stoi(f.raw.substr(2), nullptr, 16) & 0x06 : 0;
+        if (bits == 4 || bits == 2) {
+          const AxisProfile& ap = axis_profile(*axis_of_limits);
+          by_axis(m.mutable_state(), *axis_of_limits).position = bits == 4 ? ap.max_deg : ap.min_deg;
+          position_unknown_[*axis_of_limits] = false;
+          drifted_[*axis_of_limits] = true;
+          ++coverage_.resyncs;
+        }
+        continue;
+      }
       if (!is_position(f.name)) continue;
       const auto axis = axis_of(f.name, dev);
       if (!axis || motion_of(m, *axis) != AxisState::Motion::kIdle) continue;
@@ -1176,6 +1191,11 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
         }))
       return true;
   }
+  // An axis whose position the model lost (position_unknown_: out of a
+  // device-led episode with no reading, E-42): whether it stands at a limit
+  // and how long a move from there runs are the device's until it shows
+  // where it is (take_positions: a count, or a limit it rests at).
+  if (has_axis && position_unknown_[axis] && (f.name.ends_with(" limits") || f.name.ends_with(" status"))) return true;
   bool moving = false;
   if (has_axis)
     for (Run* run : r.same) moving |= motion_of(run->bus->controller(0), axis) != AxisState::Motion::kIdle;

@@ -21,6 +21,8 @@ constexpr std::array kPoints{
                  "B is one bit: a tens digit of 2 is malformed and NAKed (41h and 42h)"},
     ReadingPoint{"E-30", "§3.17 bytes 49-50", "without 0.01 deg feedback the hundredths digits are '0'",
                  "without 0.01 deg feedback the hundredths bytes are blank"},
+    ReadingPoint{"E-32", "§3.20 byte 21; §3.21 byte 21", "FEC codes 4 and 8 name no code: 43h NAKs them",
+                 "4 and 8 lie in the range \"1 - 9\": 43h stores them and 44h reads them back"},
     ReadingPoint{"E-33", "§3.2 bytes 14-31; §3.16; §3.22 bytes 30-34; §3.24 bytes 4-9",
                  "positions are right-justified and blank-padded; pulse counts and the 45h heading are zero-padded",
                  "positions are left-justified; pulse counts and the 45h heading are padded with blanks"},

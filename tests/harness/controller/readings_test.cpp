@@ -487,6 +487,26 @@ TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
   EXPECT_FALSE(is_nak(other.send(s))) << "status reads between are no command";
 }
 
+// E-32: FEC codes 4 and 8, inside the range "1 - 9" and named by no code.
+TEST(Readings, E32TheOtherSideStoresFecCodesFourAndEight) {
+  Profile p = site_profile();
+  p.dvb_receiver = true;
+  Rig ref(p), other(reading(p, "E-32"));
+  WriteSignpost w;
+  w.index = 3;
+  w.signpost = {0, 11000, 20000, '4', 'H', "FEC", 1, "0000"};
+  EXPECT_EQ(ref.send(w).nak, NakRule::kMalformedData);
+  ASSERT_FALSE(is_nak(other.send(w)));
+  ReadSignpost r;
+  r.index = 3;
+  const auto back = other.reply<SignpostDataReply>(r);
+  EXPECT_EQ(back.signpost.fec, '4') << "read back as stored";
+  w.signpost.fec = '0';
+  EXPECT_EQ(other.send(w).nak, NakRule::kMalformedData) << "0 is outside the range on both sides";
+  w.signpost.fec = '7';
+  EXPECT_FALSE(is_nak(ref.send(w))) << "a defined code on both";
+}
+
 // E-45: the spelling of a negative 32h target (forms 2A, 2C, 3).
 TEST(Readings, E45TheOtherSideReadsZerosLeftOfTheSign) {
   Profile p = site_profile();

@@ -67,9 +67,15 @@ inline constexpr ChoiceItem kStorePol[] = {{'C', "use calculated H,V values"},
                                            {'S', "use the H,V values in bytes 30-39"},
                                            {'H', "current position is horizontal"},
                                            {'V', "current position is vertical"}};
-// READING-NOTES 32: 4 and 8 are not defined.
+// The seven defined FEC codes (READING-NOTES 32: 4 and 8 are not defined).
 inline constexpr ChoiceItem kFec[] = {{'1', "1/2"}, {'2', "2/3"}, {'3', "3/4"}, {'5', "5/6"},
                                       {'6', "6/7"}, {'7', "7/8"}, {'9', "AUTO"}};
+// The field's range, "1 - 9" (§3.20 byte 21): whether a controller takes 4
+// and 8 is ERRATA E-32's reading, so the codec reads them and the
+// controller decides.
+inline constexpr ChoiceItem kFecRange[] = {{'1', "1/2"}, {'2', "2/3"}, {'3', "3/4"},  {'4', "not defined (E-32)"},
+                                           {'5', "5/6"}, {'6', "6/7"}, {'7', "7/8"},  {'8', "not defined (E-32)"},
+                                           {'9', "AUTO"}};
 inline constexpr ChoiceItem kSignpostPol[] = {{'H', "horizontal"}, {'V', "vertical"}, {'L', "LHCP"}, {'R', "RHCP"}};
 inline constexpr ChoiceItem kJogAxis[] = {{'A', "azimuth"}, {'E', "elevation"}, {'P', "polarization"}};
 inline constexpr ChoiceItem kBlink[] = {{'0', "cursor not blinking"}, {'1', "cursor blinking"}};
@@ -169,7 +175,7 @@ struct SignpostData {
     v("longitude", kLongitude, m.longitude);                  // 5-10
     v("frequency", LeftDecimal{5, 0}, m.frequency);           // 11-15
     v("symbol rate", LeftDecimal{5, 0}, m.symbol_rate);       // 16-20
-    v("fec", Choice{kFec}, m.fec);                            // 21
+    v("fec", Choice{kFecRange}, m.fec);                       // 21
     v("polarization", Choice{kSignpostPol}, m.polarization);  // 22
     v("id", Text{6}, m.id);                                   // 23-28
     v("priority", Digits{1}, m.priority);                     // 29
