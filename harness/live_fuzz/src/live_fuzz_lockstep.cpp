@@ -23,6 +23,9 @@ struct ReplyField {
 
 namespace {
 
+// A binary reply byte as describe_frame shows it ("0x5c").
+unsigned long hex_byte(const std::string& raw) { return std::strtoul(raw.c_str(), nullptr, 16); }
+
 struct ReplySink : ReceiverSink {
   std::vector<Frame> frames;
   void on_frame(const FrameView& f) override { frames.push_back(f.to_frame()); }
@@ -468,7 +471,7 @@ void Lockstep::take_positions(const std::vector<Frame>& device, const std::funct
       const auto axis_of_limits = f.name.ends_with(" limits") ? axis_of(f.name, dev) : std::nullopt;
       if (axis_of_limits && position_unknown_[*axis_of_limits] && !device_moving(dev, *axis_of_limits) &&
           motion_of(m, *axis_of_limits) == AxisState::Motion::kIdle) {
-        const int bits = f.raw.starts_with("0x") ? std::stoi(f.raw.substr(2), nullptr, 16) & 0x06 : 0;
+        const unsigned long bits = hex_byte(f.raw) & 0x06;
         if (bits == 4 || bits == 2) {
           const AxisProfile& ap = axis_profile(*axis_of_limits);
           by_axis(m.mutable_state(), *axis_of_limits).position = bits == 4 ? ap.max_deg : ap.min_deg;
@@ -868,8 +871,6 @@ bool Lockstep::device_leads_mode(std::uint8_t mode) const {
 }
 
 namespace {
-// A binary reply byte as describe_frame shows it ("0x5c").
-unsigned long hex_byte(const std::string& raw) { return std::strtoul(raw.c_str(), nullptr, 16); }
 
 // A LOCATE that runs: in LOCATE_MODE, neither waiting (for its site or data,
 // E-59) nor in a range or parameter error (E-81), which hold it at rest.

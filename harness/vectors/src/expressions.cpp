@@ -305,30 +305,22 @@ Result count_bound(const Call& c, int side) {
 
 // negative(axis) and positive(axis): a position of that sign inside the
 // range, in the middle of the part clear of 0 and of the limits by the
-// tolerance and half a degree, in tenths rounded away from 0.
-Result position_of_sign(const Call& c, int sign) {
-  return with_read_axis(c, [sign](motion::Axis axis, const AxisProfile& a) {
+// tolerance and half a degree, in tenths rounded away from 0; with `within`,
+// no farther from 0 than that (padded_negative: 99.9, so that a 32h target's
+// tenths in 5 characters keep a padding zero, where ERRATA E-45's two
+// spellings differ).
+Result position_of_sign(const Call& c, int sign, std::optional<double> within = std::nullopt) {
+  return with_read_axis(c, [sign, within](motion::Axis axis, const AxisProfile& a) {
     const double margin = a.tolerance_deg + 0.5;
-    const double bottom = (sign > 0 ? std::max(a.min_deg, 0.0) : a.min_deg) + margin;
-    const double top = (sign > 0 ? a.max_deg : std::min(a.max_deg, 0.0)) - margin;
+    double bottom = (sign > 0 ? std::max(a.min_deg, 0.0) : a.min_deg) + margin;
+    double top = (sign > 0 ? a.max_deg : std::min(a.max_deg, 0.0)) - margin;
+    if (within && sign > 0) top = std::min(top, *within);
+    if (within && sign < 0) bottom = std::max(bottom, -*within);
     if (top - bottom < 0.1)
       return unavailable(std::string(sign > 0 ? "a positive " : "a negative ") + std::string(motion::name_of(axis)) +
-                         " inside its range");
+                         (within ? " within " + format_number(*within) + " deg of 0" : "") + " inside its range");
     const double middle_tenths = (top + bottom) / 2 * 10;
     return number((sign > 0 ? std::ceil(middle_tenths) : std::floor(middle_tenths)) / 10);
-  });
-}
-
-// A negative position inside the axis's range whose digits leave a padding
-// zero in a 32h target (down to -99.9 deg), where ERRATA E-45's two
-// spellings differ.
-Result padded_negative(const Call& c) {
-  return with_read_axis(c, [](motion::Axis axis, const AxisProfile& a) {
-    const double margin = a.tolerance_deg + 0.5;
-    const double bottom = std::max(a.min_deg + margin, -99.9), top = std::min(a.max_deg, 0.0) - margin;
-    if (top - bottom < 0.1)
-      return unavailable("a negative " + std::string(motion::name_of(axis)) + " above -100.0 inside its range");
-    return number(std::floor((top + bottom) / 2 * 10) / 10);
   });
 }
 
@@ -623,7 +615,7 @@ const Function kFunctions[] = {
     {{"padded_negative", "axis",
       "a negative position inside the axis's range above -100.0, whose 32h target has a padding zero (E-45); unavailable "
       "when the range has none"},
-     1, [](const Call& c) { return padded_negative(c); }},
+     1, [](const Call& c) { return position_of_sign(c, -1, 99.9); }},
     {{"sign_first", "x, width, decimals", "x as a 32h target, '-' first then zero-padded digits: -5.0 in 5 at 1 is -0050 (§3.3, E-45), as text"},
      3, [](const Call& c) { return target_text(c, TargetSpelling::kSignFirst); }},
     {{"zeros_first", "x, width, decimals",
