@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # gate.fuzz_readings (issue 31): the live fuzzer against the reference
 # controller on the other side of every open point of the spec (`--reading
-# other`, readings.hpp) must find nothing: a difference there is a note,
+# other`, readings.hpp; on the shipped profiles also `--reading other-2`, the
+# third sides) must find nothing: a difference there is a note,
 # never a finding. 4,000 writes with motion and stored writes on, in-process
 # on every shipped profile and on 20 random legal profiles of a fixed
 # sweep seed, with a fixed fuzz seed (open points left open; in-process runs
@@ -46,6 +47,10 @@ fuzz_one() {
 fresh_seed=$seed seed=1
 for p in "$profiles"/*.yaml; do
   fuzz_one "$(basename "$p" .yaml)" --sim --reading other --profile "$p"
+done
+# The third side of every entry that lists one (other-2; other elsewhere).
+for p in "$profiles"/*.yaml; do
+  fuzz_one "other-2-$(basename "$p" .yaml)" --sim --reading other-2 --profile "$p"
 done
 seed=$fresh_seed
 # random_profiles DIR SWEEP_SEED: 20 random legal profiles written to DIR.

@@ -35,8 +35,8 @@ inline constexpr int kExitLineError = 6;
 // --reading of sabus sim, run --sim and fuzz --sim (readings.hpp).
 inline constexpr const char* kReadingHelp =
     "The side of the spec's open points the reference controller takes (protocol/ERRATA.md, class reading): "
-    "other (every one flipped), reference, or E-NN=other|reference,... one at a time (default: the profile's pins, "
-    "else reference)";
+    "other (every one flipped), other-2 (the third side where a point has one, else other), reference, or "
+    "E-NN=SIDE,... one at a time (default: the profile's pins, else reference)";
 
 // How much the commands say: -q only failures and the summary, -v also every
 // vector on a terminal and the notes of how a port was opened (options of

@@ -106,9 +106,11 @@ ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed,
   ReadingPins flips;
   if (!reading.empty()) (void)apply_reading_spec(reading, flips);
   for (const auto& [id, side] : flips) o.profile.readings.erase(id);
-  const Profile& p = o.profile;
-  Profile controller = p;
+  Profile controller = o.profile;
   for (const auto& [id, side] : flips) controller.readings[id] = side;
+  hold_only_what_sides_allow(o.profile, controller.readings);
+  hold_only_what_sides_allow(controller, controller.readings);
+  const Profile& p = o.profile;
   auto transport = make_in_process_transport(bus_of(controller), {});
   const auto points = reading_points();
   const bool reference_sides = std::all_of(points.begin(), points.end(), [&](const ReadingPoint& point) {

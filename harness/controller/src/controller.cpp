@@ -195,6 +195,10 @@ bool Controller::reads_other(std::string_view errata_id) const {
   return side_taken(profile_.readings, errata_id) == ReadingSide::kOther;
 }
 
+bool Controller::reads_other_2(std::string_view errata_id) const {
+  return side_taken(profile_.readings, errata_id) == ReadingSide::kOther2;
+}
+
 std::optional<Duration> Controller::inter_character_timeout() const {
   if (!reads_other("E-67")) return std::nullopt;
   return std::chrono::duration_cast<Duration>(kInterCharacterTimeout);
@@ -812,7 +816,9 @@ DisplayReply Controller::display() const {
   }
   // The cursor stays where it was at power-on: the model has no menus to move it.
   d.cursor_row = profile_.display.cursor_row;
-  d.cursor_column = profile_.display.cursor_column;
+  // ERRATA E-20: columns count from 0 (the profile's 0-39); the other side
+  // counts them from 1, as the rows (§3.8 byte 163 "1-4").
+  d.cursor_column = profile_.display.cursor_column + (reads_other("E-20") ? 1u : 0u);
   d.blinking = profile_.display.cursor_blinking ? '1' : '0';
   return d;
 }
@@ -890,6 +896,16 @@ Bytes Controller::finish_reply(Frame f) const {
       blank_pad(f, 8, 5);
     }
     if (other_justification && full_reply && info->reply == ReplyKind::kNavigationData) blank_pad(f, 30, 5);
+    // ERRATA E-40's other side: the magnetic variation left-justified (§3.22
+    // bytes 36-41 give no justification; six blanks stay six blanks).
+    if (reads_other("E-40") && full_reply && info->reply == ReplyKind::kNavigationData) left_justify(f, 36, 6);
+    // ERRATA E-18's other side: an empty slot's reply (7Fh 7Fh index, §3.11,
+    // §3.13, §3.15, §3.21) holds zeros where the reference has blanks; the
+    // text describes only the index bytes and the length.
+    const bool indexed_read = info && (info->reply == ReplyKind::kSatelliteData || info->reply == ReplyKind::kTleData ||
+                                       info->reply == ReplyKind::kIessData || info->reply == ReplyKind::kSignpostData);
+    if (reads_other("E-18") && full_reply && indexed_read && f.data.size() > 2 && f.data[0] == 0x7F && f.data[1] == 0x7F)
+      std::replace(f.data.begin() + 2, f.data.end(), std::uint8_t{' '}, std::uint8_t{'0'});
     if (status && info->reply == ReplyKind::kStatus && faults_.has(Fault::kShortStatus)) f.data.pop_back();
     if (info && info->reply == ReplyKind::kExtendedStatus && faults_.has(Fault::kExtendedStatus52))
       f.data.resize(kExtendedStatus52DataBytes);

@@ -30,6 +30,14 @@ Outcome Handlers::stored(Outcome o) {
 void Handlers::take_remote_control(C& c) {
   if (!c.in_mode("REMOTE_MODE")) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT");
 }
+// ERRATA E-52: a jog (33h, 47h) or 34h enters REMOTE on the reference side;
+// the other side (only 32h of the NOTE's "a few commands") acts from the
+// mode it is in, an automatic function it takes over left for MANUAL_MODE.
+void Handlers::take_control_to_move(C& c) {
+  if (!c.reads_other("E-52")) return take_remote_control(c);
+  if (c.in_mode("LOCATE_MODE") || c.in_mode("STOW_MODE") || c.in_mode("DEPLOY_MODE") || c.in_mode("SPIRAL_REMOTE_MODE"))
+    c.enter_mode("MANUAL_MODE", "MANUAL_IDLE");
+}
 bool Handlers::track_busy(const C& c) { return !c.pol_moves_allowed(); }
 
 // ---- §3.9 / §3.14 / §3.15 (not implemented on software 1.59) ---------------------
@@ -107,6 +115,10 @@ Outcome Controller::execute(const Frame& f) {
   // ERRATA E-97 (the other side NAKs it, offline or not).
   const bool implemented = Handlers::implemented(*this, f.command);
   if (offline && (implemented || !reads_other("E-97"))) return offline_outcome();
+  // ERRATA E-16: "not yet implemented" (§3 table '*'); the other side gives
+  // such a code no behaviour at all online, a reply included (offline, as
+  // E-97's other side reaches here, the NAK).
+  if (!implemented && !offline && reads_other("E-16")) return Outcome{std::nullopt, std::nullopt, "not implemented: no reply (E-16)", false};
   if (!implemented) return Handlers::nak(*this, f.command, NakRule::kNotImplemented);
 
   // §3.18 byte 29, §3.19 bytes 29-39: "Not applicable if feed type is
@@ -127,7 +139,16 @@ Outcome Controller::execute(const Frame& f) {
   }
   auto request = decode_request(command);
   if (!request) return Handlers::nak(*this, f.command, NakRule::kMalformedData, request.error().message());
+  // ERRATA E-52 other-2: §2's "commands received will force the controller
+  // into REMOTE mode": every command but the polls (30h, 31h, 40h) takes a
+  // controller in MANUAL_MODE to REMOTE_MODE as it is received, and then
+  // acts (a key may take it back); a command it refuses does not.
+  const bool poll = f.command == 0x30 || f.command == 0x31 || f.command == 0x40;
+  const ModeState mode_before = state_.mode;
+  const bool forced = reads_other_2("E-52") && !poll && in_mode("MANUAL_MODE");
+  if (forced) Handlers::take_remote_control(*this);
   Outcome o = dispatch(command, request.value());
+  if (forced && !(o.reply && !o.reply->empty() && o.reply->front() == ACK)) state_.mode = mode_before;
   if (o.reply && o.note.empty()) o.note = std::string(info->name);
   // ERRATA E-66: 42h 'C' needs the LOCATE "immediately prior"; the commands
   // taken since, reads aside, are counted (the other side wants none).

@@ -32,6 +32,8 @@ struct Handlers {
   static Outcome nak(C& c, std::uint8_t code, NakRule rule, std::string detail = {});
   static Outcome stored(Outcome o);
   static void take_remote_control(C& c);
+  // A jog or 34h taking control (ERRATA E-52): REMOTE on the reference side.
+  static void take_control_to_move(C& c);
   static bool track_busy(const C& c);
   // Faults locate-, stow-, deploy- and search-ignores-stop: a stop ('X' or
   // the Stop key) leaves a LOCATE, STOW, DEPLOY or search running.
@@ -93,6 +95,7 @@ struct Handlers {
   static Outcome read_tle(C& c, const ReadTle& r);
   static Outcome remote_store(C& c, const RemoteStore& s);
   static bool dvb(const C& c);
+  static std::optional<Outcome> without_dvb(C& c, std::uint8_t code);
   static Outcome write_signpost(C& c, const WriteSignpost& w);
   static Outcome read_signpost(C& c, const ReadSignpost& r);
   static Outcome read_navigation(C& c);

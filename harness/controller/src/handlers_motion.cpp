@@ -159,7 +159,9 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
     const int dir = j.direction == 'W' || j.direction == 'U' || j.direction == 'L' ? +1 : -1;
     if (c.limit(a, dir) && !c.faults_.has(Fault::kJogIntoLimitAcked)) return nak(c, code, NakRule::kJogIntoLimit);
     // §3.4: in TRACK, X/E/W/D/U hand control to REMOTE; pol jogs do not.
-    if (!pol || !c.state_.track.active) take_remote_control(c);
+    // Outside TRACK, ERRATA E-52 says what a jog does to the mode.
+    if (!c.state_.track.active) take_control_to_move(c);
+    else if (!pol) take_remote_control(c);
     // §3.4: "the controller can only support a remote jog about a single axis".
     if (!c.faults_.has(Fault::kSecondAxisJogKeepsFirst))
       for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
@@ -176,9 +178,13 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   if (stop_ignored_by_fault(c)) return status(c, code, "stop ignored (fault)");
   // A LOCATE, STOW, DEPLOY or search stopped before it completes exits as by the
   // Stop key (E-82, E-89).
-  if (const std::string exit = c.moving_exit(true); !exit.empty())
-    c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", exit);
-  take_remote_control(c);
+  // ERRATA E-52's other side leaves it for MANUAL_MODE, and stays in the
+  // mode it is in otherwise (§3.4: in TRACK, 'X' hands control to REMOTE).
+  const bool to_manual = c.reads_other("E-52");
+  const std::string exit = c.moving_exit(true);
+  if (!exit.empty() && to_manual) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", exit);
+  else if (!exit.empty()) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", exit);
+  if (c.state_.track.active || !to_manual) take_remote_control(c);
   c.stop_all();  // from the next update on
   if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46
   return status(c, code, "stop all movement");
@@ -206,7 +212,7 @@ Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
   if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
   const StoredSatellite sat = c.state_.last_target.value_or(c.state_.store.front());
   const bool dual = c.profile_.pol_type == PolType::kDualPort;
-  take_remote_control(c);
+  take_control_to_move(c);  // ERRATA E-52
   if (c.profile_.pol_type != PolType::kCircular) {
     if (dual) c.start_dual_port_move(sat);
     else c.start_move(AxisId::kPol, p.pol == 'H' ? sat.h_pol_deg : sat.v_pol_deg, true);

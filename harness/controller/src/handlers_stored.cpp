@@ -168,7 +168,10 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
   const bool full = it == c.state_.store.end() && c.state_.store.size() >= C::kMaxStored;
   if (full && !c.reads_other("E-65")) return nak(c, 0x42, NakRule::kStoreListFull);
   c.enter_mode("STORE_SAT_MODE", "STORE_ENTERING_MODE");
-  c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", full ? "STORE_LIST_FULL" : "STORE_SAT_DATA_STORED_OK");
+  // ERRATA E-52: back to MANUAL_MODE; other-2 (every command forces REMOTE) to REMOTE_MODE.
+  const std::string_view exit = full ? "STORE_LIST_FULL" : "STORE_SAT_DATA_STORED_OK";
+  if (c.reads_other_2("E-52")) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", exit);
+  else c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", exit);
   if (full) return ack(c, 0x42, AckReply{}, "STORE list full: " + entry.name + " not stored (E-65)");
   // "If a particular satellite name has already been STOREd, its data will be overwritten."
   if (it != c.state_.store.end()) *it = entry;
@@ -179,13 +182,23 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
 // ---- §3.20 / §3.21 Signposts -----------------------------------------------------------
 bool Handlers::dvb(const C& c) { return c.profile_.dvb_receiver || c.faults_.has(Fault::kSignpostsWithoutDvb); }
 
+// ERRATA E-23: without the option the reference side NAKs 43h and 44h; the
+// other side gives them no reply (the text gives none); other-2 NAKs.
+std::optional<Outcome> Handlers::without_dvb(C& c, std::uint8_t code) {
+  if (dvb(c)) return std::nullopt;
+  if (c.reads_other("E-23")) return Outcome{std::nullopt, std::nullopt, "no DVB receiver option: no reply (E-23)", false};
+  return nak(c, code, NakRule::kNoDvbOption);
+}
+
 Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
-  if (!dvb(c)) return nak(c, 0x43, NakRule::kNoDvbOption);
+  if (auto o = without_dvb(c, 0x43)) return *o;
   if (w.index < 1 || w.index > 20) return nak(c, 0x43, NakRule::kSignpostIndex);
   const SignpostData& d = w.signpost;
   if (!in_range(d.longitude, -1799, 1800) || !in_range(d.frequency, 10700, 12750) ||
       !in_range(d.symbol_rate, 1000, 30000))
     return nak(c, 0x43, NakRule::kSignpostField);
+  // ERRATA E-23 other-2: priority "1 - 9", as §3.21 reads it back.
+  if (d.priority == 0 && c.reads_other_2("E-23")) return nak(c, 0x43, NakRule::kSignpostField, "priority 0 (E-23)");
   // ERRATA E-32: 4 and 8 lie in the field's range "1 - 9" but name no code;
   // the reference side NAKs them as invalid data, the other stores them.
   const bool defined = std::any_of(std::begin(layouts::kFec), std::end(layouts::kFec),
@@ -197,7 +210,7 @@ Outcome Handlers::write_signpost(C& c, const WriteSignpost& w) {
   return stored(ack(c, 0x43, AckReply{}, "signpost " + std::to_string(w.index) + " written"));
 }
 Outcome Handlers::read_signpost(C& c, const ReadSignpost& r) {
-  if (!dvb(c)) return nak(c, 0x44, NakRule::kNoDvbOption);
+  if (auto o = without_dvb(c, 0x44)) return *o;
   if (r.index < 1 || r.index > 20) return nak(c, 0x44, NakRule::kSignpostIndex);
   auto reply = reply_to_read(c, c.state_.signposts, r.index, signpost_reply);
   // §3.21 bytes 30-33 "pad with zeros"; the fault fills them with blanks.

@@ -343,6 +343,7 @@ void Lockstep::rebuild(TimePoint now) {
   position_unknown_ = {};
   device_led_ = stopped_out_ = handed_over_ = moving_when_stopped_ = model_was_led_ = false;
   locate_completed_ = false;
+  undecided_.reset();
 }
 
 Controller& Lockstep::model() { return bus_->controller(0); }
@@ -636,10 +637,21 @@ void Lockstep::note_reading(std::vector<std::string> ids, const Verdict& explain
 std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                       const std::vector<Frame>& device) {
   const Receiver split_before = *splitter_;
+  Memory before = remember();
+  std::optional<Verdict> finding = judge_step(frame, sent_at, uncertainty, device, split_before, before);
+  if (finding) {
+    undecided_.reset();  // the session synchronizes the model after a finding
+    return finding;
+  }
+  keep_undecided(std::move(before), split_before, frame, sent_at, uncertainty, device);
+  return finding;
+}
+
+std::optional<Verdict> Lockstep::judge_step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                                            const std::vector<Frame>& device, const Receiver& split_before,
+                                            const Memory& before) {
   cuts_ = frame_cuts(frame);  // the model's receiver reads each write once a side
   const std::vector<std::string> open = open_readings();
-  if (open.empty()) return judge_write(frame, sent_at, uncertainty, device);
-  const Memory before = remember();
   // The write cut again by the receiver of the sides the model takes now.
   auto recut = [&] {
     *splitter_ = split_before;
@@ -647,13 +659,16 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   };
   std::optional<Verdict> finding = judge_write(frame, sent_at, uncertainty, device);
   if (!finding) return finding;
-  auto flipped = [&](const std::string& id) {
-    return side_taken(before.bus->controller(0).profile().readings, id) == ReadingSide::kOther ? ReadingSide::kReference
-                                                                                             : ReadingSide::kOther;
+  // The sides of a point besides the one the model takes (one, or two where
+  // the point has a third, ERRATA's other-2).
+  auto besides = [&](const std::string& id) {
+    std::vector<ReadingSide> sides = sides_of(*find_reading_point(id));
+    std::erase(sides, side_taken(before.bus->controller(0).profile().readings, id));
+    return sides;
   };
-  auto try_sides = [&](const std::vector<std::string>& ids) {
+  auto try_sides = [&](const std::vector<std::pair<std::string, ReadingSide>>& flips) {
     recall(before);
-    for (const auto& id : ids) model().set_reading(id, flipped(id));
+    for (const auto& [id, side] : flips) model().set_reading(id, side);
     recut();
     return !judge_write(frame, sent_at, uncertainty, device);
   };
@@ -664,7 +679,7 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
   // E-94 decides only the order and pace of a LOCATE's movements, which the
   // device leads while it is open (device_leads): its other side would
   // redo the LOCATE and so excuse where it ends.
-  auto plausible = [&](const std::string& id) {
+  auto plausible = [&](const std::string& id, ReadingSide side) {
     if (id == "E-94") return false;
     if (id != "E-90") return true;
     auto search = [](std::uint8_t mode) { return meanings::mode_name(mode) == "SPIRAL_REMOTE_MODE"; };
@@ -674,26 +689,207 @@ std::optional<Verdict> Lockstep::step(const FuzzFrame& frame, TimePoint sent_at,
       if (shows_moving(dev) == true) going_on = true;
       if (const auto mode = device_mode(dev)) (search(*mode) ? going_on : ended) = true;
     }
-    return flipped(id) == ReadingSide::kOther ? ended && !going_on : going_on;
+    return side == ReadingSide::kOther ? ended && !going_on : going_on;
   };
   for (const auto& id : open)
-    if (plausible(id) && try_sides({id})) {
-      note_reading({id}, *finding);
-      return std::nullopt;
-    }
+    for (const ReadingSide side : besides(id))
+      if (plausible(id, side) && try_sides({{id, side}})) {
+        note_reading({id}, *finding);
+        return std::nullopt;
+      }
   // Together: the points whose side the device has not shown yet (a side
-  // taken earlier stays).
-  std::vector<std::string> unshown;
-  for (const auto& id : open)
-    if (side_taken(before.bus->controller(0).profile().readings, id) == side_taken(profile_.readings, id) && plausible(id))
-      unshown.push_back(id);
+  // taken earlier stays), each to its first other side.
+  std::vector<std::pair<std::string, ReadingSide>> unshown;
+  std::vector<std::string> unshown_ids;
+  for (const auto& id : open) {
+    const ReadingSide side = besides(id).front();
+    if (side_taken(before.bus->controller(0).profile().readings, id) == side_taken(profile_.readings, id) &&
+        plausible(id, side)) {
+      unshown.emplace_back(id, side);
+      unshown_ids.push_back(id);
+    }
+  }
   if (unshown.size() > 1 && try_sides(unshown)) {
-    note_reading(unshown, *finding);
+    note_reading(unshown_ids, *finding);
     return std::nullopt;
   }
+  // §3.4: a jog NAKed on an axis whose position the model has lost (an A/D
+  // error, out of a device-led episode) may be a jog into the limit the
+  // device's axis stands at. Where the model with the axis at that limit
+  // gives the device's replies, the axis is known from then on (as a limit
+  // shown in a status block gives it back, take_positions).
+  if (const auto lost = jogs_on_lost_axes(split_before, frame, device); !lost.empty()) {
+    recall(before);
+    for (const auto& [axis, limit] : lost) {
+      by_axis(model().mutable_state(), axis).position = limit;
+      if (!device_led_) position_unknown_[axis] = false;  // in an episode the end decides (keep_in_step)
+      drifted_[axis] = true;
+    }
+    recut();
+    if (!judge_write(frame, sent_at, uncertainty, device)) {
+      ++coverage_.resyncs;
+      return std::nullopt;
+    }
+  }
+  if (undecided_ && undecided_explains(frame, sent_at, uncertainty, device, split_before, *finding))
+    return std::nullopt;
   recall(before);
   recut();
   return judge_write(frame, sent_at, uncertainty, device);
+}
+
+struct Lockstep::Undecided {
+  std::vector<std::string> errata;  // the points, "E-93", "E-52"
+  Memory before;                    // the model before the first write that decided one
+  struct Write {
+    Receiver split_before;
+    FuzzFrame frame;
+    TimePoint sent_at;
+    Duration uncertainty;
+    std::vector<Frame> device;
+    ReadingPins sides;  // the sides the model judged it on (a note taken in it)
+  };
+  std::vector<Write> writes;  // that write and the ones judged since
+};
+
+Lockstep::~Lockstep() = default;
+
+// At most this many writes are kept to judge again: a point the device has
+// not shown by then is left to the model's side.
+constexpr std::size_t kUndecidedWrites = 256;
+
+void Lockstep::keep_undecided(Memory before, const Receiver& split_before, const FuzzFrame& frame, TimePoint sent_at,
+                              Duration uncertainty, const std::vector<Frame>& device) {
+  // A 40h the model agreed with has shown the mode bytes: decided (not in
+  // an episode the device leads, where the model takes them from it).
+  const bool mode_shown = last_extended_status(device) && !device_led_;
+  if (mode_shown) {
+    undecided_.reset();
+    return;
+  }
+  // A point the profile leaves open (a side the model took earlier, with
+  // others at once, may be the wrong one of three).
+  auto unshown = [&](const char* id) { return !side_pinned(profile_.readings, id); };
+  std::vector<std::string> decided;
+  // ERRATA E-93: a LOCATE that completed in this write went to the mode of
+  // the model's side; a device on the other side shows it only in a 40h
+  // (and in the last exited mode after the next command that changes it).
+  const ModeState& now = model().state().mode;
+  if (unshown("E-93") && now != before.bus->controller(0).state().mode && left_completed_locate(now.last_mode, now.exit_status))
+    decided.emplace_back("E-93");
+  // ERRATA E-52: which commands take the controller to REMOTE_MODE; a
+  // command the device took (an ACK, a poll aside) may have changed its mode
+  // otherwise than the model's.
+  const bool took_command = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
+    return form_of_reply(dev) == ReplyForm::kAck && dev.command != 0x30 && dev.command != 0x31 && dev.command != 0x40;
+  });
+  if (unshown("E-52") && took_command) decided.emplace_back("E-52");
+
+  Undecided::Write write{split_before, frame, sent_at, uncertainty, device, model().profile().readings};
+  if (undecided_) {
+    if (undecided_->writes.size() >= kUndecidedWrites) {
+      undecided_.reset();
+      return;
+    }
+    for (auto& id : decided)
+      if (std::find(undecided_->errata.begin(), undecided_->errata.end(), id) == undecided_->errata.end())
+        undecided_->errata.push_back(std::move(id));
+    undecided_->writes.push_back(std::move(write));
+    return;
+  }
+  if (decided.empty()) return;
+  undecided_ = std::make_unique<Undecided>(Undecided{std::move(decided), std::move(before), {}});
+  undecided_->writes.push_back(std::move(write));
+}
+
+bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                                  const std::vector<Frame>& device, const Receiver& split_before, const Verdict& finding) {
+  // Each point on each of its other sides, from the model as it was before
+  // the first write that decided one, through every write since.
+  const Undecided& u = *undecided_;
+  for (const std::string& id : u.errata) {
+    std::vector<ReadingSide> sides = sides_of(*find_reading_point(id));
+    std::erase(sides, side_taken(u.before.bus->controller(0).profile().readings, id));
+    for (const ReadingSide side : sides) {
+      recall(u.before);
+      model().set_reading(id, side);
+      bool held = true;
+      for (const Undecided::Write& w : u.writes) {
+        // The other points on the sides the write was judged on (a note
+        // taken in it flipped one before judging it, as step does).
+        for (const ReadingPoint& p : reading_points())
+          if (const ReadingSide want = side_taken(w.sides, p.id);
+              p.id != id && side_taken(model().profile().readings, p.id) != want)
+            model().set_reading(std::string(p.id), want);
+        *splitter_ = w.split_before;
+        cuts_ = frame_cuts(w.frame);
+        if (judge_write(w.frame, w.sent_at, w.uncertainty, w.device)) {
+          held = false;
+          break;
+        }
+      }
+      if (!held) continue;
+      // This write on that side, and with another open point flipped too
+      // (its side shown in this write only).
+      const Memory replayed = remember();
+      auto this_write = [&](const std::string& also, ReadingSide also_side) {
+        recall(replayed);
+        if (!also.empty()) model().set_reading(also, also_side);
+        *splitter_ = split_before;
+        cuts_ = frame_cuts(frame);
+        return !judge_write(frame, sent_at, uncertainty, device);
+      };
+      std::vector<std::string> explained{id};
+      bool holds = this_write("", side);
+      for (const std::string& other : open_readings()) {
+        if (holds) break;
+        // E-90 and E-94 explain only what step's own rules let them (a
+        // search that has ended; never where a LOCATE ends).
+        if (other == id || other == "E-90" || other == "E-94") continue;
+        std::vector<ReadingSide> its = sides_of(*find_reading_point(other));
+        std::erase(its, side_taken(replayed.bus->controller(0).profile().readings, other));
+        for (const ReadingSide s2 : its)
+          if ((holds = this_write(other, s2))) {
+            explained.push_back(other);
+            break;
+          }
+      }
+      if (!holds) continue;
+      undecided_.reset();  // `u` with it
+      note_reading(explained, finding);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::pair<std::size_t, double>> Lockstep::jogs_on_lost_axes(const Receiver& splitter, const FuzzFrame& frame,
+                                                                         const std::vector<Frame>& device) const {
+  std::vector<std::pair<std::size_t, double>> lost;
+  const bool jog_naked = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
+    return dev.kind == FrameKind::kNak && (dev.command == Jog::kCode || dev.command == JogMinimal::kCode);
+  });
+  if (!jog_naked) return lost;
+  Receiver rx = splitter;  // the write's frames as the model reads them
+  ReplySink frames;
+  rx.feed(with_software_parity(frame.chars, frame.wrong_parity), frames);
+  for (const Frame& f : frames.frames) {
+    const auto request = decode_request(f);
+    if (!request) continue;
+    const JogFields* jog = std::get_if<Jog>(&*request);
+    if (!jog) jog = std::get_if<JogMinimal>(&*request);
+    if (!jog || jog->direction == 'X') continue;
+    // §3.4 directions: E/W azimuth, D/U elevation, O/L polarization; W, U
+    // and L toward the upper limit.
+    const char d = jog->direction;
+    const std::size_t axis = d == 'E' || d == 'W' ? 0 : d == 'D' || d == 'U' ? 1 : 2;
+    // Lost: out of a device-led episode without a reading, or in one (the
+    // device leads its motion) on an axis whose reading is '*' (E-42).
+    if (!position_unknown_[axis] && !(device_led_ && !reading_of(model(), axis))) continue;
+    const AxisProfile& ap = axis_profile(axis);
+    lost.emplace_back(axis, d == 'W' || d == 'U' || d == 'L' ? ap.max_deg : ap.min_deg);
+  }
+  return lost;
 }
 
 std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,

@@ -176,10 +176,36 @@ std::optional<Verdict> Oracle::judge_frames(const std::vector<Frame>& accepted, 
     return Verdict{FindingKind::kReplyToIgnored, std::to_string(seen.replies.size()) + " replies to " +
                                                      std::to_string(accepted.size()) + " frame(s) the device must accept; the first: " +
                                                      summary(seen.replies.front())};
+  // ERRATA E-16's other side: a code the device does not implement (§3
+  // table '*'), of the catalog's length, may draw no reply online; E-23's:
+  // nor may 43h/44h without the DVB receiver option. Such a frame is passed
+  // over when the next reply is not its own.
+  auto side_may_be = [&](std::string_view id, ReadingSide side) {
+    const auto pinned = side_pinned(profile_.readings, id);
+    return !pinned || *pinned == side;
+  };
+  auto may_be_silent = [&](const Frame& f) {
+    const CommandInfo* info = find_command(f.command);
+    if (!info || !profile_.remote_enabled ||
+        (info->request_length && f.data.size() + kFrameOverhead != *info->request_length))
+      return false;
+    if (info->needs_dvb_option) return !profile_.dvb_receiver && side_may_be("E-23", ReadingSide::kOther);
+    return !info->implemented && side_may_be("E-16", ReadingSide::kOther) && !device_implements(*info, profile_);
+  };
+  std::size_t j = 0;  // the next reply
   for (std::size_t i = 0; i < accepted.size(); ++i) {
-    if (i >= seen.replies.size()) return Verdict{FindingKind::kNoReply, "no reply to " + summary(accepted[i])};
-    if (auto v = judge(accepted[i], seen.replies[i])) return v;
+    const bool silent_ok = may_be_silent(accepted[i]);
+    if (j >= seen.replies.size()) {
+      if (silent_ok) continue;
+      return Verdict{FindingKind::kNoReply, "no reply to " + summary(accepted[i])};
+    }
+    if (silent_ok && seen.replies[j].command != accepted[i].command) continue;
+    if (auto v = judge(accepted[i], seen.replies[j])) return v;
+    ++j;
   }
+  if (j < seen.replies.size())
+    return Verdict{FindingKind::kReplyToIgnored, "a reply that answers none of the frames the device must accept: " +
+                                                     summary(seen.replies[j])};
   return std::nullopt;
 }
 

@@ -349,11 +349,24 @@ void deploy_positions(Draw& d, Profile& p) {
 // that knows nothing of its firmware's reading would; one in four is pinned
 // to a side, which the controller then takes and the vectors hold it to.
 void readings(Draw& d, Profile& p) {
-  for (const ReadingPoint& point : reading_points())
-    if (d.chance(0.25)) p.readings[std::string(point.id)] = d.chance(0.5) ? ReadingSide::kOther : ReadingSide::kReference;
+  for (const ReadingPoint& point : reading_points()) {
+    if (!d.chance(0.25)) continue;
+    if (point.other_2.empty()) {
+      p.readings[std::string(point.id)] = d.chance(0.5) ? ReadingSide::kOther : ReadingSide::kReference;
+    } else {
+      const auto sides = sides_of(point);
+      p.readings[std::string(point.id)] = sides[static_cast<std::size_t>(d.integer(0, static_cast<int>(sides.size()) - 1))];
+    }
+  }
 }
 
 }  // namespace
+
+void hold_only_what_sides_allow(Profile& p, const ReadingPins& sides) {
+  // ERRATA E-23 other-2 NAKs priority 0 (as 44h's "1 - 9" reads).
+  if (side_taken(sides, "E-23") == ReadingSide::kOther2)
+    for (Signpost& s : p.signposts) s.data.priority = std::max<std::uint32_t>(s.data.priority, 1);
+}
 
 Profile random_profile(std::uint64_t seed) {
   Draw d(seed);
@@ -371,6 +384,7 @@ Profile random_profile(std::uint64_t seed) {
   errata(d, p);
   deploy_positions(d, p);
   readings(d, p);  // drawn last: the fields before keep their draws
+  hold_only_what_sides_allow(p, p.readings);
   return p;
 }
 

@@ -451,11 +451,15 @@ void read_readings(const YAML::Node& v, const At& at, Profile& p) {
   MapReader r(v, at, ids);
   for (const ReadingPoint& point : reading_points())
     r.with(point.id, [&](const YAML::Node& n, const At& a) {
-      const std::string& name = scalar(n, a, "reference or other");
+      const std::string& name = scalar(n, a, sides_named(point));
       const auto side = reading_side_named(name);
-      if (!side)
-        fail(a, quoted_clip(name) + " is not a side: reference (" + std::string(point.reference) + ") or other (" +
-                    std::string(point.other) + ")");
+      const auto sides = sides_of(point);
+      if (!side || std::find(sides.begin(), sides.end(), *side) == sides.end()) {
+        std::string listed;
+        for (ReadingSide s : sides)
+          listed += (listed.empty() ? "" : ", ") + std::string(to_string(s)) + " (" + std::string(side_text(point, s)) + ")";
+        fail(a, quoted_clip(name) + " is not a side of " + std::string(point.id) + ": " + listed);
+      }
       p.readings[std::string(point.id)] = *side;
     });
 }
@@ -519,6 +523,11 @@ Profile read_profile(const YAML::Node& root) {
   // §3.20 NOTE / ERRATA E-23: signposts exist only with the DVB receiver option.
   if (!p.signposts.empty() && !p.dvb_receiver)
     fail(r.at("signposts"), "signposts need the DVB receiver option (dvb_receiver: true; §3.20, ERRATA E-23)");
+  // ERRATA E-23 other-2: a controller that NAKs priority 0 holds none (what
+  // it holds is written back after a vector changes it).
+  if (side_pinned(p.readings, "E-23") == ReadingSide::kOther2 &&
+      std::any_of(p.signposts.begin(), p.signposts.end(), [](const Signpost& s) { return s.data.priority == 0; }))
+    fail(r.at("signposts"), "a signpost of priority 0 on a controller pinned to E-23 other-2, which NAKs priority 0 (§3.20, §3.21)");
   check_shown_ranges(p, ranges, r.at("axes"));
   // §3.2 byte 35: without a rotating feed there is no polarization to show.
   if (p.display.pol_code != 0 && p.pol_type == PolType::kCircular)

@@ -16,6 +16,15 @@ constexpr std::array kPoints{
     ReadingPoint{"E-8", "§1 Message Protocol",
                  "a frame longer than the longest command (145 bytes) is an overrun: ignored",
                  "overrun is the UART's: a long frame with a good check byte is NAKed for its length (§3)"},
+    ReadingPoint{"E-16", "§3 Command Set; §3.9; §3.14; §3.15", "38h, 3Dh and 3Eh where not implemented are NAKed",
+                 "38h, 3Dh and 3Eh where not implemented are not answered online (offline, E-97 decides)"},
+    ReadingPoint{"E-18", "§3.11; §3.13; §3.15; §3.21", "an empty slot's reply is blank after its 7Fh 7Fh index",
+                 "an empty slot's reply holds zeros after its 7Fh 7Fh index"},
+    ReadingPoint{"E-20", "§3.8 bytes 164-165", "the cursor column counts from 0 (0-39)",
+                 "the cursor column counts from 1 (1-40), as the row does"},
+    ReadingPoint{"E-23", "§3.20; §3.21", "without the DVB receiver option 43h and 44h are NAKed; 43h takes priority 0-9",
+                 "without the DVB receiver option 43h and 44h are not answered",
+                 "43h NAKs priority 0 (\"1 - 9\" as 44h reads it); without the option, NAKed"},
     ReadingPoint{"E-29", "§3.18, §3.19 byte 3 B",
                  "byte 3 is 40h | A<<4 | tens, tens 0-2: preset index 20 can be sent",
                  "B is one bit: a tens digit of 2 is malformed and NAKed (41h and 42h)"},
@@ -26,6 +35,8 @@ constexpr std::array kPoints{
     ReadingPoint{"E-33", "§3.2 bytes 14-31; §3.16; §3.22 bytes 30-34; §3.24 bytes 4-9",
                  "positions are right-justified and blank-padded; pulse counts and the 45h heading are zero-padded",
                  "positions are left-justified; pulse counts and the 45h heading are padded with blanks"},
+    ReadingPoint{"E-40", "§3.22 bytes 36-41", "the magnetic variation is right-justified, blank-padded",
+                 "the magnetic variation is left-justified"},
     ReadingPoint{"E-43", "§3.7 'K'; §3.25", "an unused key code (3Ah-3Fh, 40h) is NAKed",
                  "an unused key code (3Ah-3Fh, 40h) is ACKed and does nothing"},
     ReadingPoint{"E-45", "§3.3 forms 2A, 2C, 3",
@@ -36,6 +47,10 @@ constexpr std::array kPoints{
                  "they are ACKed and executed as well as the mount can: counts by the profile's scale, 2C to the tenth"},
     ReadingPoint{"E-51", "§3.10", "39h with an ephemeris code for an index above 10 is NAKed",
                  "39h with an ephemeris code for an index above 10 is stored and ACKed"},
+    ReadingPoint{"E-52", "§3 RC3000 Online/Offline Reply (NOTE); §3.4",
+                 "32h, the jogs (33h, 47h) and 34h enter REMOTE_MODE; 41h, 42h and 36h S/D/A their own modes",
+                 "only 32h enters REMOTE_MODE: a jog or 34h acts from the mode the controller is in",
+                 "every command but the polls (30h, 31h, 40h) takes the controller from MANUAL_MODE to REMOTE_MODE"},
     ReadingPoint{"E-53", "§3.2 bytes 36-38", "a remote jog reports movement in progress (0100/0101)",
                  "a remote jog reports jog movement pending (0010/0011) while its time runs"},
     ReadingPoint{"E-54", "§3.3", "an auto-move target outside the axis's limits is NAKed",
@@ -80,17 +95,55 @@ constexpr std::array kPoints{
                  "S is the speed the axis is configured for, whatever moves it"},
 };
 
+std::string quoted(std::string_view s) {
+  std::string out(1, '"');
+  out += s;
+  out += '"';
+  return out;
+}
+
 }  // namespace
 
-std::string_view to_string(ReadingSide side) { return side == ReadingSide::kReference ? "reference" : "other"; }
+std::string_view to_string(ReadingSide side) {
+  switch (side) {
+    case ReadingSide::kReference: return "reference";
+    case ReadingSide::kOther: return "other";
+    case ReadingSide::kOther2: return "other-2";
+  }
+  return "?";
+}
 
 std::optional<ReadingSide> reading_side_named(std::string_view name) {
-  if (name == "reference") return ReadingSide::kReference;
-  if (name == "other") return ReadingSide::kOther;
+  for (ReadingSide side : {ReadingSide::kReference, ReadingSide::kOther, ReadingSide::kOther2})
+    if (name == to_string(side)) return side;
   return std::nullopt;
 }
 
+std::vector<ReadingSide> sides_of(const ReadingPoint& point) {
+  if (point.other_2.empty()) return {ReadingSide::kReference, ReadingSide::kOther};
+  return {ReadingSide::kReference, ReadingSide::kOther, ReadingSide::kOther2};
+}
+
+std::string_view side_text(const ReadingPoint& point, ReadingSide side) {
+  switch (side) {
+    case ReadingSide::kReference: return point.reference;
+    case ReadingSide::kOther: return point.other;
+    case ReadingSide::kOther2: return point.other_2;
+  }
+  return {};
+}
+
 std::span<const ReadingPoint> reading_points() { return kPoints; }
+
+std::string sides_named(const ReadingPoint& point) {
+  std::string out;
+  const auto sides = sides_of(point);
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    out += k == 0 ? "" : k + 1 == sides.size() ? " or " : ", ";
+    out += to_string(sides[k]);
+  }
+  return out;
+}
 
 const ReadingPoint* find_reading_point(std::string_view id) {
   auto it = std::find_if(kPoints.begin(), kPoints.end(), [&](const ReadingPoint& p) { return p.id == id; });
@@ -108,7 +161,8 @@ std::optional<ReadingSide> side_pinned(const ReadingPins& pins, std::string_view
 
 std::optional<std::string> apply_reading_spec(std::string_view spec, ReadingPins& pins) {
   if (auto every = reading_side_named(spec)) {
-    for (const ReadingPoint& p : kPoints) pins[std::string(p.id)] = *every;
+    for (const ReadingPoint& p : kPoints)
+      pins[std::string(p.id)] = *every == ReadingSide::kOther2 && p.other_2.empty() ? ReadingSide::kOther : *every;
     return std::nullopt;
   }
   ReadingPins added;
@@ -120,17 +174,20 @@ std::optional<std::string> apply_reading_spec(std::string_view spec, ReadingPins
     const std::size_t eq = item.find('=');
     const std::string_view id = item.substr(0, eq);
     if (eq == std::string_view::npos)
-      return "\"" + std::string(item) + "\": expected other, reference or a list of E-NN=other|reference";
-    if (!find_reading_point(id)) {
+      return quoted(item) + ": expected other, reference, other-2 or a list of E-NN=SIDE";
+    const ReadingPoint* point = find_reading_point(id);
+    if (!point) {
       std::string known;
       for (const ReadingPoint& p : kPoints) known += (known.empty() ? "" : ", ") + std::string(p.id);
-      return "\"" + std::string(id) + "\" is not a switchable reading (ERRATA entries: " + known + ")";
+      return quoted(id) + " is not a switchable reading (ERRATA entries: " + known + ")";
     }
     const auto side = reading_side_named(item.substr(eq + 1));
-    if (!side) return "\"" + std::string(item.substr(eq + 1)) + "\": a side is reference or other";
+    const auto sides = sides_of(*point);
+    if (!side || std::find(sides.begin(), sides.end(), *side) == sides.end())
+      return quoted(item.substr(eq + 1)) + ": a side of " + std::string(id) + " is " + sides_named(*point);
     added[std::string(id)] = *side;
   }
-  if (added.empty()) return std::string("an empty --reading: expected other, reference or E-NN=other|reference");
+  if (added.empty()) return std::string("an empty --reading: expected other, reference, other-2 or E-NN=SIDE");
   for (auto& [id, side] : added) pins[id] = side;
   return std::nullopt;
 }

@@ -195,10 +195,10 @@ std::optional<std::string> check_navigation_record(const FrameDescription& got, 
     const auto g = std::find_if(got.fields.begin(), got.fields.end(), [&](const FieldDescription& f) { return f.name == w.name; });
     if (g == got.fields.end()) return "field \"" + w.name + "\" is not in the reply";
     const bool source = w.name == "lat/lon source" || w.name == "heading source";
-    // The heading's value, zero- or blank-padded (E-33: its justification is
-    // 3.22-read-navigation-reply-layout's to judge).
-    const bool same_heading = w.name == "true heading" && g->meaning == w.meaning;
-    if (g->raw == w.raw || same_heading || (source && g->raw == "0x47")) continue;
+    // The heading's and the magnetic variation's value, zero- or
+    // blank-padded, either justification (E-33, E-40: the spec gives none).
+    const bool same_value = (w.name == "true heading" || w.name == "magnetic variation") && g->meaning == w.meaning;
+    if (g->raw == w.raw || same_value || (source && g->raw == "0x47")) continue;
     return "byte " + std::to_string(w.first) + " " + w.name + ": the profile holds " + w.raw + " (" + w.meaning + "), got " +
            g->raw + " (" + g->meaning + ")" + (source ? "; after a 46h write 0x47 (remotely entered) is accepted too" : "");
   }
@@ -362,8 +362,9 @@ std::optional<std::string> Session::check_reply(const Expectation& e, const Repl
 
 // An expectation with `readings:` (ERRATA class reading): the reply passes
 // when it meets the side of some point the profile has not pinned away —
-// the reference side (`e` itself) unless a listed point is pinned `other`,
-// or a point's other side unless it is pinned `reference`. The captures are
+// the reference side (`e` itself) unless a listed point is pinned to a side
+// the step lists (one it does not list answers as the reference), or a
+// listed side unless the point is pinned to another. The captures are
 // those of the side that passed. A step that lists one point and meets only
 // one of its sides shows the device's side: the rest of the vector is held
 // to it (sides_shown), so that two steps each allowing both sides cannot
@@ -373,14 +374,29 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
     if (auto side = side_known(id)) return side;
     return side_pinned(sides_shown, id);
   };
+  // A side is left unless its point is pinned (or shown) to another.
+  auto allowed = [&](const std::string& id, ReadingSide side) {
+    const auto p = pinned(id);
+    return !p || *p == side;
+  };
+  auto named = [](const ReadingAlternative& alt) { return alt.errata + " " + std::string(to_string(alt.side)); };
+  // A side of a listed point that the step does not list answers as the
+  // reference side does (E-23's other-2 NAKs without the option, as the
+  // reference does).
+  auto listed = [&](const std::string& id, ReadingSide side) {
+    return std::any_of(e.readings.begin(), e.readings.end(),
+                       [&](const ReadingAlternative& alt) { return alt.errata == id && alt.side == side; });
+  };
   std::string ids, failures, shown;
   bool reference_allowed = true;
   for (const auto& alt : e.readings) {
-    ids += (ids.empty() ? "" : ", ") + alt.errata;
-    if (pinned(alt.errata) == ReadingSide::kOther) reference_allowed = false;
+    if (ids.find(alt.errata) == std::string::npos) ids += (ids.empty() ? "" : ", ") + alt.errata;
+    if (const auto p = pinned(alt.errata); p && *p != ReadingSide::kReference && listed(alt.errata, *p))
+      reference_allowed = false;
     // A side the device showed (not one the profile pins) is named.
     const auto by_device = side_pinned(profile.readings, alt.errata) ? std::nullopt : pinned(alt.errata);
-    if (by_device) shown += (shown.empty() ? "" : ", ") + alt.errata + " " + std::string(to_string(*by_device));
+    if (by_device && shown.find(alt.errata) == std::string::npos)
+      shown += (shown.empty() ? "" : ", ") + alt.errata + " " + std::string(to_string(*by_device));
   }
   const Captures before = captures;
   auto attempt = [&](const Expectation& side, const std::string& name) {
@@ -390,33 +406,43 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
     return !failure;
   };
   // One open point: the side that held alone is the device's from here on.
-  const bool one_open = e.readings.size() == 1 && !pinned(e.readings.front().errata);
+  const std::string& first = e.readings.front().errata;
+  const bool one_open = std::all_of(e.readings.begin(), e.readings.end(), [&](const auto& alt) { return alt.errata == first; }) &&
+                        !pinned(first);
   auto show = [&](ReadingSide side) {
-    sides_shown[e.readings.front().errata] = side;
+    sides_shown[first] = side;
     if (transcript)
-      transcript->push_back({t_ms(), false, {}, e.readings.front().errata + " " + std::string(to_string(side)) +
+      transcript->push_back({t_ms(), false, {}, first + " " + std::string(to_string(side)) +
                                                     " shown: the rest of the vector is held to it", {}, ""});
   };
+  // Whether an alternative after `from` holds too (captures and failures kept).
+  auto another_holds = [&](std::size_t from) {
+    const Captures passed = captures;
+    const std::string kept = failures;
+    bool holds = false;
+    for (std::size_t k = from; k < e.readings.size() && !holds; ++k) holds = attempt(e.readings[k].expect, named(e.readings[k]));
+    captures = passed;
+    failures = kept;
+    return holds;
+  };
   if (reference_allowed && attempt(e, ids + " reference")) {
-    if (one_open) {
-      const Captures passed = captures;
-      const std::string kept = failures;
-      if (!attempt(e.readings.front().expect, e.readings.front().errata + " other")) show(ReadingSide::kReference);
-      captures = passed;
-      failures = kept;
+    // Shown only where no unlisted side answers alike.
+    const auto sides = sides_of(*find_reading_point(first));
+    const bool all_listed = std::all_of(sides.begin() + 1, sides.end(), [&](ReadingSide side) { return listed(first, side); });
+    if (one_open && all_listed && !another_holds(0)) show(ReadingSide::kReference);
+    return std::nullopt;
+  }
+  for (std::size_t k = 0; k < e.readings.size(); ++k) {
+    const ReadingAlternative& alt = e.readings[k];
+    if (!allowed(alt.errata, alt.side) || !attempt(alt.expect, named(alt))) continue;
+    if (one_open && !another_holds(k + 1)) show(alt.side);
+    if (alt.expect.ends) {
+      steps_ended = true;
+      if (transcript)
+        transcript->push_back({t_ms(), false, {}, named(alt) + " holds: the vector's steps end here (ends)", {}, ""});
     }
     return std::nullopt;
   }
-  for (const auto& alt : e.readings)
-    if (pinned(alt.errata) != ReadingSide::kReference && attempt(alt.expect, alt.errata + " other")) {
-      if (one_open) show(ReadingSide::kOther);
-      if (alt.expect.ends) {
-        steps_ended = true;
-        if (transcript)
-          transcript->push_back({t_ms(), false, {}, alt.errata + " other holds: the vector's steps end here (ends)", {}, ""});
-      }
-      return std::nullopt;
-    }
   captures = before;
   if (failures.empty()) return "no side of " + ids + " is left by the profile's readings: pins";
   return "no legal reading holds (ERRATA " + ids + (shown.empty() ? "" : "; the device showed " + shown + " earlier") + "): " + failures;

@@ -124,7 +124,7 @@ constexpr SchemaKey kExpectKeys[] = {
     {"rule", "", "on a nak: the reference controller's NAK rule that must fire (nak_rules.hpp)"},
     {"from_profile", "",
      "on an ack to a read of stored data (35h, 3Ah, 3Ch, 44h, 45h): the reply equals the profile's record of this slot"},
-    {"readings", "", "ERRATA id -> what a controller of the other side of that open point answers instead"},
+    {"readings", "", "ERRATA id (its other side) or ID/other-2 (a third side) -> what a controller of that side of the open point answers instead"},
 };
 
 constexpr SchemaKey kMatcherKeys[] = {
@@ -185,7 +185,7 @@ struct Table {
         {SchemaNode::kPoll, "`poll`", "a step's `poll`", kPollKeys},
         {SchemaNode::kSurvey, "`survey`", "a step's `survey`", kSurveyKeys},
         {SchemaNode::kExpect, "An expectation", "a send step's or a poll's `expect`, when it is a map (a scalar is the reply alone)", kExpectKeys},
-        {SchemaNode::kReading, "A `readings` alternative", "the value of an ERRATA id under an expectation's `readings`: an expectation's keys but `readings`, none required",
+        {SchemaNode::kReading, "A `readings` alternative", "the value of an ERRATA id (or ID/other-2) under an expectation's `readings`: an expectation's keys but `readings`, none required",
          readings},
         {SchemaNode::kMatcher, "A field matcher",
          "the value of a field under `fields` or `until`, when it is a map (a scalar is `eq`; `any` always holds)",

@@ -373,13 +373,22 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
   }
   // The other side of open points of the spec (ERRATA class reading,
   // readings.hpp): what a controller of that side answers instead.
+  // The key is the entry's id for its `other` side, ID/other-2 for a third.
   r.with("readings", [&](const YAML::Node& n, const At& a) {
-    std::vector<std::string_view> ids;
-    for (const ReadingPoint& p : reading_points()) ids.push_back(p.id);
-    MapReader alternatives(n, a, ids);
-    for (const std::string_view id : ids)
-      alternatives.with(id, [&](const YAML::Node& alt, const At& alt_at) {
-        e.readings.push_back(ReadingAlternative{std::string(id), read_expectation(alt, alt_at, command, cx, &e)});
+    std::vector<std::string> keys;
+    std::vector<std::pair<std::string, ReadingSide>> sides;
+    for (const ReadingPoint& p : reading_points())
+      for (ReadingSide side : sides_of(p)) {
+        if (side == ReadingSide::kReference) continue;
+        keys.push_back(side == ReadingSide::kOther ? std::string(p.id)
+                                                   : std::string(p.id) + "/" + std::string(to_string(side)));
+        sides.emplace_back(p.id, side);
+      }
+    const std::vector<std::string_view> key_views(keys.begin(), keys.end());
+    MapReader alternatives(n, a, key_views);
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      alternatives.with(keys[k], [&](const YAML::Node& alt, const At& alt_at) {
+        e.readings.push_back(ReadingAlternative{sides[k].first, read_expectation(alt, alt_at, command, cx, &e), sides[k].second});
       });
   });
   keep_captures(e.fields, cx);

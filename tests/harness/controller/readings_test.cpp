@@ -3,6 +3,8 @@
 // switch changes what its entry says and nothing else, and the profile's
 // `readings:` pins load, write back and parse from --reading.
 #include <algorithm>
+#include <array>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +95,48 @@ TEST(Readings, ABadSpecSaysWhyAndChangesNothing) {
     EXPECT_EQ(pins, before) << bad;
   }
   EXPECT_NE(apply_reading_spec("E-1=other", pins)->find("E-90"), std::string::npos) << "names the switchable ones";
+  // other-2 only where the point has a third side.
+  const auto no_third = apply_reading_spec("E-90=other-2", pins);
+  ASSERT_TRUE(no_third);
+  EXPECT_NE(no_third->find("reference or other"), std::string::npos) << *no_third;
+  EXPECT_EQ(pins, before);
+}
+
+// A third side (ERRATA's other-2) by name, or for every point that has one
+// (the rest to other).
+TEST(Readings, OtherTwoPinsThePointsThatHaveIt) {
+  ReadingPins one;
+  EXPECT_FALSE(apply_reading_spec("E-23=other-2", one));
+  EXPECT_EQ(one, (ReadingPins{{"E-23", ReadingSide::kOther2}}));
+  ReadingPins every;
+  EXPECT_FALSE(apply_reading_spec("other-2", every));
+  EXPECT_EQ(every.size(), reading_points().size());
+  std::size_t thirds = 0;
+  for (const ReadingPoint& p : reading_points()) {
+    const bool third = !p.other_2.empty();
+    thirds += third;
+    EXPECT_EQ(every.at(std::string(p.id)), third ? ReadingSide::kOther2 : ReadingSide::kOther) << p.id;
+    EXPECT_EQ(sides_of(p).size(), third ? 3u : 2u) << p.id;
+  }
+  EXPECT_GE(thirds, 1u);
+  auto loaded = load_profile_text("readings:\n  E-23: other-2\n");
+  ASSERT_TRUE(loaded) << loaded.error->text();
+  EXPECT_EQ(side_taken(loaded.profile->readings, "E-23"), ReadingSide::kOther2);
+  auto again = load_profile_text(to_yaml(*loaded.profile));
+  ASSERT_TRUE(again) << again.error->text();
+  EXPECT_EQ(*again.profile, *loaded.profile);
+  auto lacking = load_profile_text("readings:\n  E-90: other-2\n", "p.yaml");
+  ASSERT_FALSE(lacking);
+  EXPECT_EQ(lacking.error->key, "readings.E-90");
+  EXPECT_NE(lacking.error->message.find("not a side of E-90"), std::string::npos) << lacking.error->message;
+  // A controller pinned to E-23 other-2 NAKs priority 0, so it holds none.
+  const std::string prio = "dvb_receiver: true\nsignposts:\n  - {index: 1, longitude: -97.0, frequency: 11720, "
+                           "symbol_rate: 20000, fec: 3/4, polarization: H, id: G19KU, priority: PRIO}\nreadings:\n  E-23: other-2\n";
+  auto zero = load_profile_text(std::string(prio).replace(prio.find("PRIO"), 4, "0"), "p.yaml");
+  ASSERT_FALSE(zero);
+  EXPECT_EQ(zero.error->key, "signposts");
+  EXPECT_NE(zero.error->message.find("E-23 other-2"), std::string::npos) << zero.error->message;
+  EXPECT_TRUE(load_profile_text(std::string(prio).replace(prio.find("PRIO"), 4, "1"), "p.yaml"));
 }
 
 TEST(Readings, ProfilePinsLoadAndWriteBack) {
@@ -240,6 +284,111 @@ TEST(Readings, E67TheOtherSideDropsAFrameWhoseBytesPauseLongerThanItsTimeout) {
   EXPECT_TRUE(answered(other, 500ms).pieces);
 }
 
+// E-18: the rest of an empty slot's reply (§3.11, §3.13, §3.21): blanks on
+// the reference side, zeros on the other; the 7Fh 7Fh index and the length
+// on both, and the reply still decodes. A filled slot reads alike.
+TEST(Readings, E18TheOtherSideFillsAnEmptySlotWithZeros) {
+  Profile p = site_profile();
+  p.dvb_receiver = true;
+  Rig ref(p), other(reading(p, "E-18"));
+  auto rest = [](Rig& r, const Request& read) {
+    const Outcome o = r.send(read);
+    EXPECT_TRUE(o.reply && o.reply->size() > 7u);
+    EXPECT_TRUE(decode_frame(*o.reply)) << "decodes";
+    const Bytes& b = *o.reply;
+    EXPECT_EQ(b[3], 0x7F);
+    EXPECT_EQ(b[4], 0x7F);
+    return std::make_pair(std::string(b.begin() + 5, b.end() - 2), b.size());
+  };
+  for (const Request& read : {Request{ReadSatellite{{2}}}, Request{ReadTle{{3}}}, Request{ReadSignpost{{4}}}}) {
+    const auto [blank, length] = rest(ref, read);
+    const auto [zeros, other_length] = rest(other, read);
+    EXPECT_EQ(length, other_length);
+    EXPECT_EQ(blank.find_first_not_of(' '), std::string::npos) << blank;
+    EXPECT_EQ(zeros.find_first_not_of('0'), std::string::npos) << zeros;
+  }
+  EXPECT_EQ(ref.send(ReadSatellite{{1}}).reply, other.send(ReadSatellite{{1}}).reply) << "a filled slot";
+}
+
+// E-40: §3.22 bytes 36-41, the magnetic variation: right-justified on the
+// reference side, left-justified on the other; both decode to the same
+// tenths, and "not ready" is six blanks on both.
+TEST(Readings, E40TheOtherSideLeftJustifiesTheMagneticVariation) {
+  Profile p = site_profile();
+  p.navigation.magvar_tenths = -126;
+  Rig ref(p), other(reading(p, "E-40"));
+  auto bytes_36_41 = [](Rig& r) {
+    const Outcome o = r.send(NavigationQuery{});
+    EXPECT_TRUE(o.reply && o.reply->size() == 72u);
+    return std::string(o.reply->begin() + 36, o.reply->begin() + 42);
+  };
+  EXPECT_EQ(bytes_36_41(ref), " -12.6");
+  EXPECT_EQ(bytes_36_41(other), "-12.6 ");
+  EXPECT_EQ(ref.reply<NavigationDataReply>(NavigationQuery{}).magvar, -126);
+  EXPECT_EQ(other.reply<NavigationDataReply>(NavigationQuery{}).magvar, -126);
+  p.navigation.magvar_tenths.reset();
+  Rig not_ready(reading(p, "E-40"));
+  EXPECT_EQ(bytes_36_41(not_ready), "      ");
+}
+
+// E-20: §3.8 bytes 164-165, the cursor column: the profile's (0-39) on the
+// reference side, one more on the other (1-40, counted as the rows are). A
+// side taken late shows in the next reply.
+TEST(Readings, E20TheOtherSideCountsCursorColumnsFromOne) {
+  Profile p = site_profile();
+  for (std::uint8_t column : {0, 9, 39}) {
+    p.display.cursor_column = column;
+    Rig ref(p), other(reading(p, "E-20"));
+    auto bytes_164_165 = [](Rig& r) {
+      const Outcome o = r.send(ReflectDisplayQuery{});
+      EXPECT_TRUE(o.reply && o.reply->size() == 169u);
+      return std::string(o.reply->begin() + 164, o.reply->begin() + 166);
+    };
+    char want[8];
+    std::snprintf(want, sizeof want, "%02d", column);
+    EXPECT_EQ(bytes_164_165(ref), want);
+    std::snprintf(want, sizeof want, "%02d", column + 1);
+    EXPECT_EQ(bytes_164_165(other), want);
+    ref.c.set_reading("E-20", ReadingSide::kOther);
+    EXPECT_EQ(bytes_164_165(ref), want) << "taken late";
+  }
+}
+
+// E-23: 43h and 44h without the DVB receiver option are NAKed (reference,
+// other-2) or not answered (other); with the option, priority 0 is stored
+// (reference, other) or NAKed as 44h's "1 - 9" reads (other-2).
+TEST(Readings, E23ThreeSidesOfTheSignposts) {
+  Profile bare = site_profile();
+  bare.dvb_receiver = false;
+  Profile dvb = site_profile();
+  dvb.dvb_receiver = true;
+  WriteSignpost w;
+  w.index = 1;
+  w.signpost = {-1000, 11700, 27500, '3', 'V', "ABC123", 0, ""};
+  for (ReadingSide side : {ReadingSide::kReference, ReadingSide::kOther, ReadingSide::kOther2}) {
+    SCOPED_TRACE(std::string(to_string(side)));
+    Rig without(reading(bare, "E-23", side)), with(reading(dvb, "E-23", side));
+    const Outcome write = without.send(w), read = without.send(ReadSignpost{{1}});
+    if (side == ReadingSide::kOther) {
+      EXPECT_FALSE(write.reply);
+      EXPECT_FALSE(read.reply);
+    } else {
+      EXPECT_EQ(write.nak, NakRule::kNoDvbOption);
+      EXPECT_EQ(read.nak, NakRule::kNoDvbOption);
+    }
+    const Outcome zero = with.send(w);
+    if (side == ReadingSide::kOther2) {
+      EXPECT_EQ(zero.nak, NakRule::kSignpostField);
+    } else {
+      ASSERT_FALSE(is_nak(zero));
+      EXPECT_EQ(with.reply<SignpostDataReply>(ReadSignpost{{1}}).signpost.priority, 0u);
+    }
+    WriteSignpost one = w;
+    one.signpost.priority = 1;
+    EXPECT_FALSE(is_nak(with.send(one))) << "priority 1 on every side";
+  }
+}
+
 // E-30: §3.17 bytes 49-50 on a mount without 0.01 deg feedback: '0' on the
 // reference side, blanks on the other (and the reply still decodes); with
 // the feedback both sides show the digit. A side taken late shows in the
@@ -318,6 +467,61 @@ TEST(Readings, E92TheOtherSideLocatesABlankName) {
 }
 
 // E-93 and E-94: where a completed LOCATE goes, and the order of its movements.
+// E-52: which commands take the controller to REMOTE_MODE. From
+// MANUAL_MODE: a jog enters REMOTE on the reference side and other-2, not on
+// the other; a read (3Ah) only on other-2; a refused command on none. A stop
+// 'X' that ends a LOCATE leaves it for REMOTE (reference, other-2) or MANUAL
+// (other), its exit the stop's on every side. A 42h ends in MANUAL_MODE, or
+// REMOTE_MODE on other-2. The polls never change the mode.
+TEST(Readings, E52ThreeSidesOfRemoteMode) {
+  const std::array sides{ReadingSide::kReference, ReadingSide::kOther, ReadingSide::kOther2};
+  auto manual_rig = [](ReadingSide side) {
+    auto r = std::make_unique<Rig>(reading(site_profile(), "E-52", side));
+    EXPECT_FALSE(is_nak(r->send(Misc{'K', 'C'})));  // the Mode key: MANUAL_MODE (E-56)
+    EXPECT_EQ(r->mode(), "MANUAL_MODE");
+    return r;
+  };
+  for (ReadingSide side : sides) {
+    SCOPED_TRACE(std::string(to_string(side)));
+    auto jog = manual_rig(side);
+    ASSERT_FALSE(is_nak(jog->send(Jog{{'W', 'S', 100}})));
+    EXPECT_EQ(jog->mode(), side == ReadingSide::kOther ? "MANUAL_MODE" : "REMOTE_MODE");
+
+    auto read = manual_rig(side);
+    ASSERT_FALSE(is_nak(read->send(ReadSatellite{{1}})));
+    EXPECT_EQ(read->mode(), side == ReadingSide::kOther2 ? "REMOTE_MODE" : "MANUAL_MODE");
+    ASSERT_FALSE(is_nak(read->send(Misc{'K', 'C'})));
+    EXPECT_EQ(read->mode(), "MANUAL_MODE") << "the Mode key takes it back";
+    EXPECT_TRUE(is_nak(read->send(ReadSatellite{{0}})));
+    EXPECT_EQ(read->mode(), "MANUAL_MODE") << "a refused command leaves the mode";
+    for (int i = 0; i < 2; ++i) {
+      ASSERT_FALSE(is_nak(read->send(StatusPoll{})));
+      ASSERT_FALSE(is_nak(read->send(DeviceTypeQuery{})));
+    }
+    EXPECT_EQ(read->mode(), "MANUAL_MODE") << "the polls keep it";
+
+    auto stop = manual_rig(side);
+    ASSERT_FALSE(is_nak(stop->send(locate_on_meridian())));
+    stop->wait(200ms);
+    ASSERT_EQ(stop->mode(), "LOCATE_MODE");
+    ASSERT_FALSE(is_nak(stop->send(Jog{{'X', 'F', 0}})));
+    EXPECT_EQ(stop->mode(), side == ReadingSide::kOther ? "MANUAL_MODE" : "REMOTE_MODE");
+    const auto x = stop->extended();
+    EXPECT_EQ(meanings::mode_name(x.last_mode), "LOCATE_MODE");
+    EXPECT_TRUE(meanings::exit_name(x.last_mode, x.exit_status).ends_with("_STOP_KEY"))
+        << meanings::exit_name(x.last_mode, x.exit_status);
+
+    auto store = manual_rig(side);
+    RemoteStore rs;
+    rs.preset.preset = false;
+    rs.sat = {"E52 TEST", -750, 0, '1', '0', 0};
+    rs.pol_selection = 'H';
+    ASSERT_FALSE(is_nak(store->send(rs)));
+    EXPECT_EQ(store->mode(), side == ReadingSide::kOther2 ? "REMOTE_MODE" : "MANUAL_MODE");
+    EXPECT_EQ(meanings::mode_name(store->extended().last_mode), "STORE_SAT_MODE");
+  }
+}
+
 TEST(Readings, E93TheOtherLocateCompletesIntoRemoteMode) {
   Rig ref(site_profile()), other(reading(site_profile(), "E-93"));
   for (Rig* r : {&ref, &other}) {
@@ -485,6 +689,25 @@ TEST(Readings, E66TheOtherSideNeedsTheLocateRightBeforeTheStore) {
   ASSERT_FALSE(is_nak(other.send(l)));
   (void)other.extended();
   EXPECT_FALSE(is_nak(other.send(s))) << "status reads between are no command";
+}
+
+// E-16: 38h, 3Dh and 3Eh where the controller does not implement them.
+TEST(Readings, E16TheOtherSideGivesAnUnimplementedCodeNoReplyOnline) {
+  Profile p = site_profile();
+  Rig ref(p), other(reading(p, "E-16"));
+  for (const Request& r : {Request{SignalStrength{}}, Request{WriteIess{}}, Request{ReadIess{}}}) {
+    EXPECT_EQ(ref.send(r).nak, NakRule::kNotImplemented) << form_of(r);
+    EXPECT_FALSE(other.send(r).reply.has_value()) << form_of(r);
+  }
+  // Offline the other side of E-97 decides: a NAK, not silence.
+  p.remote_enabled = false;
+  Rig offline(reading(reading(p, "E-16"), "E-97"));
+  EXPECT_EQ(offline.send(SignalStrength{}).nak, NakRule::kNotImplemented);
+  // A code the profile implements is answered on both sides.
+  Profile with_38 = reading(site_profile(), "E-16");
+  with_38.implements_signal_strength = true;
+  Rig implemented(with_38);
+  EXPECT_TRUE(implemented.send(SignalStrength{}).reply.has_value());
 }
 
 // E-32: FEC codes 4 and 8, inside the range "1 - 9" and named by no code.

@@ -213,6 +213,48 @@ TEST(Runner, ShippedVectorsHoldOnAControllerThatReadsTheSpecTheOtherWay) {
   }
 }
 
+// The third sides (ERRATA's other-2, `sabus run --sim --reading other-2`):
+// the whole suite on every shipped profile against the reference controller
+// on every point's third side where it has one (other elsewhere): none
+// fails, and the vectors whose flags rest on such a point pass somewhere
+// (or, where E-90's other side ends the search first, are inconclusive).
+TEST(Runner, ShippedVectorsHoldOnAControllerThatTakesTheThirdSides) {
+  std::vector<std::string> thirds;
+  for (const ReadingPoint& point : reading_points())
+    if (!point.other_2.empty()) thirds.emplace_back(point.id);
+  ASSERT_FALSE(thirds.empty());
+  std::vector<Vector> vectors;
+  std::set<std::string> of_thirds;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors) {
+      for (const std::string& flag : v.flags)
+        if (const auto note = f.notes.find(flag);
+            note != f.notes.end() && std::find(thirds.begin(), thirds.end(), note->second.errata) != thirds.end())
+          of_thirds.insert(v.id);
+      vectors.push_back(std::move(v));
+    }
+  ASSERT_FALSE(of_thirds.empty());
+  std::set<std::string> passed;
+  const auto profiles_dir = std::filesystem::path(default_profile_path()).parent_path();
+  for (const auto& e : std::filesystem::directory_iterator(profiles_dir)) {
+    if (e.path().extension() != ".yaml") continue;
+    const Profile p = load_profile_file(e.path().string()).profile.value();
+    Profile device = p;
+    ASSERT_FALSE(apply_reading_spec("other-2", device.readings));
+    auto t = make_in_process_transport(bus_of(device), {});
+    RunOptions o;
+    o.allow_motion = true;
+    o.allow_destructive = true;
+    const RunResult r = Runner(*t, p, o).run(vectors);
+    EXPECT_FALSE(r.aborted) << p.name << ": " << r.abort_reason;
+    for (const auto& v : r.vectors) {
+      EXPECT_NE(v.verdict, Verdict::kFail) << p.name << ": " << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+      if (v.verdict == Verdict::kPass || v.verdict == Verdict::kInconclusive) passed.insert(v.id);
+    }
+  }
+  for (const std::string& id : of_thirds) EXPECT_TRUE(passed.count(id)) << id << " ran on no shipped profile";
+}
+
 // An expectation's `readings:` (ERRATA class reading): the reply passes when
 // it meets a side the profile leaves open; a pinned side is held strictly;
 // the failure names every side it was held to.
@@ -245,6 +287,40 @@ TEST(Runner, AReadingsAlternativeAcceptsEitherSideUnlessThePofilePinsOne) {
   EXPECT_NE(neither.failures[0].find("no legal reading holds (ERRATA E-91): E-91 reference:"), std::string::npos)
       << neither.failures[0];
   EXPECT_NE(neither.failures[0].find("; E-91 other:"), std::string::npos) << neither.failures[0];
+}
+
+// A point with a third side: each of its sides is an alternative; a pin to
+// one of them holds the reply to it alone, and a failure names the sides
+// tried by their labels.
+TEST(Runner, AThirdSideIsAnAlternativeOfItsOwn) {
+  auto with_start = [](std::string byte) {
+    Step s = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kAck);
+    s.expect.fields.push_back(matcher("start", FieldMatcher::Kind::kEq, {std::move(byte)}));
+    return s;
+  };
+  // Only other-2 meets the ACK the controller sends.
+  Step step = with_start("0x15");
+  step.expect.readings.push_back(ReadingAlternative{"E-23", with_start("0x02").expect, ReadingSide::kOther});
+  step.expect.readings.push_back(ReadingAlternative{"E-23", with_start("0x06").expect, ReadingSide::kOther2});
+  auto run_pinned = [&](std::optional<ReadingSide> pin) {
+    Profile p = load_profile_file(default_profile_path()).profile.value();
+    if (pin) p.readings["E-23"] = *pin;
+    auto t = make_in_process_transport({p}, {});
+    return Runner(*t, p, RunOptions{}).run({vector_with("reading", {step})}).vectors.at(0);
+  };
+  EXPECT_EQ(run_pinned(std::nullopt).verdict, Verdict::kPass) << "open: any side";
+  EXPECT_EQ(run_pinned(ReadingSide::kOther2).verdict, Verdict::kPass);
+  const VectorResult other = run_pinned(ReadingSide::kOther);
+  ASSERT_EQ(other.verdict, Verdict::kFail);
+  EXPECT_NE(other.failures[0].find("E-23 other: byte 0 start"), std::string::npos) << other.failures[0];
+  EXPECT_EQ(other.failures[0].find("other-2"), std::string::npos) << "the pinned-away sides are not tried";
+  EXPECT_EQ(other.failures[0].find("E-23 reference"), std::string::npos) << other.failures[0];
+  // A side the step does not list answers as the reference does.
+  Step only_other = with_start("0x06");
+  only_other.expect.readings.push_back(ReadingAlternative{"E-23", with_start("0x02").expect, ReadingSide::kOther});
+  step = only_other;
+  EXPECT_EQ(run_pinned(ReadingSide::kOther2).verdict, Verdict::kPass) << "other-2 unlisted: the reference's";
+  EXPECT_EQ(run_pinned(ReadingSide::kOther).verdict, Verdict::kFail);
 }
 
 // An alternative with `ends` (vectors/README.md): when it holds and the

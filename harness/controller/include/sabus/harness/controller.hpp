@@ -143,6 +143,8 @@ class Controller {
   // Whether this controller takes the other side of an open point of the
   // spec (readings.hpp; the profile's `readings:` pins, sabus sim --reading).
   bool reads_other(std::string_view errata_id) const;
+  // Whether it takes that point's third side (ERRATA's other-2).
+  bool reads_other_2(std::string_view errata_id) const;
   // §3.17: enter `mode` in `state`; the old mode becomes the last exited mode
   // with `exit_of_old` (default: its normal exit) as its exit status.
   void enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old = {});

@@ -368,6 +368,7 @@ class Lockstep {
  public:
   Lockstep(const Profile& profile, TimePoint start);
   Lockstep(const Lockstep&) = delete;
+  ~Lockstep();
   Lockstep& operator=(const Lockstep&) = delete;
   // One write sent at `sent_at` (the device's clock), and the replies the
   // device gave to it, in order. `uncertainty`: how far the device's
@@ -428,8 +429,31 @@ class Lockstep {
   // with a reading flipped when it ends in a finding).
   std::optional<Verdict> judge_write(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                      const std::vector<Frame>& device);
+  // The axes (0 az, 1 el, 2 pol) a jog of this write moves whose position
+  // the model has lost, each with the limit in the jog's direction: where
+  // the device NAKed a jog, that limit may be why (§3.4; step).
+  std::vector<std::pair<std::size_t, double>> jogs_on_lost_axes(const Receiver& splitter, const FuzzFrame& frame,
+                                                                const std::vector<Frame>& device) const;
   // What judge_write changes, kept to judge a write again.
   struct Memory;
+  // step's judgement of a write: one that ends in a finding is tried again
+  // with readings flipped, an axis at a limit, a point decided late.
+  std::optional<Verdict> judge_step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                                    const std::vector<Frame>& device, const Receiver& split_before, const Memory& before);
+  // Points whose side the model took where the device did not show it: the
+  // mode bytes, seen only in a 40h, after a LOCATE that completed (E-93) and
+  // after any command the device took (E-52, which commands enter REMOTE).
+  // The model before the first such write since the last 40h that showed
+  // them, and the writes since with the sides each was judged on; a later
+  // write that ends in a finding is judged again from there with each point
+  // on each of its other sides (with one more open point flipped in that
+  // write), a note where one explains it.
+  struct Undecided;
+  std::unique_ptr<Undecided> undecided_;
+  void keep_undecided(Memory before, const Receiver& split_before, const FuzzFrame& frame, TimePoint sent_at,
+                      Duration uncertainty, const std::vector<Frame>& device);
+  bool undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
+                          const std::vector<Frame>& device, const Receiver& split_before, const Verdict& finding);
   Memory remember() const;
   void recall(const Memory& m);
   // The reading points the model may still take the other side of: those

@@ -28,4 +28,9 @@ inline constexpr double kRandomMaxTurnaroundMs = 1000.0;
 // The profile of seed `seed`, named "random-<seed>".
 Profile random_profile(std::uint64_t seed);
 
+// Changes `p` to hold only what a controller on `sides` can hold (ERRATA
+// E-23 other-2: no signpost of priority 0); random_profile applies its own
+// pins, a sweep against a controller on other sides applies those.
+void hold_only_what_sides_allow(Profile& p, const ReadingPins& sides);
+
 }  // namespace sabus::harness

@@ -16,11 +16,14 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace sabus::harness {
 
-enum class ReadingSide : std::uint8_t { kReference, kOther };
-// "reference", "other" (the profile's and the CLI's spelling).
+// A point has the reference side and the other; a few have a third
+// (ERRATA's `other-2`, the entry's third alternative).
+enum class ReadingSide : std::uint8_t { kReference, kOther, kOther2 };
+// "reference", "other", "other-2" (the profile's and the CLI's spelling).
 std::string_view to_string(ReadingSide side);
 std::optional<ReadingSide> reading_side_named(std::string_view name);
 
@@ -29,7 +32,16 @@ struct ReadingPoint {
   std::string_view paragraph;  // the spec paragraph it reads, "§3.7 'A'"
   std::string_view reference;  // what a controller of the reference side does
   std::string_view other;      // what a controller of the other side does
+  std::string_view other_2{};  // what one of the third side does; empty: no third side
 };
+
+// The sides a controller may take on `point`: reference, other, and other-2
+// where the point has one.
+std::vector<ReadingSide> sides_of(const ReadingPoint& point);
+// What a controller of `side` does on `point` ("" for a side it lacks).
+std::string_view side_text(const ReadingPoint& point, ReadingSide side);
+// "reference or other" / "reference or other or other-2".
+std::string sides_named(const ReadingPoint& point);
 
 // Every switchable reading, in ERRATA order.
 std::span<const ReadingPoint> reading_points();
@@ -45,7 +57,8 @@ ReadingSide side_taken(const ReadingPins& pins, std::string_view id);
 std::optional<ReadingSide> side_pinned(const ReadingPins& pins, std::string_view id);
 
 // `--reading` of sabus sim / run --sim / fuzz --sim: "other" or "reference"
-// (every point), or a comma-separated list of ID=SIDE ("E-90=other,E-91=other")
+// (every point), "other-2" (every point with a third side to it, the rest to
+// other), or a comma-separated list of ID=SIDE ("E-90=other,E-52=other-2")
 // to flip one at a time. Adds to `pins`; on a bad spec returns why and leaves
 // `pins` as it was.
 std::optional<std::string> apply_reading_spec(std::string_view spec, ReadingPins& pins);

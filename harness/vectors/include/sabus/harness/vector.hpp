@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sabus/harness/motion.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/protocol/bytes.hpp"
 #include "sabus/protocol/codec.hpp"
 
@@ -143,8 +144,9 @@ struct Expectation {
   bool ends = false;
 };
 struct ReadingAlternative {
-  std::string errata;  // "E-91"
-  Expectation expect;  // the whole expectation of that side
+  std::string errata;                          // "E-91"
+  Expectation expect;                          // the whole expectation of that side
+  ReadingSide side = ReadingSide::kOther;      // `E-23/other-2` in a file: the third side
 };
 // The reply kinds as vector files spell them: ack, nak, offline, silence, any.
 std::string_view to_string(Expectation::Kind kind);
