@@ -51,6 +51,17 @@ struct OtherLocateOrder {
   Session s;
 };
 
+// 41h Remote Locate of a satellite at 81.5 W (§3.18), data form.
+FuzzFrame locate_at_81_5_west(const Profile& model) {
+  return {encode_request(build_request(*find_command(0x41), "data",
+                                       {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"},
+                                        {"band", "1"}, {"pol offset", "0.0"}, {"receive polarization", "N"},
+                                        {"position update", "A"}})
+                             .value(),
+                         model.address),
+          {}, "test"};
+}
+
 // Polls the extended status (40h) every `every` until the model's LOCATE and
 // the device's have both ended (neither in LOCATE_MODE) and the device rests,
 // at most `polls` times: the first finding, if any.
@@ -128,13 +139,7 @@ TEST(LiveFuzzReadings, ALocateTheDeviceLeadsIsJudgedWhereItEnds) {
   const Profile& model = f.model;
   auto& t = f.t;
   Session& s = f.s;
-  const FuzzFrame locate{encode_request(build_request(*find_command(0x41), "data",
-                                                      {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"},
-                                                       {"band", "1"}, {"pol offset", "0.0"}, {"receive polarization", "N"},
-                                                       {"position update", "A"}})
-                                            .value(),
-                                        model.address),
-                         {}, "test"};
+  const FuzzFrame locate = locate_at_81_5_west(model);
   const auto started = s.step(locate);
   ASSERT_FALSE(started) << started->message;
   const auto v = poll_until_located(s, model, *t, 200, 500ms);
@@ -282,13 +287,7 @@ TEST(LiveFuzzReadings, AModeALocateWentToUnseenUntilLaterIsNoted) {
   device.readings["E-93"] = ReadingSide::kOther;
   auto t = make_in_process_transport({device}, {});
   Session s(*t, model, SessionOptions{.allow_motion = true, .allow_destructive = true});
-  const FuzzFrame locate{encode_request(build_request(*find_command(0x41), "data",
-                                                      {{"sat name", "FUZZ LOC"}, {"longitude", "-81.5"}, {"inclination", "0"},
-                                                       {"band", "1"}, {"pol offset", "0.0"}, {"receive polarization", "N"},
-                                                       {"position update", "A"}})
-                                            .value(),
-                                        model.address),
-                         {}, "test"};
+  const FuzzFrame locate = locate_at_81_5_west(model);
   auto step = [&](const FuzzFrame& f) {
     const auto v = s.step(f);
     EXPECT_FALSE(v) << v->message;
