@@ -379,13 +379,7 @@ Text expectation_text(const Expectation& e) {
   // Each other side whole, with its reply: read back as written, not merged.
   if (!e.readings.empty()) {
     Container r = new_map();
-    for (const auto& alt : e.readings) {
-      // The key names the side: the entry's id for `other`, ID/other-2 for a third.
-      const std::string key = alt.side == harness::ReadingSide::kOther
-                                  ? alt.errata
-                                  : alt.errata + "/" + std::string(harness::to_string(alt.side));
-      r.force_insert(plain(key), expectation_text(alt.expect));
-    }
+    for (const auto& alt : e.readings) r.force_insert(plain(harness::reading_key(alt.errata, alt.side)), expectation_text(alt.expect));
     put(t, "readings", r);
   }
   return t;

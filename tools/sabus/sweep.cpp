@@ -106,11 +106,12 @@ ProfileOutcome sweep_one(const std::vector<Vector>& vectors, std::uint64_t seed,
   ReadingPins flips;
   if (!reading.empty()) (void)apply_reading_spec(reading, flips);
   for (const auto& [id, side] : flips) o.profile.readings.erase(id);
-  Profile controller = o.profile;
-  for (const auto& [id, side] : flips) controller.readings[id] = side;
-  hold_only_what_sides_allow(o.profile, controller.readings);
-  hold_only_what_sides_allow(controller, controller.readings);
+  ReadingPins sides = o.profile.readings;
+  for (const auto& [id, side] : flips) sides[id] = side;
+  hold_only_what_sides_allow(o.profile, sides);
   const Profile& p = o.profile;
+  Profile controller = p;
+  controller.readings = std::move(sides);
   auto transport = make_in_process_transport(bus_of(controller), {});
   const auto points = reading_points();
   const bool reference_sides = std::all_of(points.begin(), points.end(), [&](const ReadingPoint& point) {

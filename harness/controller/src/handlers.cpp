@@ -27,6 +27,7 @@ Outcome Handlers::stored(Outcome o) {
 // Commands that move the antenna hand control to REMOTE mode (§3 Online/Offline
 // Reply NOTE: "A few commands ... cause the RC3000 to enter the REMOTE mode";
 // ERRATA E-52).
+Outcome Handlers::unanswered(std::string note) { return Outcome{std::nullopt, std::nullopt, std::move(note), false}; }
 void Handlers::take_remote_control(C& c) {
   if (!c.in_mode("REMOTE_MODE")) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT");
 }
@@ -89,7 +90,7 @@ Outcome Controller::execute(const Frame& f) {
     // E-10: unknown code (or wrong length) while offline is a profile switch.
     if (offline && profile_.unknown_command_while_offline == OfflineUnknown::kOffline) return offline_outcome();
     if (rule == NakRule::kUnknownCommand && faults_.has(Fault::kSilentUnknownCommand))
-      return Outcome{std::nullopt, std::nullopt, "unknown command ignored", false};
+      return Handlers::unanswered("unknown command ignored");
     return Handlers::nak(*this, f.command, rule, std::move(detail));
   };
   if (!info) return unknown(NakRule::kUnknownCommand, describe_byte(f.command));
@@ -118,7 +119,7 @@ Outcome Controller::execute(const Frame& f) {
   // ERRATA E-16: "not yet implemented" (§3 table '*'); the other side gives
   // such a code no behaviour at all online, a reply included (offline, as
   // E-97's other side reaches here, the NAK).
-  if (!implemented && !offline && reads_other("E-16")) return Outcome{std::nullopt, std::nullopt, "not implemented: no reply (E-16)", false};
+  if (!implemented && !offline && reads_other("E-16")) return Handlers::unanswered("not implemented: no reply (E-16)");
   if (!implemented) return Handlers::nak(*this, f.command, NakRule::kNotImplemented);
 
   // §3.18 byte 29, §3.19 bytes 29-39: "Not applicable if feed type is
@@ -143,9 +144,8 @@ Outcome Controller::execute(const Frame& f) {
   // into REMOTE mode": every command but the polls (30h, 31h, 40h) takes a
   // controller in MANUAL_MODE to REMOTE_MODE as it is received, and then
   // acts (a key may take it back); a command it refuses does not.
-  const bool poll = f.command == 0x30 || f.command == 0x31 || f.command == 0x40;
   const ModeState mode_before = state_.mode;
-  const bool forced = reads_other_2("E-52") && !poll && in_mode("MANUAL_MODE");
+  const bool forced = reads_other_2("E-52") && !is_poll(f.command) && in_mode("MANUAL_MODE");
   if (forced) Handlers::take_remote_control(*this);
   Outcome o = dispatch(command, request.value());
   if (forced && !(o.reply && !o.reply->empty() && o.reply->front() == ACK)) state_.mode = mode_before;

@@ -31,6 +31,8 @@ struct Handlers {
   static Outcome status(C& c, std::uint8_t code, std::string note = {});
   static Outcome nak(C& c, std::uint8_t code, NakRule rule, std::string detail = {});
   static Outcome stored(Outcome o);
+  // No reply at all (an ignored frame, a side of the spec that answers none).
+  static Outcome unanswered(std::string note);
   static void take_remote_control(C& c);
   // A jog or 34h taking control (ERRATA E-52): REMOTE on the reference side.
   static void take_control_to_move(C& c);

@@ -186,7 +186,7 @@ bool Handlers::dvb(const C& c) { return c.profile_.dvb_receiver || c.faults_.has
 // other side gives them no reply (the text gives none); other-2 NAKs.
 std::optional<Outcome> Handlers::without_dvb(C& c, std::uint8_t code) {
   if (dvb(c)) return std::nullopt;
-  if (c.reads_other("E-23")) return Outcome{std::nullopt, std::nullopt, "no DVB receiver option: no reply (E-23)", false};
+  if (c.reads_other("E-23")) return unanswered("no DVB receiver option: no reply (E-23)");
   return nak(c, code, NakRule::kNoDvbOption);
 }
 

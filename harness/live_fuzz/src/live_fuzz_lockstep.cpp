@@ -659,12 +659,9 @@ std::optional<Verdict> Lockstep::judge_step(const FuzzFrame& frame, TimePoint se
   };
   std::optional<Verdict> finding = judge_write(frame, sent_at, uncertainty, device);
   if (!finding) return finding;
-  // The sides of a point besides the one the model takes (one, or two where
-  // the point has a third, ERRATA's other-2).
+  // The sides of a point besides the one the model takes.
   auto besides = [&](const std::string& id) {
-    std::vector<ReadingSide> sides = sides_of(*find_reading_point(id));
-    std::erase(sides, side_taken(before.bus->controller(0).profile().readings, id));
-    return sides;
+    return sides_besides(id, side_taken(before.bus->controller(0).profile().readings, id));
   };
   auto try_sides = [&](const std::vector<std::pair<std::string, ReadingSide>>& flips) {
     recall(before);
@@ -769,21 +766,21 @@ void Lockstep::keep_undecided(Memory before, const Receiver& split_before, const
   }
   // A point the profile leaves open (a side the model took earlier, with
   // others at once, may be the wrong one of three).
-  auto unshown = [&](const char* id) { return !side_pinned(profile_.readings, id); };
+  auto open = [&](const char* id) { return !side_pinned(profile_.readings, id); };
   std::vector<std::string> decided;
   // ERRATA E-93: a LOCATE that completed in this write went to the mode of
   // the model's side; a device on the other side shows it only in a 40h
   // (and in the last exited mode after the next command that changes it).
   const ModeState& now = model().state().mode;
-  if (unshown("E-93") && now != before.bus->controller(0).state().mode && left_completed_locate(now.last_mode, now.exit_status))
+  if (open("E-93") && now != before.bus->controller(0).state().mode && left_completed_locate(now.last_mode, now.exit_status))
     decided.emplace_back("E-93");
   // ERRATA E-52: which commands take the controller to REMOTE_MODE; a
   // command the device took (an ACK, a poll aside) may have changed its mode
   // otherwise than the model's.
   const bool took_command = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
-    return form_of_reply(dev) == ReplyForm::kAck && dev.command != 0x30 && dev.command != 0x31 && dev.command != 0x40;
+    return form_of_reply(dev) == ReplyForm::kAck && !is_poll(dev.command);
   });
-  if (unshown("E-52") && took_command) decided.emplace_back("E-52");
+  if (open("E-52") && took_command) decided.emplace_back("E-52");
 
   Undecided::Write write{split_before, frame, sent_at, uncertainty, device, model().profile().readings};
   if (undecided_) {
@@ -808,9 +805,7 @@ bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Dur
   // the first write that decided one, through every write since.
   const Undecided& u = *undecided_;
   for (const std::string& id : u.errata) {
-    std::vector<ReadingSide> sides = sides_of(*find_reading_point(id));
-    std::erase(sides, side_taken(u.before.bus->controller(0).profile().readings, id));
-    for (const ReadingSide side : sides) {
+    for (const ReadingSide side : sides_besides(id, side_taken(u.before.bus->controller(0).profile().readings, id))) {
       recall(u.before);
       model().set_reading(id, side);
       bool held = true;
@@ -846,9 +841,7 @@ bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Dur
         // E-90 and E-94 explain only what step's own rules let them (a
         // search that has ended; never where a LOCATE ends).
         if (other == id || other == "E-90" || other == "E-94") continue;
-        std::vector<ReadingSide> its = sides_of(*find_reading_point(other));
-        std::erase(its, side_taken(replayed.bus->controller(0).profile().readings, other));
-        for (const ReadingSide s2 : its)
+        for (const ReadingSide s2 : sides_besides(other, side_taken(replayed.bus->controller(0).profile().readings, other)))
           if ((holds = this_write(other, s2))) {
             explained.push_back(other);
             break;

@@ -453,10 +453,9 @@ void read_readings(const YAML::Node& v, const At& at, Profile& p) {
     r.with(point.id, [&](const YAML::Node& n, const At& a) {
       const std::string& name = scalar(n, a, sides_named(point));
       const auto side = reading_side_named(name);
-      const auto sides = sides_of(point);
-      if (!side || std::find(sides.begin(), sides.end(), *side) == sides.end()) {
+      if (!side || !has_side(point, *side)) {
         std::string listed;
-        for (ReadingSide s : sides)
+        for (ReadingSide s : sides_of(point))
           listed += (listed.empty() ? "" : ", ") + std::string(to_string(s)) + " (" + std::string(side_text(point, s)) + ")";
         fail(a, quoted_clip(name) + " is not a side of " + std::string(point.id) + ": " + listed);
       }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 
+#include "sabus/harness/yaml_reader.hpp"  // quoted_clip
+
 namespace sabus::harness {
 namespace {
 
@@ -95,13 +97,6 @@ constexpr std::array kPoints{
                  "S is the speed the axis is configured for, whatever moves it"},
 };
 
-std::string quoted(std::string_view s) {
-  std::string out(1, '"');
-  out += s;
-  out += '"';
-  return out;
-}
-
 }  // namespace
 
 std::string_view to_string(ReadingSide side) {
@@ -145,6 +140,26 @@ std::string sides_named(const ReadingPoint& point) {
   return out;
 }
 
+bool has_side(const ReadingPoint& point, ReadingSide side) {
+  const auto sides = sides_of(point);
+  return std::find(sides.begin(), sides.end(), side) != sides.end();
+}
+
+std::vector<ReadingSide> sides_besides(std::string_view id, ReadingSide taken) {
+  std::vector<ReadingSide> sides = sides_of(*find_reading_point(id));
+  std::erase(sides, taken);
+  return sides;
+}
+
+std::string reading_key(std::string_view id, ReadingSide side) {
+  std::string key(id);
+  if (side != ReadingSide::kOther) {
+    key += '/';
+    key += to_string(side);
+  }
+  return key;
+}
+
 const ReadingPoint* find_reading_point(std::string_view id) {
   auto it = std::find_if(kPoints.begin(), kPoints.end(), [&](const ReadingPoint& p) { return p.id == id; });
   return it == kPoints.end() ? nullptr : &*it;
@@ -174,17 +189,16 @@ std::optional<std::string> apply_reading_spec(std::string_view spec, ReadingPins
     const std::size_t eq = item.find('=');
     const std::string_view id = item.substr(0, eq);
     if (eq == std::string_view::npos)
-      return quoted(item) + ": expected other, reference, other-2 or a list of E-NN=SIDE";
+      return yaml_reader::quoted_clip(item) + ": expected other, reference, other-2 or a list of E-NN=SIDE";
     const ReadingPoint* point = find_reading_point(id);
     if (!point) {
       std::string known;
       for (const ReadingPoint& p : kPoints) known += (known.empty() ? "" : ", ") + std::string(p.id);
-      return quoted(id) + " is not a switchable reading (ERRATA entries: " + known + ")";
+      return yaml_reader::quoted_clip(id) + " is not a switchable reading (ERRATA entries: " + known + ")";
     }
     const auto side = reading_side_named(item.substr(eq + 1));
-    const auto sides = sides_of(*point);
-    if (!side || std::find(sides.begin(), sides.end(), *side) == sides.end())
-      return quoted(item.substr(eq + 1)) + ": a side of " + std::string(id) + " is " + sides_named(*point);
+    if (!side || !has_side(*point, *side))
+      return yaml_reader::quoted_clip(item.substr(eq + 1)) + ": a side of " + std::string(id) + " is " + sides_named(*point);
     added[std::string(id)] = *side;
   }
   if (added.empty()) return std::string("an empty --reading: expected other, reference, other-2 or E-NN=SIDE");

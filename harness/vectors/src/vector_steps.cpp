@@ -378,10 +378,8 @@ Expectation read_expectation(const YAML::Node& v, const At& at, const CommandInf
     std::vector<std::string> keys;
     std::vector<std::pair<std::string, ReadingSide>> sides;
     for (const ReadingPoint& p : reading_points())
-      for (ReadingSide side : sides_of(p)) {
-        if (side == ReadingSide::kReference) continue;
-        keys.push_back(side == ReadingSide::kOther ? std::string(p.id)
-                                                   : std::string(p.id) + "/" + std::string(to_string(side)));
+      for (ReadingSide side : sides_besides(p.id, ReadingSide::kReference)) {
+        keys.push_back(reading_key(p.id, side));
         sides.emplace_back(p.id, side);
       }
     const std::vector<std::string_view> key_views(keys.begin(), keys.end());

@@ -201,6 +201,13 @@ using PulseCountQuery = NoData<0x3F>;      // §3.16
 using ExtendedStatusPoll = NoData<0x40>;   // §3.17
 using NavigationQuery = NoData<0x45>;      // §3.22
 
+// The polls: the device type query and the status polls, which read the
+// controller without changing its mode (§3 NOTE for 30h and 31h; 40h, whose
+// bytes 47-48 report how the last mode ended, ERRATA E-52).
+constexpr bool is_poll(std::uint8_t code) {
+  return code == DeviceTypeQuery::kCode || code == StatusPoll::kCode || code == ExtendedStatusPoll::kCode;
+}
+
 // §3.3 Auto Move, one struct per form.
 struct AutoMoveStored {  // form 1
   static constexpr std::string_view kForm = "1";

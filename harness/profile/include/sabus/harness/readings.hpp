@@ -40,8 +40,15 @@ struct ReadingPoint {
 std::vector<ReadingSide> sides_of(const ReadingPoint& point);
 // What a controller of `side` does on `point` ("" for a side it lacks).
 std::string_view side_text(const ReadingPoint& point, ReadingSide side);
-// "reference or other" / "reference or other or other-2".
+// "reference or other" / "reference, other or other-2".
 std::string sides_named(const ReadingPoint& point);
+// Whether `side` is one of the point's sides.
+bool has_side(const ReadingPoint& point, ReadingSide side);
+// The sides of point `id` besides `taken` (one, or two where it has a third).
+std::vector<ReadingSide> sides_besides(std::string_view id, ReadingSide taken);
+// The key of a vector's `readings:` alternative for `side` of point `id`:
+// the id itself for its other side, "E-23/other-2" for a third.
+std::string reading_key(std::string_view id, ReadingSide side);
 
 // Every switchable reading, in ERRATA order.
 std::span<const ReadingPoint> reading_points();
