@@ -163,7 +163,40 @@ struct SignedSpans {
   }
 };
 
+// The LeftDecimal fields with a decimal digit whose text has no '.'.
+struct WholeDecimals {
+  ByteView data;
+  std::vector<DataSpan>& out;
+  std::size_t pos = 0;
+  template <class C, class T, class... M>
+  void operator()(std::string_view, const C& c, T&, M&&...) {
+    const std::size_t w = width_for_decode(c, data.size() - std::min(pos, data.size()));
+    if constexpr (std::is_same_v<C, fields::LeftDecimal>) {
+      if (c.decimals > 0 && pos + w <= data.size()) {
+        const ByteView text = data.subspan(pos, w);
+        const bool blank = std::all_of(text.begin(), text.end(), [](std::uint8_t b) { return b == ' '; });
+        if (!blank && std::find(text.begin(), text.end(), '.') == text.end()) out.push_back({pos, w});
+      }
+    }
+    pos += w;
+  }
+};
+
 }  // namespace
+
+std::vector<DataSpan> decimals_without_point(const Request& request, ByteView data) {
+  std::vector<DataSpan> spans;
+  std::visit(
+      [&]<class T>(const T& m) {
+        if constexpr (requires(T& t, WholeDecimals& v) { T::layout(t, v); }) {
+          T copy = m;  // layout takes its message by reference
+          WholeDecimals walk{data, spans};
+          T::layout(copy, walk);
+        }
+      },
+      request);
+  return spans;
+}
 
 std::vector<DataSpan> auto_move_signed_targets(std::uint8_t form_byte) {
   std::vector<DataSpan> spans;

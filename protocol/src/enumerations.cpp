@@ -281,6 +281,24 @@ constexpr std::string_view kTrackStates[] = {
     "LAST_TRACK_STATE",
 };
 
+// ERRATA E-34's other side: track_states with its last four in the order of
+// manual_states (JOG_POL_CW, JOG_POL_CCW, AUTO_POL_MOVE, IDLE), derived from
+// the printed table at compile time so that the two cannot drift apart.
+template <std::size_t N>
+constexpr std::array<std::string_view, N> with_manual_pol_order(const std::string_view (&src)[N]) {
+  std::array<std::string_view, N> out{};
+  for (std::size_t i = 0; i < N; ++i) out[i] = src[i];
+  constexpr std::string_view kOrder[] = {"TRACK_MANUAL_SEARCH_JOG_POL_CW", "TRACK_MANUAL_SEARCH_JOG_POL_CCW",
+                                         "TRACK_MANUAL_SEARCH_AUTO_POL_MOVE", "TRACK_MANUAL_SEARCH_IDLE"};
+  std::size_t first = N;
+  for (std::size_t i = 0; i < N; ++i)
+    if (src[i] == "TRACK_MANUAL_SEARCH_JOG_POL_CCW") first = i;
+  if (first + 4 >= N) throw "the four pol states not found";  // not a constant expression
+  for (std::size_t k = 0; k < 4; ++k) out[first + k] = kOrder[k];
+  return out;
+}
+constexpr auto kTrackStatesManualOrder = with_manual_pol_order(kTrackStates);
+
 constexpr std::string_view kStowStates[] = {
     "STOW_INITIALIZING_MODE",
     "STOW_WAITING_FOR_CONTINUE_CONFIRMATION",
@@ -483,6 +501,7 @@ constexpr EnumList kLocateExitPrintedList{"locate_exit_conditions", kLocateExitP
 constexpr EnumList kStoreStatesList{"store_states", kStoreStates};
 constexpr EnumList kStoreExitList{"store_exit_conditions", kStoreExit};
 constexpr EnumList kTrackStatesList{"track_states", kTrackStates};
+constexpr EnumList kTrackStatesManualOrderList{"track_states", kTrackStatesManualOrder};
 constexpr EnumList kStowStatesList{"stow_states", kStowStates};
 constexpr EnumList kStowExitList{"stow_exit_conditions", kStowExit};
 constexpr EnumList kDeployStatesList{"deploy_states", kDeployStates};
@@ -500,29 +519,25 @@ constexpr EnumList kSetupPackExitList{"setup_pack_exit_conditions", kSetupPackEx
 constexpr EnumList kRecallStatesList{"recall_mode_states", kRecallStates};
 constexpr EnumList kRecallExitList{"recall_exit_conditions", kRecallExit};
 
-// Every list, mode list first, then in the order the spec prints them; the two
-// tables differ only in which locate_exit_conditions they hold.
-constexpr const EnumList* kAllRestored[] = {
-    &kModeList,          &kSimpleModeStatesList, &kSimpleExitList,
-    &kLocateStatesList,  &kLocateExitRestoredList, &kStoreStatesList,
-    &kStoreExitList,     &kTrackStatesList,      &kStowStatesList,
-    &kStowExitList,      &kDeployStatesList,     &kDeployExitList,
-    &kMenuStatesList,    &kMenuExitList,         &kManualStatesList,
-    &kPosConfirmStatesList, &kFairingStatesList, &kTruckPosStatesList,
-    &kInitStatesList,    &kInitExitList,         &kSetupPackStatesList,
-    &kSetupPackExitList, &kRecallStatesList,     &kRecallExitList,
-};
-constexpr const EnumList* kAllPrinted[] = {
-    &kModeList,          &kSimpleModeStatesList, &kSimpleExitList,
-    &kLocateStatesList,  &kLocateExitPrintedList, &kStoreStatesList,
-    &kStoreExitList,     &kTrackStatesList,      &kStowStatesList,
-    &kStowExitList,      &kDeployStatesList,     &kDeployExitList,
-    &kMenuStatesList,    &kMenuExitList,         &kManualStatesList,
-    &kPosConfirmStatesList, &kFairingStatesList, &kTruckPosStatesList,
-    &kInitStatesList,    &kInitExitList,         &kSetupPackStatesList,
-    &kSetupPackExitList, &kRecallStatesList,     &kRecallExitList,
-};
-static_assert(std::size(kAllRestored) == std::size(kAllPrinted));
+// Every list, mode list first, then in the order the spec prints them; the
+// tables differ only in which locate_exit_conditions (E-28) and which
+// track_states (E-34) they hold.
+constexpr auto all_lists_with(const EnumList* locate_exit, const EnumList* track_states) {
+  return std::array<const EnumList*, 24>{
+      &kModeList,          &kSimpleModeStatesList, &kSimpleExitList,
+      &kLocateStatesList,  locate_exit,            &kStoreStatesList,
+      &kStoreExitList,     track_states,           &kStowStatesList,
+      &kStowExitList,      &kDeployStatesList,     &kDeployExitList,
+      &kMenuStatesList,    &kMenuExitList,         &kManualStatesList,
+      &kPosConfirmStatesList, &kFairingStatesList, &kTruckPosStatesList,
+      &kInitStatesList,    &kInitExitList,         &kSetupPackStatesList,
+      &kSetupPackExitList, &kRecallStatesList,     &kRecallExitList,
+  };
+}
+constexpr auto kAllRestored = all_lists_with(&kLocateExitRestoredList, &kTrackStatesList);
+constexpr auto kAllPrinted = all_lists_with(&kLocateExitPrintedList, &kTrackStatesList);
+constexpr auto kAllRestoredManualOrder = all_lists_with(&kLocateExitRestoredList, &kTrackStatesManualOrderList);
+constexpr auto kAllPrintedManualOrder = all_lists_with(&kLocateExitPrintedList, &kTrackStatesManualOrderList);
 
 // ---------------------------------------------------------------------------
 // Compile-time checks of the values the rest of the project relies on.
@@ -536,6 +551,10 @@ static_assert(value_in(kModeNames, "REMOTE_MODE") == 0x32);
 static_assert(value_in(kLocateExitRestored, "LOCATE_FUNCTION_COMPLETED") == 0x38);
 static_assert(value_in(kLocateExitPrinted, "LOCATE_FUNCTION_COMPLETED") == 0x37);
 static_assert(kLocateExitPrinted.size() + 1 == std::size(kLocateExitRestored));
+static_assert(value_in(kTrackStates, "TRACK_MANUAL_SEARCH_JOG_POL_CW") == 0x48);
+static_assert(value_in(kTrackStatesManualOrder, "TRACK_MANUAL_SEARCH_JOG_POL_CW") == 0x45);
+static_assert(value_in(kTrackStatesManualOrder, "TRACK_MANUAL_SEARCH_IDLE") == 0x48);
+static_assert(value_in(kTrackStatesManualOrder, "LAST_TRACK_STATE") == value_in(kTrackStates, "LAST_TRACK_STATE"));
 
 // Every value of every list is a printable data byte, 0x20..0x7F.
 constexpr bool all_lists_fit() {
@@ -635,6 +654,7 @@ const Assignment* assignment_for(std::uint8_t mode) {
 const EnumList* apply_reading(const EnumList* list, const EnumReading& reading) {
   if (list == &kLocateExitRestoredList && !reading.restore_lost_locate_exit)
     return &kLocateExitPrintedList;
+  if (list == &kTrackStatesList && reading.track_pol_states_as_manual_states) return &kTrackStatesManualOrderList;
   return list;
 }
 
@@ -666,8 +686,11 @@ const EnumList* exit_list_for_mode(std::uint8_t mode, const EnumReading& reading
 }
 
 std::span<const EnumList* const> all_lists(const EnumReading& reading) {
-  if (reading.restore_lost_locate_exit) return kAllRestored;
-  return kAllPrinted;
+  if (reading.track_pol_states_as_manual_states)
+    return reading.restore_lost_locate_exit ? std::span<const EnumList* const>(kAllRestoredManualOrder)
+                                            : std::span<const EnumList* const>(kAllPrintedManualOrder);
+  return reading.restore_lost_locate_exit ? std::span<const EnumList* const>(kAllRestored)
+                                          : std::span<const EnumList* const>(kAllPrinted);
 }
 
 }  // namespace sabus::enums

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <regex>
@@ -209,6 +210,31 @@ TEST(Enumerations, ListSizesAsCountedInTheSpec) {
   }
   EXPECT_EQ(all_lists(kPrinted).size(), expected.size());
   EXPECT_EQ(all_lists(kPrinted)[0], &mode_names());
+}
+
+// ERRATA E-34: track_states' last four as printed, or in manual_states'
+// order; every other value of the list, and every other list, the same. The
+// two readings combine with E-28's.
+TEST(Enumerations, TheLastFourTrackStatesFollowE34) {
+  const EnumList* printed = state_list_for_mode(Mode("TRACK_MODE").value);
+  const EnumList* manual = state_list_for_mode(Mode("TRACK_MODE").value, EnumReading{true, true});
+  ASSERT_TRUE(printed && manual);
+  EXPECT_EQ(printed->value_of("TRACK_MANUAL_SEARCH_JOG_POL_CCW"), 0x45);
+  EXPECT_EQ(printed->value_of("TRACK_MANUAL_SEARCH_JOG_POL_CW"), 0x48);
+  const std::vector<std::string_view> order = {"TRACK_MANUAL_SEARCH_JOG_POL_CW", "TRACK_MANUAL_SEARCH_JOG_POL_CCW",
+                                               "TRACK_MANUAL_SEARCH_AUTO_POL_MOVE", "TRACK_MANUAL_SEARCH_IDLE"};
+  for (std::size_t k = 0; k < order.size(); ++k) EXPECT_EQ(manual->value_of(order[k]), 0x45 + k) << order[k];
+  ASSERT_EQ(printed->names.size(), manual->names.size());
+  for (std::uint8_t v = 0x20; v < 0x45; ++v) EXPECT_EQ(printed->name_of(v), manual->name_of(v)) << int(v);
+  EXPECT_EQ(printed->name_of(0x49), manual->name_of(0x49));
+  for (const EnumReading reading : {EnumReading{true, true}, EnumReading{false, true}}) {
+    const auto lists = all_lists(reading);
+    EXPECT_EQ(lists.size(), all_lists().size());
+    EXPECT_NE(std::find(lists.begin(), lists.end(), manual), lists.end());
+    EXPECT_EQ(std::find(lists.begin(), lists.end(), printed), lists.end());
+    EXPECT_EQ(exit_list_for_mode(Mode("LOCATE_MODE").value, reading),
+              exit_list_for_mode(Mode("LOCATE_MODE").value, EnumReading{reading.restore_lost_locate_exit}));
+  }
 }
 
 TEST(Enumerations, SentinelsArePartOfTheLists) {

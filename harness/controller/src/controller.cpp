@@ -188,7 +188,7 @@ Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faul
 }
 
 enums::EnumReading Controller::enum_reading() const {
-  return enums::EnumReading{profile_.restore_lost_locate_exit};
+  return enums::EnumReading{profile_.restore_lost_locate_exit, reads_other("E-34")};
 }
 
 bool Controller::reads_other(std::string_view errata_id) const {
@@ -206,7 +206,11 @@ std::optional<Duration> Controller::inter_character_timeout() const {
 
 void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   update();
+  // E-34 changes the value of a state, not the state: kept by its name.
+  const auto* states_before = enums::state_list_for_mode(state_.mode.mode, enum_reading());
+  const auto state_before = states_before ? states_before->name_of(state_.mode.state) : std::nullopt;
   profile_.readings[errata_id] = side;
+  if (errata_id == "E-34" && state_before) set_state(*state_before);
   const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
   const auto state = states ? states->name_of(state_.mode.state) : std::nullopt;
   const auto* exits = enums::exit_list_for_mode(state_.mode.last_mode, enum_reading());
@@ -252,6 +256,12 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
     start_locate_movements();
     update();  // to the clock's time again, the side's way
   }
+  // E-61: the last remote jog, nothing else on its axis since: again from
+  // where and when it began, for the duration the side taken gives it.
+  if (errata_id == "E-61" && remote_jog_.valid && !remote_jog_.key)
+    redo_remote_jog(jog_duration(remote_jog_.ms, side == ReadingSide::kOther));
+  // E-56: the last jog key, likewise, held for the side's time.
+  if (errata_id == "E-56" && remote_jog_.valid && remote_jog_.key) redo_remote_jog(key_jog_hold(side));
   // E-63: a dual-port feed still on its way to a satellite's one position
   // (32h form 1, 34h): that move again, from where and when it began, to the
   // position the side taken gives it.
@@ -267,6 +277,18 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
       step_axis(AxisId::kPol, m.began, last_update_);
     }
   }
+}
+
+void Controller::redo_remote_jog(Duration duration) {
+  const RemoteJog j = remote_jog_;
+  AxisState& s = axis(j.axis);
+  const AxisState now = s;
+  s = j.from;
+  s.motion = AxisState::Motion::kJog;
+  s.direction = now.direction;
+  s.fast = s.configured_fast = now.fast;
+  s.jog_end = j.began + duration;
+  step_axis(j.axis, j.began, last_update_);
 }
 
 // §3.5: a dual-port feed has one polarization position per satellite, for
@@ -310,6 +332,7 @@ void Controller::set_state(std::string_view state) {
 }
 
 void Controller::enter_mode(enums::Mode mode, std::string_view state, std::string_view exit_of_old) {
+  ++modes_entered_;
   if (mode.value != state_.mode.mode) {
     // A LOCATE, STOW or DEPLOY that another mode takes over has not
     // completed (ERRATA E-82, E-89).
@@ -365,10 +388,12 @@ std::string Controller::moving_exit(bool stopped) const {
 // MODE_CHANGED entry of the movement it is in (§3.17 locate_exit_conditions
 // pair one with each movement state); one left before its first movement
 // (waiting for navigation data, or in a range error, E-81) with the entry of
-// the movement it was to begin with, the first elevation movement.
+// the movement it was to begin with, the first elevation movement; on the
+// other side with another pair: the azimuth movement's, in which the
+// reference's own LOCATE moves (E-94).
 std::string Controller::locate_exit(bool stop_key) const {
   if (stop_key && faults_.has(Fault::kLocateStopExitCompleted)) return "LOCATE_FUNCTION_COMPLETED";
-  std::string movement = "LOCATE_FIRST_ELEV_MOVEMENT";
+  std::string movement = reads_other("E-82") ? "LOCATE_AZIM_MOVEMENT" : "LOCATE_FIRST_ELEV_MOVEMENT";
   if (const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading()))
     if (const auto name = states->name_of(state_.mode.state))
       for (std::string_view m : {"LOCATE_FIRST_ELEV_MOVEMENT", "LOCATE_POL_MOVEMENT", "LOCATE_AZIM_MOVEMENT",
@@ -385,6 +410,10 @@ bool Controller::limit(AxisId a, int direction) const {
   return direction > 0 ? pos >= p.max_deg - kEpsilon : pos <= p.min_deg + kEpsilon;
 }
 
+double Controller::stow_elevation() const {
+  return profile_.el.has_stow_limit ? profile_.el.stow_deg : profile_.el.min_deg;
+}
+
 bool Controller::stow_limit(AxisId a) const {
   const AxisProfile& p = axis_profile(a);
   return p.has_stow_limit && std::abs(axis(a).position - p.stow_deg) < 0.05;
@@ -397,6 +426,7 @@ bool Controller::moving() const {
 }
 
 void Controller::stop_axis(AxisId a) {
+  if (remote_jog_.axis == a) remote_jog_.valid = false;
   AxisState& s = axis(a);
   if (!axis_profile(a).accel_dps2 || std::abs(s.velocity) < 1e-9) {
     s.motion = AxisState::Motion::kIdle;
@@ -411,6 +441,7 @@ void Controller::stop_all() {
 }
 
 void Controller::start_jog(AxisId a, int direction, bool fast, Duration duration) {
+  if (remote_jog_.axis == a) remote_jog_.valid = false;  // a remote jog records itself after
   AxisState& s = axis(a);
   s.motion = AxisState::Motion::kJog;
   s.direction = direction;
@@ -419,6 +450,7 @@ void Controller::start_jog(AxisId a, int direction, bool fast, Duration duration
 }
 
 void Controller::start_move(AxisId a, double target, bool remote) {
+  if (remote_jog_.axis == a) remote_jog_.valid = false;
   AxisState& s = axis(a);
   const AxisProfile& p = axis_profile(a);
   s.target = std::clamp(target, p.min_deg, p.max_deg);
@@ -529,7 +561,8 @@ void Controller::advance(TimePoint to, bool at_tick) {
 
 bool Controller::chains_movements() const {
   // E-94's other side: a LOCATE's movements follow each other too.
-  return in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE") || (in_mode("LOCATE_MODE") && reads_other("E-94"));
+  return in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE") || (in_mode("LOCATE_MODE") && reads_other("E-94")) ||
+         (in_mode("STOW_MODE") && reads_other("E-89"));
 }
 
 void Controller::update() {
@@ -605,6 +638,26 @@ void Controller::next_search_leg() {
   if (!moving()) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "SPIRAL_NO_PEAK_FOUND");
 }
 
+void Controller::start_stow() {
+  tick_origin_ = last_update_;
+  chain_pending_ = false;
+  enter_mode("STOW_MODE", "STOW_MOVING_TO_AZIM_STOW");
+  // ERRATA E-99: a STOW drives every axis with a stow limit to it (§3.2
+  // bytes 32-34 bit C then shows it); an azimuth without one goes to 0.0
+  // and an elevation without one to its lower limit, all at once (E-89; the
+  // other side moves the azimuth first and the others after it, in
+  // on_motion_done). A circular feed has no polarization drive (§3.5).
+  start_move(AxisId::kAz, profile_.az.has_stow_limit ? profile_.az.stow_deg : 0.0, false);
+  if (!reads_other("E-89")) {
+    start_move(AxisId::kEl, stow_elevation(), false);
+    if (profile_.pol.has_stow_limit && profile_.pol_type != PolType::kCircular)
+      start_move(AxisId::kPol, profile_.pol.stow_deg, false);
+  }
+  // Already stowed: the STOW finishes at once (as a LOCATE or DEPLOY with
+  // nothing to move does), not a STOW_MODE that never ends.
+  if (!moving()) on_motion_done();
+}
+
 void Controller::start_deploy() {
   tick_origin_ = last_update_;
   chain_pending_ = false;
@@ -638,7 +691,23 @@ void Controller::on_motion_done() {
     const bool completed = state == "LOCATE_AZIM_MOVEMENT" || state == "LOCATE_SECOND_ELEV_MOVEMENT";
     if (completed && reads_other("E-93")) enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", "LOCATE_FUNCTION_COMPLETED");
     else if (completed) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
-  } else if (in_mode("STOW_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
+  } else if (in_mode("STOW_MODE")) {
+    // ERRATA E-89's other side: one axis after another, in the order of
+    // stow_states (azimuth, polarization, elevation).
+    if (reads_other("E-89") && state == "STOW_MOVING_TO_AZIM_STOW") {
+      set_state("STOW_MOVING_TO_POL_STOW");
+      if (profile_.pol.has_stow_limit && profile_.pol_type != PolType::kCircular)
+        start_move(AxisId::kPol, profile_.pol.stow_deg, false);
+      if (moving()) return;
+      return on_motion_done();
+    }
+    if (reads_other("E-89") && state == "STOW_MOVING_TO_POL_STOW") {
+      set_state("STOW_MOVING_TO_ELEV_STOW");
+      start_move(AxisId::kEl, stow_elevation(), false);
+      if (moving()) return;
+    }
+    enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
+  }
   else if (in_mode("DEPLOY_MODE")) {
     const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());
     const bool elevation_done = states && states->name_of(state_.mode.state) == "DEPLOY_MOVING_ELEVATION";
@@ -649,6 +718,9 @@ void Controller::on_motion_done() {
     }
     enter_mode("MANUAL_MODE", "MANUAL_IDLE", "DEPLOY_FINISHED_NORMALLY");
   } else if (in_mode("SPIRAL_REMOTE_MODE")) next_search_leg();
+  // A pol jog of a manual search (E-34's states) over: the search again.
+  else if (in_mode("TRACK_MODE") && state && state->starts_with("TRACK_MANUAL_SEARCH_JOG_POL"))
+    set_state(track_submode(state_.track.activity).state);
   else if (in_mode("RECALL_MODE")) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "RECALL_NORMAL_EXIT");
 }
 
@@ -866,6 +938,12 @@ void blank_pad(Frame& f, std::size_t first, std::size_t width) {
   }
 }
 
+// A six-'*' A/D error field at frame byte `first` as five '*' after a blank.
+void five_stars(Frame& f, std::size_t first) {
+  const auto at = f.data.begin() + static_cast<std::ptrdiff_t>(first - 3);
+  if (std::all_of(at, at + 6, [](std::uint8_t c) { return c == '*'; })) at[0] = ' ';
+}
+
 }  // namespace
 
 Bytes Controller::finish_reply(Frame f) const {
@@ -877,6 +955,12 @@ Bytes Controller::finish_reply(Frame f) const {
     if (status && faults_.has(Fault::kWrongNibbleBase)) {
       // Frame bytes 32-39 and 44 are 0x40 | bits.
       for (std::size_t byte : {32, 33, 34, 35, 36, 37, 38, 39, 44}) f.data[byte - 3] -= 0x10;
+    }
+    // ERRATA E-42's other side: the azimuth's A/D error field as §3.2 bytes
+    // 14-19 and §3.24 bytes 4-9 print it, five '*' (after a blank).
+    if (reads_other("E-42")) {
+      if (status) five_stars(f, 14);
+      else if (info && !is_offline_reply(f) && info->reply == ReplyKind::kJogPosition && f.data[0] == 'A') five_stars(f, 4);
     }
     // ERRATA E-33's other side: positions left-justified, counts and the 45h
     // heading padded with blanks (§3.2, §3.16, §3.22 give no justification

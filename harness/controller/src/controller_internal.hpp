@@ -1,6 +1,7 @@
 // Helpers shared by the controller's source files (not part of its API).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string_view>
 
@@ -13,6 +14,23 @@ namespace sabus::harness {
 // a mode's at compile time (enums::Mode).
 std::uint8_t enum_value(const enums::EnumList* list, std::string_view name);
 consteval std::uint8_t mode_value(std::string_view name) { return enums::Mode(name).value; }
+
+// §3.4: "any move will be for a time interval equal to a multiple of approx.
+// 50 milliseconds": a duration is rounded up to the timer's resolution, or
+// on ERRATA E-61's other side to the nearest multiple (under 25 ms: no move).
+inline constexpr std::chrono::milliseconds kJogTick{50};
+inline Duration jog_duration(std::uint32_t ms, bool nearest) {
+  const auto tick = static_cast<std::uint32_t>(kJogTick.count());
+  const auto ticks = nearest ? (ms + tick / 2) / tick : (ms + tick - 1) / tick;
+  return std::chrono::duration_cast<Duration>(kJogTick * ticks);
+}
+
+// §2 REMOTE JOG HOLD: a jog key sent remotely moves its axis for 20 x 1/40 s
+// (the example's value); ERRATA E-56's other side for the hold time the
+// device is configured with (1-40 x 1/40 s), here the longest, 40 x 1/40 s.
+inline Duration key_jog_hold(ReadingSide side) {
+  return std::chrono::duration_cast<Duration>(std::chrono::milliseconds(side == ReadingSide::kOther ? 1000 : 500));
+}
 
 // One row per TRACK submode of the profile: §3.2 byte 40 SSSS, the §3.17
 // track_states entry that stands for it, and whether it is "a peaking or

@@ -138,8 +138,21 @@ Outcome Controller::execute(const Frame& f) {
       return Handlers::nak(*this, f.command, NakRule::kMalformedData, "'-' before a padding zero (E-45: zeros go left of the sign)");
     respell_auto_move(command.data, TargetSpelling::kSignFirst);
   }
+  // ERRATA E-14's other side: the 'C' that §3.4's NAK and TRACK sentences
+  // list beside W, U, D is a direction: azimuth counterclockwise, 'E'.
+  if (reads_other("E-14") && (command.command == Jog::kCode || command.command == JogMinimal::kCode) &&
+      !command.data.empty() && command.data[0] == 'C')
+    command.data[0] = 'E';
   auto request = decode_request(command);
   if (!request) return Handlers::nak(*this, f.command, NakRule::kMalformedData, request.error().message());
+  // ERRATA E-41's other side: a longitude, pol offset or 42h H/V position
+  // without its decimal digit ("45") is malformed (§3.10, §3.18, §3.19).
+  if (reads_other("E-41") && (f.command == WriteSatellite::kCode || f.command == RemoteLocate::kCode ||
+                              f.command == RemoteStore::kCode))
+    if (const auto spans = decimals_without_point(request.value(), command.data); !spans.empty())
+      return Handlers::nak(*this, f.command, NakRule::kMalformedData,
+                           "byte " + std::to_string(spans.front().first + kFrameDataStart) +
+                               ": a number without its decimal digit (E-41)");
   // ERRATA E-52 other-2: §2's "commands received will force the controller
   // into REMOTE mode": every command but the polls (30h, 31h, 40h) takes a
   // controller in MANUAL_MODE to REMOTE_MODE as it is received, and then

@@ -8,7 +8,6 @@
 namespace sabus::harness {
 namespace {
 
-constexpr std::chrono::milliseconds kKeyJogHold{500};    // §2 REMOTE JOG HOLD 20 x 1/40 s
 
 bool valid_key(char k) { return (k >= '0' && k <= '9') || (k >= 'A' && k <= 'G'); }
 // §3.25: 3Ah-3Fh are marked "unused" and 40h lies between the table's rows.
@@ -63,18 +62,7 @@ Outcome Handlers::misc(C& c, const Misc& m) {
     case 'S':
       if (!c.profile_.stow && !c.faults_.has(Fault::kStowWithoutCapability)) return nak(c, 0x36, NakRule::kMiscNoStow);
       // READING-NOTES 25: any printable parameter.
-      c.enter_mode("STOW_MODE", "STOW_MOVING_TO_AZIM_STOW");
-      // ERRATA E-99: a STOW drives every axis with a stow limit to it (§3.2
-      // bytes 32-34 bit C then shows it); an azimuth without one goes to 0.0
-      // and an elevation without one to its lower limit, all at once (E-89).
-      // A circular feed has no polarization drive (§3.5).
-      c.start_move(AxisId::kAz, c.profile_.az.has_stow_limit ? c.profile_.az.stow_deg : 0.0, false);
-      c.start_move(AxisId::kEl, c.profile_.el.has_stow_limit ? c.profile_.el.stow_deg : c.profile_.el.min_deg, false);
-      if (c.profile_.pol.has_stow_limit && c.profile_.pol_type != PolType::kCircular)
-        c.start_move(AxisId::kPol, c.profile_.pol.stow_deg, false);
-      // Already stowed: the STOW finishes at once (as a LOCATE or DEPLOY
-      // with nothing to move does), not a STOW_MODE that never ends.
-      if (!c.moving()) c.on_motion_done();
+      c.start_stow();
       return status(c, 0x36, "stow");
     case 'D':
       if (!c.profile_.deploy && !c.faults_.has(Fault::kStowWithoutCapability))
@@ -143,7 +131,12 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
     if (j.axis == AxisId::kPol && c.profile_.pol_type == PolType::kCircular) break;
     // At the speed the axis is configured for (the Speed key's or the last
     // jog's), not an auto move's: E-98, whichever side 'S' shows.
-    if (!c.limit(j.axis, j.dir)) c.start_jog(j.axis, j.dir, c.axis(j.axis).configured_fast, kKeyJogHold);
+    if (!c.limit(j.axis, j.dir)) {
+      const AxisState from = c.axis(j.axis);
+      c.start_jog(j.axis, j.dir, c.axis(j.axis).configured_fast,
+                  key_jog_hold(c.reads_other("E-56") ? ReadingSide::kOther : ReadingSide::kReference));
+      c.remote_jog_ = {true, j.axis, c.clock_.now(), from, 0, true};
+    }
     break;
   }
   if (key == '0')

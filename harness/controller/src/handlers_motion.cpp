@@ -10,15 +10,6 @@
 namespace sabus::harness {
 namespace {
 
-constexpr std::chrono::milliseconds kJogTick{50};        // §3.4: timer resolution ~50 ms
-
-// §3.4: "any move will be for a time interval equal to a multiple of approx.
-// 50 milliseconds": a duration is rounded up to the timer's resolution.
-Duration jog_duration(std::uint32_t ms) {
-  const auto ticks = (ms + kJogTick.count() - 1) / kJogTick.count();
-  return std::chrono::duration_cast<Duration>(kJogTick * ticks);
-}
-
 // The navigation data a LOCATE computes with, bent by the LOCATE faults
 // (faults.hpp): each a realistic misreading of §3.22/§3.23.
 Navigation locate_navigation(Navigation n, const FaultSet& faults) {
@@ -93,12 +84,15 @@ std::string Handlers::form_one_name(const Frame& f) {
   return name;
 }
 
+// ERRATA E-31: a field that names a stored satellite is form 1 even when it
+// parses as a 2A pair; on the other side a valid 2A pair is form 2A whatever
+// is stored (the codec's own reading).
 bool Handlers::names_stored(const C& c, const Frame& f) {
-  return f.command == AutoMove::kCode && !f.data.empty() && f.data[0] == ' ' && find_stored(c, form_one_name(f));
+  return !c.reads_other("E-31") && f.command == AutoMove::kCode && !f.data.empty() && f.data[0] == ' ' && find_stored(c, form_one_name(f));
 }
 
 Outcome Handlers::auto_move_form(C& c, const Frame& f, const AutoMoveAzEl& m) {
-  // READING-NOTES 31: a field that names a stored satellite is form 1.
+  // READING-NOTES 31, ERRATA E-31: a field that names a stored satellite is form 1.
   if (names_stored(c, f)) return auto_move_form(c, f, AutoMoveStored{' ', form_one_name(f)});
   return move_az_el(c, m.az / 10.0, m.el / 10.0, "auto move (form 2A)");
 }
@@ -162,12 +156,19 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
     // Outside TRACK, ERRATA E-52 says what a jog does to the mode.
     if (!c.state_.track.active) take_control_to_move(c);
     else if (!pol) take_remote_control(c);
+    // A pol jog in a manual search keeps TRACK: §3.17 track_states name it
+    // (their order is ERRATA E-34).
+    if (pol && c.state_.track.active && c.state_.track.activity == TrackActivity::kManualSearch)
+      c.set_state(dir > 0 ? "TRACK_MANUAL_SEARCH_JOG_POL_CW" : "TRACK_MANUAL_SEARCH_JOG_POL_CCW");
     // §3.4: "the controller can only support a remote jog about a single axis".
     if (!c.faults_.has(Fault::kSecondAxisJogKeepsFirst))
       for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
         if (other != a && c.axis(other).motion == AxisState::Motion::kJog)
           c.stop_axis(other);
-    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms));  // moves from the next update on
+    const AxisState from = c.axis(a);
+    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms, c.reads_other("E-61")));  // moves from the next update on
+    c.remote_jog_ = {true, a, c.clock_.now(), from, j.duration_ms};
+    c.state_.last_jogged = a;
     if (code == 0x47) return jog_position(c, a);
     return status(c, code, "jog " + std::string(1, j.direction));
   }
@@ -181,12 +182,19 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
   // ERRATA E-52's other side leaves it for MANUAL_MODE, and stays in the
   // mode it is in otherwise (§3.4: in TRACK, 'X' hands control to REMOTE).
   const bool to_manual = c.reads_other("E-52");
-  const std::string exit = c.moving_exit(true);
+  // ERRATA E-82 (a LOCATE) and E-89 (a STOW or DEPLOY): the reference exits
+  // with the entry of the movement stopped, the other sides with its
+  // MODE_CHANGED entry (REMOTE took control).
+  const bool x_changes_mode = (c.in_mode("LOCATE_MODE") && c.reads_other("E-82")) ||
+                              ((c.in_mode("STOW_MODE") || c.in_mode("DEPLOY_MODE")) && c.reads_other("E-89"));
+  const std::string exit = c.moving_exit(!x_changes_mode);
   if (!exit.empty() && to_manual) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", exit);
   else if (!exit.empty()) c.enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", exit);
   if (c.state_.track.active || !to_manual) take_remote_control(c);
   c.stop_all();  // from the next update on
-  if (code == 0x47) return jog_position(c, AxisId::kAz);  // ERRATA E-46
+  // ERRATA E-46: 'X' names no axis: the reference replies the azimuth, the
+  // other side the axis last jogged (the azimuth before any jog).
+  if (code == 0x47) return jog_position(c, c.reads_other("E-46") ? c.state_.last_jogged.value_or(AxisId::kAz) : AxisId::kAz);
   return status(c, code, "stop all movement");
 }
 
@@ -206,10 +214,15 @@ Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
   // §3.5: during TRACK peaking or search the move waits, and the reply is an
   // ACK. With no satellite in memory the reference NAKs at once, TRACK busy
   // or not; the other side defers first and checks when it runs (ERRATA E-64).
+  // With no auto move since power-on the reference takes the first STORE
+  // entry; ERRATA E-57's other side has no "last target" and NAKs.
   const bool defer_first = c.reads_other("E-64");
+  const bool no_target = c.reads_other("E-57") && !c.state_.last_target;
   if (!defer_first && c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
+  if (!defer_first && no_target) return nak(c, 0x34, NakRule::kPolPresetNoSatellites, "no auto move since power-on (E-57)");
   if (track_busy(c)) return status(c, 0x34, "pol preset deferred until peaking ends");
   if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
+  if (no_target) return nak(c, 0x34, NakRule::kPolPresetNoSatellites, "no auto move since power-on (E-57)");
   const StoredSatellite sat = c.state_.last_target.value_or(c.state_.store.front());
   const bool dual = c.profile_.pol_type == PolType::kDualPort;
   take_control_to_move(c);  // ERRATA E-52

@@ -2,9 +2,11 @@
 // list), §3.10-§3.13 preset satellites and TLEs, §3.14 / §3.15 IESS, §3.19
 // Remote Store, §3.20 / §3.21 signposts, §3.22 / §3.23 navigation data.
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 #include "handlers.hpp"
+#include "sabus/harness/look_angles.hpp"
 
 namespace sabus::harness {
 namespace {
@@ -22,6 +24,17 @@ bool tle_checksum_ok(const std::string& line) {
 }
 
 double wrap_pol(double deg) { return deg > 90 ? deg - 180 : deg < -90 ? deg + 180 : deg; }
+
+// ERRATA E-58 other-2: the polarization skew of a geostationary satellite
+// seen from the site, atan(sin(satellite - site longitude) / tan(latitude)),
+// to the tenth, in -90.0..90.0 (90.0 on the equator).
+double polarization_skew_deg(const look::Site& site, double satellite_longitude_deg) {
+  constexpr double kRad = 3.14159265358979323846 / 180;
+  const double s = std::sin((satellite_longitude_deg - site.longitude_deg) * kRad);
+  const double t = std::tan(site.latitude_deg * kRad);
+  const double skew = std::abs(t) < 1e-12 ? (s < 0 ? -90.0 : 90.0) : std::atan(s / t) / kRad;
+  return std::round(skew * 10) / 10;
+}
 
 // The slot a read of `index` answers from: `index` itself, or with `fault`
 // (an index table off by one except at its ends) the next one, for every
@@ -143,6 +156,11 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
             (c.reads_other("E-66") && c.state_.commands_since_locate > 0))
           return nak(c, 0x42, NakRule::kStoreNeedsLocate);
         entry.h_pol_deg = c.state_.last_located->pol_offset.value_or(0) / 10.0;
+        // ERRATA E-58 other-2: H from the site and the satellite (the skew),
+        // where the navigation data give a site and the satellite a longitude.
+        if (c.reads_other_2("E-58") && c.state_.last_located->longitude)
+          if (const auto site = look::site_of(c.state_.navigation, c.profile_.az_sensor, c.profile_.fluxgate_heading).site)
+            entry.h_pol_deg = polarization_skew_deg(*site, *c.state_.last_located->longitude / 10.0);
         entry.v_pol_deg = wrap_pol(entry.h_pol_deg + 90);
         break;
       case 'S':
@@ -150,13 +168,15 @@ Outcome Handlers::remote_store(C& c, const RemoteStore& s) {
         entry.h_pol_deg = *s.h_pos / 10.0;
         entry.v_pol_deg = *s.v_pos / 10.0;
         break;
+      // ERRATA E-58: the other position 90 deg away, folded into
+      // -90.0..90.0; the other side puts V above H and keeps it unfolded.
       case 'H':
         entry.h_pol_deg = pol;
-        entry.v_pol_deg = wrap_pol(pol + 90);
+        entry.v_pol_deg = c.reads_other("E-58") ? pol + 90 : wrap_pol(pol + 90);
         break;
       default:  // 'V'
         entry.v_pol_deg = pol;
-        entry.h_pol_deg = wrap_pol(pol - 90);
+        entry.h_pol_deg = c.reads_other("E-58") ? pol - 90 : wrap_pol(pol - 90);
         break;
     }
   }

@@ -736,7 +736,7 @@ std::optional<Verdict> Lockstep::judge_step(const FuzzFrame& frame, TimePoint se
 }
 
 struct Lockstep::Undecided {
-  std::vector<std::string> errata;  // the points, "E-93", "E-52"
+  std::vector<std::string> errata;  // the points: "E-93", "E-52", "E-82", "E-89"
   Memory before;                    // the model before the first write that decided one
   struct Write {
     Receiver split_before;
@@ -781,6 +781,15 @@ void Lockstep::keep_undecided(Memory before, const Receiver& split_before, const
     return form_of_reply(dev) == ReplyForm::kAck && !is_poll(dev.command);
   });
   if (open("E-52") && took_command) decided.emplace_back("E-52");
+  // ERRATA E-82, E-89: the exit status of a LOCATE, STOW or DEPLOY left by
+  // a stop or another mode's command in this write (the STOP_KEY or
+  // MOVE_STOPPED entry, or MODE_CHANGED; and which movement's).
+  const ModeState& was = before.bus->controller(0).state().mode;
+  const std::string last = meanings::mode_name(now.last_mode);
+  if (now != was && !left_completed_locate(now.last_mode, now.exit_status)) {
+    if (open("E-82") && last == "LOCATE_MODE") decided.emplace_back("E-82");
+    if (open("E-89") && (last == "STOW_MODE" || last == "DEPLOY_MODE")) decided.emplace_back("E-89");
+  }
 
   Undecided::Write write{split_before, frame, sent_at, uncertainty, device, model().profile().readings};
   if (undecided_) {
@@ -801,57 +810,78 @@ void Lockstep::keep_undecided(Memory before, const Receiver& split_before, const
 
 bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                   const std::vector<Frame>& device, const Receiver& split_before, const Verdict& finding) {
-  // Each point on each of its other sides, from the model as it was before
-  // the first write that decided one, through every write since.
+  // The points on other sides, from the model as it was before the first
+  // write that decided one, through every write since: each point alone on
+  // each of its other sides, then several together (a write that decides
+  // two, a stop that leaves a LOCATE in another mode with another exit:
+  // E-52 and E-82), fewest flipped first.
   const Undecided& u = *undecided_;
+  const ReadingPins& taken = u.before.bus->controller(0).profile().readings;
+  std::vector<std::vector<std::pair<std::string, ReadingSide>>> choices{{}};
   for (const std::string& id : u.errata) {
-    for (const ReadingSide side : sides_besides(id, side_taken(u.before.bus->controller(0).profile().readings, id))) {
-      recall(u.before);
-      model().set_reading(id, side);
-      bool held = true;
-      for (const Undecided::Write& w : u.writes) {
-        // The other points on the sides the write was judged on (a note
-        // taken in it flipped one before judging it, as step does).
-        for (const ReadingPoint& p : reading_points())
-          if (const ReadingSide want = side_taken(w.sides, p.id);
-              p.id != id && side_taken(model().profile().readings, p.id) != want)
-            model().set_reading(std::string(p.id), want);
-        *splitter_ = w.split_before;
-        cuts_ = frame_cuts(w.frame);
-        if (judge_write(w.frame, w.sent_at, w.uncertainty, w.device)) {
-          held = false;
+    std::vector<std::vector<std::pair<std::string, ReadingSide>>> more;
+    for (const auto& c : choices) {
+      more.push_back(c);  // this point on the model's side
+      for (const ReadingSide side : sides_besides(id, side_taken(taken, id))) {
+        auto with = c;
+        with.emplace_back(id, side);
+        more.push_back(std::move(with));
+      }
+    }
+    choices = std::move(more);
+  }
+  std::stable_sort(choices.begin(), choices.end(), [](const auto& x, const auto& y) { return x.size() < y.size(); });
+  for (const auto& flips : choices) {
+    if (flips.empty()) continue;
+    recall(u.before);
+    for (const auto& [id, side] : flips) model().set_reading(id, side);
+    auto flipped = [&](std::string_view id) {
+      return std::any_of(flips.begin(), flips.end(), [&](const auto& f) { return f.first == id; });
+    };
+    bool held = true;
+    for (const Undecided::Write& w : u.writes) {
+      // The other points on the sides the write was judged on (a note
+      // taken in it flipped one before judging it, as step does).
+      for (const ReadingPoint& p : reading_points())
+        if (const ReadingSide want = side_taken(w.sides, p.id);
+            !flipped(p.id) && side_taken(model().profile().readings, p.id) != want)
+          model().set_reading(std::string(p.id), want);
+      *splitter_ = w.split_before;
+      cuts_ = frame_cuts(w.frame);
+      if (judge_write(w.frame, w.sent_at, w.uncertainty, w.device)) {
+        held = false;
+        break;
+      }
+    }
+    if (!held) continue;
+    // This write on those sides, and with another open point flipped too
+    // (its side shown in this write only).
+    const Memory replayed = remember();
+    auto this_write = [&](const std::string& also, ReadingSide also_side) {
+      recall(replayed);
+      if (!also.empty()) model().set_reading(also, also_side);
+      *splitter_ = split_before;
+      cuts_ = frame_cuts(frame);
+      return !judge_write(frame, sent_at, uncertainty, device);
+    };
+    std::vector<std::string> explained;
+    for (const auto& f : flips) explained.push_back(f.first);
+    bool holds = this_write("", ReadingSide::kReference);
+    for (const std::string& other : open_readings()) {
+      if (holds) break;
+      // E-90 and E-94 explain only what step's own rules let them (a
+      // search that has ended; never where a LOCATE ends).
+      if (flipped(other) || other == "E-90" || other == "E-94") continue;
+      for (const ReadingSide s2 : sides_besides(other, side_taken(replayed.bus->controller(0).profile().readings, other)))
+        if ((holds = this_write(other, s2))) {
+          explained.push_back(other);
           break;
         }
-      }
-      if (!held) continue;
-      // This write on that side, and with another open point flipped too
-      // (its side shown in this write only).
-      const Memory replayed = remember();
-      auto this_write = [&](const std::string& also, ReadingSide also_side) {
-        recall(replayed);
-        if (!also.empty()) model().set_reading(also, also_side);
-        *splitter_ = split_before;
-        cuts_ = frame_cuts(frame);
-        return !judge_write(frame, sent_at, uncertainty, device);
-      };
-      std::vector<std::string> explained{id};
-      bool holds = this_write("", side);
-      for (const std::string& other : open_readings()) {
-        if (holds) break;
-        // E-90 and E-94 explain only what step's own rules let them (a
-        // search that has ended; never where a LOCATE ends).
-        if (other == id || other == "E-90" || other == "E-94") continue;
-        for (const ReadingSide s2 : sides_besides(other, side_taken(replayed.bus->controller(0).profile().readings, other)))
-          if ((holds = this_write(other, s2))) {
-            explained.push_back(other);
-            break;
-          }
-      }
-      if (!holds) continue;
-      undecided_.reset();  // `u` with it
-      note_reading(explained, finding);
-      return true;
     }
+    if (!holds) continue;
+    undecided_.reset();  // `u` with it
+    note_reading(explained, finding);
+    return true;
   }
   return false;
 }
@@ -892,6 +922,7 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
   // In-process the device executes a whole write at one instant, as the model.
   spacing_ = uncertainty > Duration{0} ? kBetweenFrames : Duration{0};
   const ModeState mode_before = model().state().mode;
+  const std::uint32_t modes_entered_before = model().modes_entered();
   std::vector<Run> runs = runs_of(frame, at, uncertainty);
   last_ = at + spacing_ * static_cast<int>(cuts_.size());
   clock_->set(last_);
@@ -902,7 +933,7 @@ std::optional<Verdict> Lockstep::judge_write(const FuzzFrame& frame, TimePoint s
             false, runs, device, false, std::nullopt, {}};
   const Controller& nominal = runs.front().bus->controller(0);
   note_settling(nominal, j);
-  j.stopped_out = follow_device_led(nominal, mode_before, device);
+  j.stopped_out = follow_device_led(nominal, mode_before, nominal.modes_entered() != modes_entered_before, device);
 
   // Answers vs silence: the framing oracle judges these first against the
   // reference receiver; here only what the model adds (a command it leaves
@@ -1189,7 +1220,8 @@ bool Lockstep::lower_case_while_moving(const AckJudging& r, const ReplyField& f,
          });
 }
 
-bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& before, const std::vector<Frame>& device) {
+bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& before, bool modes_entered,
+                                 const std::vector<Frame>& device) {
   // While the model or the device runs a STOW, a DEPLOY, a search or (E-94
   // open) a LOCATE's movements, the positions, motion bits and mode bytes
   // are the device's: not compared, and taken over once both are at rest
@@ -1202,8 +1234,10 @@ bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& bef
   if (device_leads(ms) && !model_was_led_) handed_over_ = stopped_out_ = locate_completed_ = false;
   // One the model entered and left within this write (a burst that starts
   // and stops it): the device's too, the model in it as far as a stop goes.
+  // It left it last: the mode bytes say so, or (left the same way as the
+  // one before, E-89's takeovers) that it entered modes at all.
   const bool through = before.mode != ms.last_mode && device_leads_mode(ms.last_mode) &&
-                       (before.last_mode != ms.last_mode || before.exit_status != ms.exit_status);
+                       (before.last_mode != ms.last_mode || before.exit_status != ms.exit_status || modes_entered);
   if (through) device_led_ = model_was_led_ = true;
   // The device in such a mode where the model is not: only where the model
   // has been in one (it left it a little earlier, or later); else the

@@ -1082,6 +1082,357 @@ Bytes text(std::string_view s) { return Bytes(s.begin(), s.end()); }
 
 Bytes nak_for(std::uint8_t code) { return encode_frame(nak_reply('2', code)); }
 
+// E-14: direction 'C', which §3.4's NAK and TRACK sentences list beside W,
+// U, D: no direction on the reference side (NAKed), azimuth
+// counterclockwise ('E') on the other, under 33h and 47h alike.
+TEST(Readings, E14TheOtherSideJogsCAsE) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-14")), e(site_profile());
+  const double az0 = ref.c.state().az.position;
+  ASSERT_GT(az0, ref.profile.az.min_deg + 5) << "room to jog counterclockwise";
+  EXPECT_EQ(ref.send_raw(0x33, "CF1000").nak, NakRule::kMalformedData);
+  EXPECT_EQ(ref.send_raw(0x47, "CF1000").nak, NakRule::kMalformedData);
+  ASSERT_FALSE(is_nak(other.send_raw(0x33, "CF1000")));
+  ASSERT_FALSE(is_nak(e.send(Jog{{'E', 'F', 1000}})));
+  for (Rig* r : {&ref, &other, &e}) r->wait(3s);
+  EXPECT_EQ(ref.c.state().az.position, az0) << "nothing moved";
+  EXPECT_LT(other.c.state().az.position, az0 - 0.5) << "counterclockwise";
+  EXPECT_EQ(other.c.state().az.position, e.c.state().az.position) << "as 'E'";
+  const Outcome minimal = other.send_raw(0x47, "CS0050");
+  ASSERT_TRUE(minimal.reply && minimal.reply->size() > 3 && !is_nak(minimal));
+  EXPECT_EQ((*minimal.reply)[3], 'A');
+  EXPECT_EQ(other.send_raw(0x33, "QF1000").nak, NakRule::kMalformedData) << "other letters stay no direction";
+}
+
+// E-31: a 2A field that also names a stored satellite (" 0100000300" is
+// az 100.0, el 30.0; "0100000300" is stored at az 10.0, el 20.0): form 1 on
+// the reference side, form 2A on the other.
+TEST(Readings, E31TheOtherSideReadsATwoAPairAsTwoAWhateverIsStored) {
+  Profile p = site_profile();
+  p.store.push_back({"0100000300", 10.0, 20.0, 0, 0});
+  Rig ref(p), other(reading(p, "E-31"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send_raw(0x32, " 0100000300")));
+    r->wait(600s);
+  }
+  EXPECT_NEAR(ref.c.state().az.position, 10.0, 0.05);
+  EXPECT_NEAR(ref.c.state().el.position, 20.0, 0.05);
+  EXPECT_EQ(ref.status().sat_name, "0100000300");
+  EXPECT_NEAR(other.c.state().az.position, 100.0, 0.05);
+  EXPECT_NEAR(other.c.state().el.position, 30.0, 0.05);
+  // A name that is no 2A pair is form 1 on both sides.
+  ASSERT_FALSE(is_nak(other.send_raw(0x32, " SBS 6     ")));
+  other.wait(600s);
+  EXPECT_NEAR(other.c.state().az.position, -74.0, 0.05);
+}
+
+// E-34: a remote pol jog in a manual search keeps TRACK and shows its
+// track_states state: JOG_POL_CW is 48h as printed (reference) or 45h in
+// manual_states' order (other); CCW 45h or 46h. The search's own state
+// (ACTIVE) follows when the jog is over, and a side taken during the jog
+// keeps the state, at its new value.
+TEST(Readings, E34TheOtherSideNumbersTheTrackPolStatesAsManualStates) {
+  Profile p = site_profile();
+  p.track.active = true;
+  p.track.activity = TrackActivity::kManualSearch;
+  Rig ref(p), other(reading(p, "E-34"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(Jog{{'L', 'S', 1000}})));
+    EXPECT_EQ(r->mode(), "TRACK_MODE");
+  }
+  EXPECT_EQ(ref.extended().state, 0x48);
+  EXPECT_EQ(other.extended().state, 0x45);
+  ref.wait(2s);
+  other.wait(2s);
+  EXPECT_EQ(ref.state(), "TRACK_MANUAL_SEARCH_ACTIVE");
+  EXPECT_EQ(other.extended().state, ref.extended().state) << "ACTIVE is not one of the four";
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(Jog{{'O', 'S', 1000}})));
+  EXPECT_EQ(ref.extended().state, 0x45);
+  EXPECT_EQ(other.extended().state, 0x46);
+  ref.c.set_reading("E-34", ReadingSide::kOther);
+  EXPECT_EQ(ref.extended().state, 0x46) << "taken late: the same state at its other value";
+  // An azimuth jog hands control to REMOTE (§3.4), as before.
+  ASSERT_FALSE(is_nak(other.send(Jog{{'W', 'S', 100}})));
+  EXPECT_EQ(other.mode(), "REMOTE_MODE");
+}
+
+// E-41: a longitude or pol offset without its decimal digit ("45"), in 39h,
+// 41h and 42h: 45.0 on the reference side, malformed on the other (the NAK
+// names the byte). With the digit, both take it.
+TEST(Readings, E41TheOtherSideNaksANumberWithoutItsDecimalDigit) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-41"));
+  //                    index name        longitude incl band eph pol offset
+  const std::string write_whole = std::string("01") + "WHOLE     " + "-97   " + "0 " + "1" + "0" + "0.0  ";
+  const std::string write_tenth = std::string("01") + "TENTH     " + "-97.0 " + "0 " + "1" + "0" + "12   ";
+  const std::string write_both = std::string("01") + "BOTH      " + "-97.0 " + "0 " + "1" + "0" + "12.0 ";
+  EXPECT_FALSE(is_nak(ref.send_raw(0x39, write_whole)));
+  EXPECT_FALSE(is_nak(ref.send_raw(0x39, write_tenth)));
+  EXPECT_EQ(ref.reply<SatelliteDataReply>(ReadSatellite{{1}}).sat.pol_offset, 120);
+  const Outcome whole = other.send_raw(0x39, write_whole);
+  EXPECT_EQ(whole.nak, NakRule::kMalformedData);
+  EXPECT_NE(whole.note.find("byte 15"), std::string::npos) << whole.note;
+  const Outcome tenth = other.send_raw(0x39, write_tenth);
+  EXPECT_EQ(tenth.nak, NakRule::kMalformedData);
+  EXPECT_NE(tenth.note.find("byte 25"), std::string::npos) << tenth.note;
+  EXPECT_FALSE(is_nak(other.send_raw(0x39, write_both)));
+  EXPECT_EQ(other.reply<SatelliteDataReply>(ReadSatellite{{1}}).sat.pol_offset, 120);
+  // 42h 'S' with a whole H position.
+  RemoteStore rs;
+  rs.preset.preset = false;
+  rs.sat = {"E41 STORE", -970, 0, '1', '0', 0};
+  rs.pol_selection = 'S';
+  rs.h_pos = 100;
+  rs.v_pos = -800;
+  Bytes data = request_frame(rs, '1').data;
+  const std::string with_digit(data.begin() + 27, data.begin() + 32);
+  ASSERT_EQ(with_digit, "10.0 ");
+  const std::string whole_h = "10   ";
+  std::copy(whole_h.begin(), whole_h.end(), data.begin() + 27);
+  const std::string raw(data.begin(), data.end());
+  EXPECT_FALSE(is_nak(ref.send_raw(0x42, raw)));
+  EXPECT_EQ(other.send_raw(0x42, raw).nak, NakRule::kMalformedData);
+  EXPECT_FALSE(is_nak(other.send(rs)));
+}
+
+// E-42: the azimuth's A/D error field: six '*' on the reference side, the
+// five the text prints after a blank on the other (31h, 33h, 40h, 47h);
+// the elevation and polarization keep six. Both decode as the error.
+TEST(Readings, E42TheOtherSideShowsFiveStarsForTheAzimuth) {
+  Profile p = site_profile();
+  p.az.ad_error = true;
+  p.pol.ad_error = true;
+  Rig ref(p), other(reading(p, "E-42"));
+  auto bytes = [](const Outcome& o, std::size_t first) {
+    EXPECT_TRUE(o.reply.has_value());
+    return std::string(o.reply->begin() + static_cast<std::ptrdiff_t>(first),
+                       o.reply->begin() + static_cast<std::ptrdiff_t>(first + 6));
+  };
+  EXPECT_EQ(bytes(ref.send(StatusPoll{}), 14), "******");
+  EXPECT_EQ(bytes(other.send(StatusPoll{}), 14), " *****");
+  EXPECT_EQ(bytes(other.send(StatusPoll{}), 26), "******") << "the polarization keeps six";
+  EXPECT_EQ(bytes(other.send(ExtendedStatusPoll{}), 14), " *****");
+  EXPECT_EQ(bytes(other.send(Jog{{'X', 'S', 0}}), 14), " *****");
+  EXPECT_EQ(bytes(ref.send(JogMinimal{{'X', 'S', 0}}), 4), "******");
+  EXPECT_EQ(bytes(other.send(JogMinimal{{'X', 'S', 0}}), 4), " *****");
+  EXPECT_EQ(other.status().azimuth.kind, fields::AzimuthReading::Kind::kError);
+  EXPECT_EQ(other.reply<JogPositionReply>(JogMinimal{{'X', 'S', 0}}).position, std::nullopt);
+}
+
+// E-46: 47h 'X' names no axis: the reference replies 'A' and the azimuth,
+// the other side the axis last jogged (the azimuth before any jog).
+TEST(Readings, E46TheOtherSideRepliesTheAxisLastJogged) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-46"));
+  EXPECT_EQ(other.reply<JogPositionReply>(JogMinimal{{'X', 'S', 0}}).axis, 'A') << "no jog yet";
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(JogMinimal{{'U', 'S', 500}})));
+    r->wait(1s);
+  }
+  const JogPositionReply x_ref = ref.reply<JogPositionReply>(JogMinimal{{'X', 'S', 0}});
+  const JogPositionReply x_other = other.reply<JogPositionReply>(JogMinimal{{'X', 'S', 0}});
+  EXPECT_EQ(x_ref.axis, 'A');
+  EXPECT_EQ(x_ref.position, ref.status().azimuth.tenths);
+  EXPECT_EQ(x_other.axis, 'E');
+  EXPECT_EQ(x_other.position, other.status().elevation);
+  ASSERT_FALSE(is_nak(other.send(Jog{{'W', 'S', 100}})));
+  EXPECT_EQ(other.reply<JogPositionReply>(JogMinimal{{'X', 'S', 0}}).axis, 'A') << "a 33h jog counts too";
+}
+
+// E-56: a jog key held remotely: 0.5 s (the §2 example's 20 x 1/40 s) on the
+// reference side, the configured hold time (40 x 1/40 s) on the other.
+TEST(Readings, E56TheOtherSideHoldsAJogKeyForTheConfiguredTime) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-56"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(RemoteKeypress{'2'})));  // elevation up
+    r->wait(700ms);
+  }
+  EXPECT_EQ(ref.c.state().el.motion, AxisState::Motion::kIdle) << "held 0.5 s";
+  EXPECT_NE(other.c.state().el.motion, AxisState::Motion::kIdle) << "held 1 s";
+  other.wait(500ms);
+  EXPECT_EQ(other.c.state().el.motion, AxisState::Motion::kIdle);
+  EXPECT_GT(other.c.state().el.position, ref.c.state().el.position);
+  // A side taken late holds the last key again for its time, from where
+  // and when it was pressed.
+  ref.c.set_reading("E-56", ReadingSide::kOther);
+  EXPECT_NE(ref.c.state().el.motion, AxisState::Motion::kIdle) << "held on";
+  ref.wait(500ms);
+  EXPECT_EQ(ref.c.state().el.position, other.c.state().el.position);
+  other.c.set_reading("E-56", ReadingSide::kReference);
+  Rig half(site_profile());
+  ASSERT_FALSE(is_nak(half.send(RemoteKeypress{'2'})));
+  half.wait(1200ms);
+  EXPECT_EQ(other.c.state().el.position, half.c.state().el.position);
+}
+
+// E-57: 34h with no auto move since power-on: the first STORE entry on the
+// reference side, a NAK on the other; after a form 1 auto move, its target
+// on both.
+TEST(Readings, E57TheOtherSideNaksAPolPresetBeforeAnyAutoMove) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-57"));
+  EXPECT_FALSE(is_nak(ref.send(PolPreset{'V'})));
+  const Outcome o = other.send(PolPreset{'V'});
+  EXPECT_EQ(o.nak, NakRule::kPolPresetNoSatellites);
+  EXPECT_NE(o.note.find("E-57"), std::string::npos) << o.note;
+  ASSERT_FALSE(is_nak(other.send(AutoMove{AutoMoveStored{' ', "SBS 6"}})));
+  ASSERT_FALSE(is_nak(other.send(PolPreset{'V'})));
+  other.wait(300s);
+  EXPECT_NEAR(other.c.state().pol.position, -80.0, 0.1);
+}
+
+// E-58: 42h 'H' and 'V' put the other position 90 deg away: folded into
+// -90.0..90.0 on the reference side, V = H + 90 and H = V - 90 unfolded on
+// the other; other-2 takes 'C' from the skew at the site (latitude 40 N,
+// longitude 75 W; GALAXY 19 at 97.1 W: atan(sin(-22.1)/tan(40)) = -24.15, -24.1 to the tenth),
+// the reference from the pol offset.
+TEST(Readings, E58ThreeSidesOfTheRemoteStorePolarization) {
+  auto store = [](Rig& r, char selection, const char* name) {
+    RemoteStore rs;
+    rs.preset.preset = false;
+    rs.sat = {name, -971, 0, '1', '0', 50};
+    rs.pol_selection = selection;
+    EXPECT_FALSE(is_nak(r.send(rs))) << selection;
+    for (const StoredSatellite& s : r.c.state().store)
+      if (s.name == name) return s;
+    ADD_FAILURE() << name << " not stored";
+    return StoredSatellite{};
+  };
+  Rig ref(site_profile()), other(reading(site_profile(), "E-58")),
+      other_2(reading(site_profile(), "E-58", ReadingSide::kOther2));
+  for (Rig* r : {&ref, &other, &other_2}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMovePol{300}})));
+    r->wait(300s);
+  }
+  EXPECT_NEAR(store(ref, 'H', "E58 H").v_pol_deg, -60.0, 0.05);
+  EXPECT_NEAR(store(other, 'H', "E58 H").v_pol_deg, 120.0, 0.05);
+  EXPECT_NEAR(store(other_2, 'H', "E58 H").v_pol_deg, -60.0, 0.05) << "other-2 folds as the reference";
+  EXPECT_NEAR(store(ref, 'V', "E58 V").h_pol_deg, -60.0, 0.05);
+  EXPECT_NEAR(store(other, 'V', "E58 V").h_pol_deg, -60.0, 0.05) << "V - 90 lies inside";
+  for (Rig* r : {&ref, &other, &other_2}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMovePol{-300}})));
+    r->wait(300s);
+  }
+  EXPECT_NEAR(store(ref, 'V', "E58 V2").h_pol_deg, 60.0, 0.05);
+  EXPECT_NEAR(store(other, 'V', "E58 V2").h_pol_deg, -120.0, 0.05);
+  for (Rig* r : {&ref, &other, &other_2}) {
+    RemoteLocate l;
+    l.preset.preset = false;
+    l.sat = {"E58 C", -971, 0, '1', '0', 50};
+    ASSERT_FALSE(is_nak(r->send(l)));
+    r->wait(600s);
+  }
+  EXPECT_NEAR(store(ref, 'C', "E58 C").h_pol_deg, 5.0, 0.05) << "the pol offset";
+  EXPECT_NEAR(store(other, 'C', "E58 C2").h_pol_deg, 5.0, 0.05);
+  const StoredSatellite skew = store(other_2, 'C', "E58 C3");
+  EXPECT_NEAR(skew.h_pol_deg, -24.1, 0.01) << "the skew";
+  EXPECT_NEAR(skew.v_pol_deg, 65.9, 0.01);
+}
+
+// E-61: a jog duration on the 50 ms timer: rounded up on the reference side
+// (0020 moves 50 ms), to the nearest on the other (0020 does not move,
+// 0030 moves 50 ms).
+TEST(Readings, E61TheOtherSideRoundsAJogDurationToTheNearestTick) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-61"));
+  const double el0 = ref.c.state().el.position;
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(Jog{{'U', 'S', 20}})));
+    r->wait(1s);
+  }
+  EXPECT_GT(ref.c.state().el.position, el0);
+  EXPECT_EQ(other.c.state().el.position, el0) << "under 25 ms: no move";
+  ASSERT_FALSE(is_nak(other.send(Jog{{'U', 'S', 30}})));
+  other.wait(1s);
+  EXPECT_EQ(other.c.state().el.position, ref.c.state().el.position) << "one tick, as 0020 on the reference";
+  // A side taken late redoes the last remote jog from where and when it
+  // began: 0020 no move (other), or one tick (reference); a stop since
+  // leaves it as it is.
+  Rig late(site_profile());
+  const double from = late.c.state().el.position;
+  ASSERT_FALSE(is_nak(late.send(Jog{{'U', 'S', 20}})));
+  late.wait(20ms);
+  EXPECT_NE(late.c.state().el.motion, AxisState::Motion::kIdle);
+  late.c.set_reading("E-61", ReadingSide::kOther);
+  EXPECT_EQ(late.c.state().el.motion, AxisState::Motion::kIdle);
+  EXPECT_EQ(late.c.state().el.position, from);
+  late.wait(1s);
+  late.c.set_reading("E-61", ReadingSide::kReference);
+  EXPECT_EQ(late.c.state().el.position, ref.c.state().el.position) << "the tick again";
+  ASSERT_FALSE(is_nak(late.send(Jog{{'X', 'S', 0}})));
+  late.c.set_reading("E-61", ReadingSide::kOther);
+  EXPECT_EQ(late.c.state().el.position, ref.c.state().el.position) << "stopped since: kept";
+}
+
+// E-82: a LOCATE stopped by 'X' exits with its movement's STOP_KEY entry
+// (reference) or its MODE_CHANGED entry (other); the Stop key keeps
+// STOP_KEY on both. One left before it moves (waiting for a site) takes
+// LOCATE_FIRST_ELEV_MOVEMENT's entry, or LOCATE_AZIM_MOVEMENT's.
+TEST(Readings, E82TheOtherSideExitsAStoppedLocateAsAModeChange) {
+  auto exit_after = [](ReadingSide side, const Request& stop, bool site) {
+    Profile p = reading(site_profile(), "E-82", side);
+    if (!site) {
+      p.navigation.latitude_min.reset();
+      p.navigation.longitude_min.reset();
+    }
+    Rig r(p);
+    EXPECT_FALSE(is_nak(r.send(locate_on_meridian())));
+    r.wait(200ms);
+    EXPECT_EQ(r.mode(), "LOCATE_MODE");
+    EXPECT_FALSE(is_nak(r.send(stop)));
+    const auto x = r.extended();
+    return std::string(meanings::exit_name(x.last_mode, x.exit_status));
+  };
+  const Request x = Jog{{'X', 'F', 0}}, stop_key = RemoteKeypress{'A'};
+  EXPECT_EQ(exit_after(ReadingSide::kReference, x, true), "LOCATE_AZIM_MOVEMENT_STOP_KEY");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, x, true), "LOCATE_AZIM_MOVEMENT_MODE_CHANGED");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, stop_key, true), "LOCATE_AZIM_MOVEMENT_STOP_KEY");
+  EXPECT_EQ(exit_after(ReadingSide::kReference, stop_key, false), "LOCATE_FIRST_ELEV_MOVEMENT_STOP_KEY");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, stop_key, false), "LOCATE_AZIM_MOVEMENT_STOP_KEY");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, x, false), "LOCATE_AZIM_MOVEMENT_MODE_CHANGED");
+}
+
+// E-89: 'X' on a STOW or DEPLOY: MOVE_STOPPED (reference) or MODE_CHANGED
+// (other); the Stop key MOVE_STOPPED on both. The other side's STOW moves
+// the azimuth first and the elevation after it; both end stowed.
+TEST(Readings, E89TheOtherSideStowsAxisByAxisAndExitsAStopAsAModeChange) {
+  Profile p = site_profile();
+  p.stow = p.deploy = true;
+  p.az.initial_deg = 40;
+  p.el.initial_deg = 60;
+  p.el.deploy_deg = 20;
+  Rig ref(p), other(reading(p, "E-89"));
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(Misc{'S', ' '})));
+  ref.wait(500ms);
+  other.wait(500ms);
+  EXPECT_EQ(ref.state(), "STOW_MOVING_TO_AZIM_STOW");
+  EXPECT_NE(ref.c.state().el.motion, AxisState::Motion::kIdle) << "together";
+  EXPECT_EQ(other.state(), "STOW_MOVING_TO_AZIM_STOW");
+  EXPECT_EQ(other.c.state().el.position, 60.0) << "the elevation waits for the azimuth";
+  bool elevation_leg = false;
+  for (int i = 0; i < 3000 && other.mode() == "STOW_MODE"; ++i) {
+    other.wait(200ms);
+    elevation_leg = elevation_leg || other.state() == "STOW_MOVING_TO_ELEV_STOW";
+  }
+  EXPECT_TRUE(elevation_leg);
+  ref.wait(600s);
+  for (Rig* r : {&ref, &other}) {
+    const auto x = r->extended();
+    EXPECT_EQ(meanings::exit_name(x.last_mode, x.exit_status), "STOW_FINISHED_NORMALLY");
+    EXPECT_NEAR(r->c.state().az.position, 0.0, 0.1);
+    EXPECT_NEAR(r->c.state().el.position, r->c.stow_elevation(), 0.1);
+  }
+  auto exit_after = [&](ReadingSide side, const Request& stop, char sub) {
+    Rig r(reading(p, "E-89", side));
+    EXPECT_FALSE(is_nak(r.send(Misc{sub, ' '})));
+    r.wait(200ms);
+    EXPECT_FALSE(is_nak(r.send(stop)));
+    const auto x = r.extended();
+    return std::string(meanings::exit_name(x.last_mode, x.exit_status));
+  };
+  const Request x = Jog{{'X', 'F', 0}}, stop_key = RemoteKeypress{'A'};
+  EXPECT_EQ(exit_after(ReadingSide::kReference, x, 'S'), "STOW_MOVING_TO_AZIM_STOW_MOVE_STOPPED");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, x, 'S'), "STOW_MOVING_TO_AZIM_STOW_MODE_CHANGED");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, stop_key, 'S'), "STOW_MOVING_TO_AZIM_STOW_MOVE_STOPPED");
+  EXPECT_EQ(exit_after(ReadingSide::kReference, x, 'D'), "DEPLOY_MOVING_ELEVATION_MOVE_STOPPED");
+  EXPECT_EQ(exit_after(ReadingSide::kOther, x, 'D'), "DEPLOY_MOVING_ELEVATION_MODE_CHANGED");
+}
+
 TEST(Readings, E6TheReferenceSideIgnoresAControlCharacterInTheBody) {
   Line line{Profile{}};
   EXPECT_TRUE(line.send(0x05, {}).empty());

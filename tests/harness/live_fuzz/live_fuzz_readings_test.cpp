@@ -389,13 +389,20 @@ struct OneReading {
   const char* profile;  // a shipped profile's file name
   bool noted;           // reached and noted within the writes (seed 1)
   ReadingSide side = ReadingSide::kOther;
+  void (*adjust)(Profile&) = nullptr;  // where no shipped profile shows the point
 };
+void azimuth_ad_error(Profile& p) { p.az.ad_error = true; }
+void manual_search(Profile& p) {
+  p.track.active = true;
+  p.track.activity = TrackActivity::kManualSearch;
+}
 class LiveFuzzOneReading : public ::testing::TestWithParam<OneReading> {};
 
 TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
   const OneReading c = GetParam();
   const auto dir = std::filesystem::path(default_profile_path()).parent_path();
-  const Profile model = load_profile_file((dir / c.profile).string()).profile.value();
+  Profile model = load_profile_file((dir / c.profile).string()).profile.value();
+  if (c.adjust) c.adjust(model);
   Profile device = model;
   device.readings[c.id] = c.side;
   auto t = make_in_process_transport({device}, {});
@@ -426,13 +433,19 @@ TEST_P(LiveFuzzOneReading, IsNotedNeverFound) {
 INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                          ::testing::Values(OneReading{"E-6", "rc3000-1.59.yaml", true},
                                            OneReading{"E-8", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-14", "rc3000-1.59.yaml", false},
                                            OneReading{"E-16", "rc3000-1.59.yaml", true},
                                            OneReading{"E-18", "rc3000-1.59.yaml", false},
                                            OneReading{"E-20", "rc3000-1.59.yaml", false},
                                            OneReading{"E-23", "rc3000-1.59.yaml", true},
                                            OneReading{"E-23", "dual-port-dvb-fluxgate.yaml", false, ReadingSide::kOther2},
                                            OneReading{"E-29", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-31", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-34", "rc3000-1.59.yaml", false, ReadingSide::kOther, manual_search},
                                            OneReading{"E-40", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-41", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-42", "rc3000-1.59.yaml", true, ReadingSide::kOther, azimuth_ad_error},
+                                           OneReading{"E-46", "rc3000-1.59.yaml", false},
                                            OneReading{"E-52", "rc3000-1.59.yaml", true},
                                            OneReading{"E-52", "rc3000-1.59.yaml", false, ReadingSide::kOther2},
                                            OneReading{"E-30", "rc3000-1.59.yaml", true},
@@ -440,10 +453,17 @@ INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                                            OneReading{"E-33", "rc3000-1.59.yaml", false},
                                            OneReading{"E-45", "rc3000-1.59.yaml", false},
                                            OneReading{"E-50", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-56", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-57", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-58", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-58", "rc3000-1.59.yaml", false, ReadingSide::kOther2},
                                            OneReading{"E-60", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-61", "rc3000-1.59.yaml", true},
                                            OneReading{"E-64", "track-peaking.yaml", false},
                                            OneReading{"E-66", "rc3000-1.59.yaml", false},
                                            OneReading{"E-67", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-82", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-89", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
                                            OneReading{"E-92", "rc3000-1.59.yaml", true},

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -247,6 +248,57 @@ TEST(Runner, ShippedVectorsHoldOnAControllerThatTakesTheThirdSides) {
   ASSERT_FALSE(of_thirds.empty());
   const std::set<std::string> ran = holds_on_every_shipped_profile(vectors, "other-2");
   for (const std::string& id : of_thirds) EXPECT_TRUE(ran.count(id)) << id << " ran on no shipped profile";
+}
+
+// A profile that pins a side holds the shipped vectors that list the point
+// to it: on the default profile, the reference controller on the side
+// pinned passes them and on the side pinned away fails them (E-14, E-46,
+// E-82, E-89; E-46's other side names any axis, the azimuth too, so only
+// the reference pin refuses a side). `run` is run in order, `judged` judged.
+TEST(Runner, APinnedSideHoldsTheVectorsThatListItToThatSide) {
+  struct Case {
+    const char* id;
+    std::vector<std::string> run, judged;
+    bool other_pin_refuses_reference = true;
+  };
+  const Case cases[] = {
+      {"E-14", {"3.4-nak-direction-c"}, {"3.4-nak-direction-c"}},
+      {"E-46", {"3.24-jog-minimal-L", "3.24-x-reply"}, {"3.24-x-reply"}, false},
+      {"E-82", {"3.18-remote-locate-x-stops", "3.18-remote-locate-range-error-stop-exit"},
+       {"3.18-remote-locate-x-stops", "3.18-remote-locate-range-error-stop-exit"}},
+      {"E-89", {"3.7-misc-x-stops-stow", "3.7-misc-x-stops-deploy"}, {"3.7-misc-x-stops-stow", "3.7-misc-x-stops-deploy"}},
+  };
+  std::map<std::string, Vector> by_id;
+  for (auto& f : load_vectors({default_vectors_dir()}).files)
+    for (auto& v : f.vectors) by_id.emplace(v.id, std::move(v));
+  for (const Case& c : cases) {
+    std::vector<Vector> vectors;
+    for (const std::string& id : c.run) {
+      ASSERT_TRUE(by_id.count(id)) << id;
+      vectors.push_back(by_id.at(id));
+    }
+    for (ReadingSide pin : {ReadingSide::kReference, ReadingSide::kOther})
+      for (ReadingSide side : {ReadingSide::kReference, ReadingSide::kOther}) {
+        SCOPED_TRACE(std::string(c.id) + " pinned " + std::string(to_string(pin)) + ", the device on " +
+                     std::string(to_string(side)));
+        Profile p = load_profile_file(default_profile_path()).profile.value();
+        p.readings[c.id] = pin;
+        Profile device = p;
+        device.readings[c.id] = side;
+        auto t = make_in_process_transport(bus_of(device), {});
+        RunOptions o;
+        o.allow_motion = o.allow_destructive = true;
+        const RunResult r = Runner(*t, p, o).run(vectors);
+        const bool refused = pin != side && (pin == ReadingSide::kReference || c.other_pin_refuses_reference);
+        for (const auto& v : r.vectors) {
+          if (std::find(c.judged.begin(), c.judged.end(), v.id) == c.judged.end()) continue;
+          EXPECT_EQ(v.verdict, refused ? Verdict::kFail : Verdict::kPass)
+              << v.id << ": " << (v.failures.empty() ? "" : v.failures[0]);
+          if (refused && !v.failures.empty())
+            EXPECT_NE(v.failures[0].find(std::string("(ERRATA ") + c.id), std::string::npos) << v.failures[0];
+        }
+      }
+  }
 }
 
 // An expectation's `readings:` (ERRATA class reading): the reply passes when

@@ -30,6 +30,12 @@ struct DataSpan {
 };
 std::vector<DataSpan> auto_move_signed_targets(std::uint8_t form_byte);
 
+// ERRATA E-41: the fields of a decoded request that carry a decimal digit
+// (longitude, pol offset, the 42h H/V positions: LeftDecimal with decimals)
+// whose text in `data` has none ("45", read as "45.0"), by their place in
+// the data. Whether such a field is malformed is the reading.
+std::vector<DataSpan> decimals_without_point(const Request& request, ByteView data);
+
 // ERRATA E-45's two spellings of a negative target: '-' first, then
 // zero-padded digits ("-0050" is -5.0; the codec's), or the value
 // right-justified with the zeros left of its sign ("00-50"). A target whose

@@ -121,6 +121,10 @@ struct EnumReading {
   // READING-NOTES 28: restore LOCATE_PITCH_CALC_SECOND_ELEV_MOVEMENT_MODE_CHANGED,
   // lost at a page break, so LOCATE_FUNCTION_COMPLETED is 0x38 (printed list: 0x37).
   bool restore_lost_locate_exit = true;
+  // ERRATA E-34: track_states' last four as printed (JOG_POL_CCW 0x45 ...
+  // JOG_POL_CW 0x48), or in the order of manual_states (JOG_POL_CW 0x45,
+  // JOG_POL_CCW, AUTO_POL_MOVE, IDLE 0x48).
+  bool track_pol_states_as_manual_states = false;
 };
 
 const EnumList& mode_names();

@@ -63,6 +63,7 @@ struct ControllerState {
   std::string displayed_sat;              // §3.2 bytes 3-12, upper case (E-68)
   char pol_code = 0;                      // §3.2 byte 35 ZZZ: 'H', 'h', 'V', 'v' or 0 (none)
   std::optional<StoredSatellite> last_target;   // §3.5: the last target of an auto move
+  std::optional<AxisId> last_jogged;            // ERRATA E-46's other side: 47h 'X' replies it
   std::optional<SatelliteData> last_located;    // §3.19 'C': a LOCATE performed before
   // That LOCATE ended in a range error (E-81): not performed for 'C' on
   // ERRATA E-83's reference side. Kept on both sides, so that a side taken
@@ -106,6 +107,10 @@ class Controller {
   void update();
 
   const ControllerState& state() const { return state_; }
+  // How many times a mode was entered since power-on (§3.17 byte 45): a
+  // mode entered and left again within one write shows only here when it
+  // was left as the one before it was.
+  std::uint32_t modes_entered() const { return modes_entered_; }
   ControllerState& mutable_state() { return state_; }
   const Profile& profile() const { return profile_; }
   // Takes a side of an open point of the spec from now on (readings.hpp):
@@ -125,6 +130,8 @@ class Controller {
   DisplayReply display() const;
   std::uint32_t counts(AxisId axis) const;
   bool limit(AxisId axis, int direction) const;
+  // Where a STOW drives the elevation: its stow limit, else its lower limit (E-99).
+  double stow_elevation() const;
 
   // The model's invariants (positions within limits, STORE <= 50, ...): empty
   // when they hold, else what is broken.
@@ -177,6 +184,8 @@ class Controller {
   // §3.7 'A' (ERRATA E-90): a square spiral about the current position, leg
   // by leg; when its time is over, back to where it began.
   void start_search(char pattern);
+  // §3.7 'S': the STOW (E-89, E-99).
+  void start_stow();
   // When the search gives up with no peak found (E-90: the side taken
   // decides, also of a search already running).
   TimePoint search_end() const;
@@ -204,6 +213,7 @@ class Controller {
   FaultSet faults_;
   ControllerState state_;
   TimePoint last_update_;
+  std::uint32_t modes_entered_ = 0;
   // The tick grid of a mode that chains movements: its start, and whether a
   // movement ended since the last tick (the next leg begins at the next one).
   TimePoint tick_origin_{};
@@ -241,6 +251,20 @@ class Controller {
   } dual_port_move_;
   // Starts that move (32h form 1, 34h).
   void start_dual_port_move(const StoredSatellite& sat);
+  // §3.4 / §3.24 / §3.25: the last remote jog or jog key, from where and
+  // when it began, while nothing else has moved or stopped its axis (E-61
+  // decides a jog's duration, E-56 how long a key is held; set_reading
+  // redoes it).
+  struct RemoteJog {
+    bool valid = false;
+    AxisId axis = AxisId::kAz;
+    TimePoint began{};
+    AxisState from;
+    std::uint32_t ms = 0;  // the duration a jog asked for
+    bool key = false;      // a jog key (36h 'K', 48h): held for E-56's time
+  } remote_jog_;
+  // Redoes that jog from where and when it began, for `duration`.
+  void redo_remote_jog(Duration duration);
   int signal_strength_ = 0;  // §3.9, when a profile implements 38h
   std::array<std::optional<std::string>, 10> iess_;  // §3.14, when a profile implements 3Dh/3Eh
 };

@@ -441,8 +441,10 @@ class Lockstep {
   std::optional<Verdict> judge_step(const FuzzFrame& frame, TimePoint sent_at, Duration uncertainty,
                                     const std::vector<Frame>& device, const Receiver& split_before, const Memory& before);
   // Points whose side the model took where the device did not show it: the
-  // mode bytes, seen only in a 40h, after a LOCATE that completed (E-93) and
-  // after any command the device took (E-52, which commands enter REMOTE).
+  // mode bytes, seen only in a 40h, after a LOCATE that completed (E-93),
+  // after any command the device took (E-52, which commands enter REMOTE)
+  // and after a LOCATE, STOW or DEPLOY was left before it ended (E-82,
+  // E-89: which exit status).
   // The model before the first such write since the last 40h that showed
   // them, and the writes since with the sides each was judged on; a later
   // write that ends in a finding is judged again from there with each point
@@ -473,7 +475,8 @@ class Lockstep {
   // A STOW, DEPLOY, search or LOCATE in the model or the device (E-89,
   // E-90, E-94), `before` the model's mode before the write: whether the
   // model has stopped out of one.
-  bool follow_device_led(const Controller& nominal, const ModeState& before, const std::vector<Frame>& device);
+  bool follow_device_led(const Controller& nominal, const ModeState& before, bool modes_entered,
+                         const std::vector<Frame>& device);
   // Whether the device leads the model's current episode (`ms` a STOW,
   // DEPLOY or search, or a LOCATE that runs while E-94 is open), or would
   // lead one in `mode`.
