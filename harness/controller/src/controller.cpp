@@ -731,8 +731,25 @@ void Controller::on_motion_done() {
 // (READING-NOTES 30: the digit extends the magnitude).
 std::int32_t Controller::tenths(AxisId a) const {
   const double pos = axis(a).position;
-  if (!profile_.hundredths) return static_cast<std::int32_t>(std::lround(pos * 10));
-  return static_cast<std::int32_t>(std::lround(pos * 100) / 10);
+  if (!profile_.hundredths) return static_cast<std::int32_t>(in_units(pos, 10));
+  // ERRATA E-87: the hundredths' tenths truncated toward zero, the digit
+  // extending the magnitude; on the other side rounded down, the digit
+  // added to them (-123.45 reads -123.5 and '5').
+  const long h = in_units(pos, 100);
+  if (reads_other("E-87")) return static_cast<std::int32_t>(h >= 0 ? h / 10 : -((-h + 9) / 10));
+  return static_cast<std::int32_t>(h / 10);
+}
+
+// ERRATA E-76: a position in display units (10 or, with 0.01 deg feedback,
+// 100 to the degree): rounded, or on the other side its further digits
+// dropped toward zero, on other-2 toward minus infinity. The motion model's
+// sums may fall a hair short of a unit (44.9999999 for 45.0): a millionth
+// of a unit counts as the unit.
+long Controller::in_units(double deg, int per_degree) const {
+  const double v = deg * per_degree;
+  if (reads_other("E-76")) return static_cast<long>(std::trunc(v + (v < 0 ? -1e-6 : 1e-6)));
+  if (reads_other_2("E-76")) return static_cast<long>(std::floor(v + 1e-6));
+  return std::lround(v);
 }
 
 std::optional<std::int32_t> Controller::reading(AxisId a) const {
@@ -743,7 +760,7 @@ std::optional<std::int32_t> Controller::reading(AxisId a) const {
     // 0.01 deg feedback the heading's tenths, truncated as its hundredths
     // digit extends them (E-87): -2.63 deg reads 357.3, not 357.4.
     if (profile_.hundredths) {
-      const long h100 = ((std::lround(axis(a).position * 100) % 36000) + 36000) % 36000;
+      const long h100 = ((in_units(axis(a).position, 100) % 36000) + 36000) % 36000;
       return static_cast<std::int32_t>(h100 / 10);
     }
     const std::int32_t h = tenths(a) % 3600;
@@ -757,10 +774,13 @@ std::optional<std::int32_t> Controller::hundredths_digit(AxisId a) const {
   // (the text gives the byte's content only "for mounts with the ability").
   if (!profile_.hundredths) return reads_other("E-30") ? std::nullopt : std::optional<std::int32_t>(0);
   if (axis_profile(a).ad_error || faults_.has(Fault::kHundredthsAlwaysZero)) return 0;
-  long h = std::lround(axis(a).position * 100);
+  long h = in_units(axis(a).position, 100);
   // A fluxgate heading's own hundredths: -2.63 deg is heading 357.37, read
   // 357.3 and '7' (§3.2 NOTE, E-72; ERRATA E-87), not the position's '3'.
   if (a == AxisId::kAz && profile_.az_sensor == AzSensor::kFluxgate) h = ((h % 36000) + 36000) % 36000;
+  // E-87's other side: the digit added to tenths rounded down (-123.45 is
+  // -123.5 and '5'); the reference's extends the magnitude (-123.4 and '5').
+  if (reads_other("E-87")) return static_cast<std::int32_t>(((h % 10) + 10) % 10);
   return static_cast<std::int32_t>(std::labs(h) % 10);
 }
 
@@ -820,7 +840,11 @@ std::uint8_t Controller::track_byte() const {
 
 StatusBlock Controller::status_block() const {
   StatusBlock b;
-  b.sat_name = state_.displayed_sat;
+  // ERRATA E-74's other side: the name shown after a blank (§3.6: blanks
+  // entered before a name), where the field has room for it.
+  b.sat_name = reads_other("E-74") && !state_.displayed_sat.empty() && state_.displayed_sat.size() < 10
+                   ? " " + state_.displayed_sat
+                   : state_.displayed_sat;
   const auto az = reading(AxisId::kAz);
   if (!az) {
     b.azimuth = {fields::AzimuthReading::Kind::kError, 0, 0};

@@ -108,6 +108,7 @@ struct Handlers {
   static Outcome extended_status(C& c);
   static Outcome misc(C& c, const Misc& m);
   static Outcome drive_reset(C& c, char axis);
+  static std::uint8_t active_alarm_code(const C& c);
   static Outcome track_command(C& c, char param);
   static Outcome keypress(C& c, char key, std::uint8_t code);
   static Outcome signal_strength(C& c, const SignalStrength& s);

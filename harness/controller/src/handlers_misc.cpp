@@ -83,6 +83,17 @@ Outcome Handlers::misc(C& c, const Misc& m) {
   return nak(c, 0x36, NakRule::kMalformedData);
 }
 
+// The §3.2 byte 39 code of an axis alarm still active (bytes 36-38: 1010
+// runaway, 1011 jammed), the azimuth's first; 0 for none with a code.
+std::uint8_t Handlers::active_alarm_code(const C& c) {
+  struct Code { AxisId axis; std::uint8_t alarm, code; };
+  static constexpr Code kCodes[] = {{AxisId::kAz, 0xB, 2},  {AxisId::kAz, 0xA, 3}, {AxisId::kEl, 0xB, 4},
+                                    {AxisId::kEl, 0xA, 5},  {AxisId::kPol, 0xB, 22}};
+  for (const Code& k : kCodes)
+    if (c.axis(k.axis).alarm == k.alarm) return k.code;
+  return 0;
+}
+
 Outcome Handlers::drive_reset(C& c, char axis) {
   if (axis != 'A' && axis != 'E' && axis != 'P') return nak(c, 0x36, NakRule::kMiscResetAxis);
   if (axis == 'P' && c.profile_.pol_type == PolType::kCircular) return nak(c, 0x36, NakRule::kMiscResetPolNoFeed);
@@ -93,7 +104,8 @@ Outcome Handlers::drive_reset(C& c, char axis) {
   const std::uint8_t code = c.state_.alarm_code;
   const bool of_axis = (a == AxisId::kAz && (code == 2 || code == 3)) || (a == AxisId::kEl && (code == 4 || code == 5)) ||
                        (a == AxisId::kPol && code == 22);
-  if (of_axis) c.state_.alarm_code = 0;
+  // ERRATA E-101's other side: the code of an alarm still active shows next.
+  if (of_axis) c.state_.alarm_code = c.reads_other("E-101") ? active_alarm_code(c) : 0;
   return status(c, 0x36, std::string("drive reset ") + axis);
 }
 
@@ -153,6 +165,8 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
     // The Stop key ends a LOCATE, STOW, DEPLOY or search where it is, back in
     // MANUAL mode (E-82, E-89, E-90).
     if (const std::string exit = c.moving_exit(true); !exit.empty()) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE", exit);
+    // ERRATA E-88's other side: the Stop key leaves REMOTE as well.
+    else if (c.reads_other("E-88") && c.in_mode("REMOTE_MODE")) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE");
   }
   if (key == 'C' && !c.in_mode("MANUAL_MODE")) c.enter_mode("MANUAL_MODE", "MANUAL_IDLE");
   Outcome o = ack(c, 0x48, AckReply{}, "key " + meanings::key_code(key));

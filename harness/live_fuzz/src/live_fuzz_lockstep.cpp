@@ -736,7 +736,7 @@ std::optional<Verdict> Lockstep::judge_step(const FuzzFrame& frame, TimePoint se
 }
 
 struct Lockstep::Undecided {
-  std::vector<std::string> errata;  // the points: "E-93", "E-52", "E-82", "E-89"
+  std::vector<std::string> errata;  // the points: "E-93", "E-52", "E-88", "E-82", "E-89"
   Memory before;                    // the model before the first write that decided one
   struct Write {
     Receiver split_before;
@@ -781,6 +781,12 @@ void Lockstep::keep_undecided(Memory before, const Receiver& split_before, const
     return form_of_reply(dev) == ReplyForm::kAck && !is_poll(dev.command);
   });
   if (open("E-52") && took_command) decided.emplace_back("E-52");
+  // ERRATA E-88: the mode a Stop key sent remotely (48h, 36h 'K') leaves
+  // REMOTE in.
+  const bool took_key = std::any_of(device.begin(), device.end(), [](const Frame& dev) {
+    return form_of_reply(dev) == ReplyForm::kAck && (dev.command == RemoteKeypress::kCode || dev.command == Misc::kCode);
+  });
+  if (open("E-88") && took_key) decided.emplace_back("E-88");
   // ERRATA E-82, E-89: the exit status of a LOCATE, STOW or DEPLOY left by
   // a stop or another mode's command in this write (the STOP_KEY or
   // MOVE_STOPPED entry, or MODE_CHANGED; and which movement's).
@@ -817,8 +823,11 @@ bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Dur
   // E-52 and E-82), fewest flipped first.
   const Undecided& u = *undecided_;
   const ReadingPins& taken = u.before.bus->controller(0).profile().readings;
+  // Built from the last point to the first, so that, fewest first, the
+  // points come in the order they were decided.
   std::vector<std::vector<std::pair<std::string, ReadingSide>>> choices{{}};
-  for (const std::string& id : u.errata) {
+  for (auto it = u.errata.rbegin(); it != u.errata.rend(); ++it) {
+    const std::string& id = *it;
     std::vector<std::vector<std::pair<std::string, ReadingSide>>> more;
     for (const auto& c : choices) {
       more.push_back(c);  // this point on the model's side
@@ -867,16 +876,34 @@ bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Dur
     std::vector<std::string> explained;
     for (const auto& f : flips) explained.push_back(f.first);
     bool holds = this_write("", ReadingSide::kReference);
+    const ReadingPins& replayed_sides = replayed.bus->controller(0).profile().readings;
+    // E-90 and E-94 explain only what step's own rules let them (a search
+    // that has ended; never where a LOCATE ends).
+    auto may_flip = [&](const std::string& other) { return !flipped(other) && other != "E-90" && other != "E-94"; };
     for (const std::string& other : open_readings()) {
       if (holds) break;
-      // E-90 and E-94 explain only what step's own rules let them (a
-      // search that has ended; never where a LOCATE ends).
-      if (flipped(other) || other == "E-90" || other == "E-94") continue;
-      for (const ReadingSide s2 : sides_besides(other, side_taken(replayed.bus->controller(0).profile().readings, other)))
+      if (!may_flip(other)) continue;
+      for (const ReadingSide s2 : sides_besides(other, side_taken(replayed_sides, other)))
         if ((holds = this_write(other, s2))) {
           explained.push_back(other);
           break;
         }
+    }
+    // Or with every open point the device has not shown a side of yet on
+    // its first other side, as step tries them together (a 40h shows many).
+    if (!holds) {
+      std::vector<std::pair<std::string, ReadingSide>> unshown;
+      for (const std::string& other : open_readings())
+        if (may_flip(other) && side_taken(replayed_sides, other) == side_taken(profile_.readings, other))
+          unshown.emplace_back(other, sides_besides(other, side_taken(replayed_sides, other)).front());
+      if (unshown.size() > 1) {
+        recall(replayed);
+        for (const auto& [id, side] : unshown) model().set_reading(id, side);
+        *splitter_ = split_before;
+        cuts_ = frame_cuts(frame);
+        if ((holds = !judge_write(frame, sent_at, uncertainty, device)))
+          for (const auto& u2 : unshown) explained.push_back(u2.first);
+      }
     }
     if (!holds) continue;
     undecided_.reset();  // `u` with it
@@ -1234,10 +1261,13 @@ bool Lockstep::follow_device_led(const Controller& nominal, const ModeState& bef
   if (device_leads(ms) && !model_was_led_) handed_over_ = stopped_out_ = locate_completed_ = false;
   // One the model entered and left within this write (a burst that starts
   // and stops it): the device's too, the model in it as far as a stop goes.
-  // It left it last: the mode bytes say so, or (left the same way as the
-  // one before, E-89's takeovers) that it entered modes at all.
+  // It left it last: the mode bytes say so, or, stopped or taken over the
+  // same way as the one before (a STOW taken over at once, E-89), that it
+  // entered modes at all. One that completed as the one before did is the
+  // model's (E-93 decides where it went).
   const bool through = before.mode != ms.last_mode && device_leads_mode(ms.last_mode) &&
-                       (before.last_mode != ms.last_mode || before.exit_status != ms.exit_status || modes_entered);
+                       (before.last_mode != ms.last_mode || before.exit_status != ms.exit_status ||
+                        (modes_entered && is_stop_exit(ms.last_mode, ms.exit_status, profile_reading())));
   if (through) device_led_ = model_was_led_ = true;
   // The device in such a mode where the model is not: only where the model
   // has been in one (it left it a little earlier, or later); else the
@@ -1384,8 +1414,14 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
   const std::size_t axis =
       cls->cls == FieldClass::kMotion && positional ? axis_of(f.name, r.dev).value_or(kNoAxis) : kNoAxis;
   const bool has_axis = axis != kNoAxis;
-  if (device_led_ && (has_axis || is_mode_byte(f.name)) && !held_by_a_command(r, f) &&
-      !(has_axis && locate_ended_alike(r)) && !mode_outside_locate(r, f)) {
+  // A LOCATE that ended alike is judged where it ends: its azimuth and
+  // elevation. It has no polarization target (§3.18 bytes 24-29 name none
+  // the feed must reach), so the polarization stays the device's until the
+  // episode's end takes it (keep_in_step), as an earlier STOW or search
+  // left it (E-89: a STOW stopped before it moved the feed).
+  const bool judged_at_locate_end = has_axis && axis != 2 && locate_ended_alike(r);
+  if (device_led_ && (has_axis || is_mode_byte(f.name)) && !held_by_a_command(r, f) && !judged_at_locate_end &&
+      !mode_outside_locate(r, f)) {
     // After the stop only whether it moves: its limits are where its own
     // positions put it.
     const bool motion_bits = has_axis && !is_position(f.name) && !is_fine_position(f.name) && !f.name.ends_with(" limits");

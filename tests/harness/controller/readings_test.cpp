@@ -1359,6 +1359,78 @@ TEST(Readings, E61TheOtherSideRoundsAJogDurationToTheNearestTick) {
   EXPECT_EQ(late.c.state().el.position, ref.c.state().el.position) << "stopped since: kept";
 }
 
+// E-74: the name in status bytes 3-12: left-justified on the reference
+// side, after a blank on the other (a name that fills the field as it is).
+TEST(Readings, E74TheOtherSideShowsANameAfterABlank) {
+  Profile p = site_profile();
+  p.display.satellite = "SBS 6";
+  Rig ref(p), other(reading(p, "E-74"));
+  EXPECT_EQ(ref.status().sat_name, "SBS 6");
+  auto bytes_3_12 = [](Rig& r) {
+    const Outcome o = r.send(StatusPoll{});
+    EXPECT_TRUE(o.reply && o.reply->size() > 13);
+    return std::string(o.reply->begin() + 3, o.reply->begin() + 13);
+  };
+  EXPECT_EQ(bytes_3_12(ref), "SBS 6     ");
+  EXPECT_EQ(bytes_3_12(other), " SBS 6    ");
+  p.display.satellite = "GALAXY 19X";
+  Rig full(reading(p, "E-74"));
+  EXPECT_EQ(bytes_3_12(full), "GALAXY 19X") << "no room for a blank";
+}
+
+// E-76: a position in display units. At 45.06 deg (a jog of 60 ms at
+// 1 deg/s from 45.0): 45.1 rounded (reference), 45.0 dropped toward zero
+// (other) and toward minus infinity (other-2); at -0.06: -0.1, -0.0 and
+// -0.1. With 0.01 deg feedback the hundredths are read the same way.
+TEST(Readings, E76ThreeWaysOfReadingAPositionToItsUnit) {
+  Profile p = site_profile();
+  p.el.initial_deg = 45.06;
+  p.az.initial_deg = -0.06;
+  const std::array sides{ReadingSide::kReference, ReadingSide::kOther, ReadingSide::kOther2};
+  const std::array<std::int32_t, 3> el{451, 450, 450}, az{-1, 0, -1};
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    SCOPED_TRACE(std::string(to_string(sides[k])));
+    Rig r(reading(p, "E-76", sides[k]));
+    EXPECT_EQ(r.status().elevation, el[k]);
+    EXPECT_EQ(r.status().azimuth.tenths, az[k]);
+  }
+  Profile h = p;
+  h.hundredths = true;
+  h.el.initial_deg = 45.068;
+  const std::array<std::int32_t, 3> digit{7, 6, 6};
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    Rig r(reading(h, "E-76", sides[k]));
+    EXPECT_EQ(r.status().elevation, 450) << to_string(sides[k]);
+    EXPECT_EQ(r.extended().el_hundredths, digit[k]) << to_string(sides[k]);
+  }
+  Rig exact(reading(p, "E-76", ReadingSide::kOther));
+  exact.c.mutable_state().el.position = 44.99999999;
+  EXPECT_EQ(exact.status().elevation, 450) << "a hair short of a unit is the unit";
+}
+
+// E-87: -123.45 deg with 0.01 deg feedback: -123.4 and '5' (the digit
+// extends the magnitude) or -123.5 and '5' (added to tenths rounded down);
+// a positive position reads alike.
+TEST(Readings, E87TheOtherSideAddsTheHundredthsDigitArithmetically) {
+  Profile p = site_profile();
+  p.hundredths = true;
+  p.az.initial_deg = -123.45;
+  p.el.initial_deg = 12.34;
+  Rig ref(p), other(reading(p, "E-87"));
+  EXPECT_EQ(ref.status().azimuth.tenths, -1234);
+  EXPECT_EQ(other.status().azimuth.tenths, -1235);
+  EXPECT_EQ(ref.extended().az_hundredths, 5);
+  EXPECT_EQ(other.extended().az_hundredths, 5);
+  p.az.initial_deg = -123.47;
+  Rig other_7(reading(p, "E-87"));
+  EXPECT_EQ(other_7.status().azimuth.tenths, -1235);
+  EXPECT_EQ(other_7.extended().az_hundredths, 3) << "-123.5 + 0.03";
+  for (Rig* r : {&ref, &other}) {
+    EXPECT_EQ(r->status().elevation, 123);
+    EXPECT_EQ(r->extended().el_hundredths, 4);
+  }
+}
+
 // E-82: a LOCATE stopped by 'X' exits with its movement's STOP_KEY entry
 // (reference) or its MODE_CHANGED entry (other); the Stop key keeps
 // STOP_KEY on both. One left before it moves (waiting for a site) takes
@@ -1385,6 +1457,23 @@ TEST(Readings, E82TheOtherSideExitsAStoppedLocateAsAModeChange) {
   EXPECT_EQ(exit_after(ReadingSide::kReference, stop_key, false), "LOCATE_FIRST_ELEV_MOVEMENT_STOP_KEY");
   EXPECT_EQ(exit_after(ReadingSide::kOther, stop_key, false), "LOCATE_AZIM_MOVEMENT_STOP_KEY");
   EXPECT_EQ(exit_after(ReadingSide::kOther, x, false), "LOCATE_AZIM_MOVEMENT_MODE_CHANGED");
+}
+
+// E-88: the Stop key (41h) on a remote auto move stops it; REMOTE_MODE keeps
+// control (reference) or MANUAL_MODE idle follows (other).
+TEST(Readings, E88TheOtherSideLeavesRemoteOnTheStopKey) {
+  Rig ref(site_profile()), other(reading(site_profile(), "E-88"));
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(AutoMove{AutoMoveAzEl{600, 450}})));
+    r->wait(1s);
+    ASSERT_FALSE(is_nak(r->send(RemoteKeypress{'A'})));
+    r->wait(1s);
+    EXPECT_EQ(r->c.state().az.motion, AxisState::Motion::kIdle);
+  }
+  EXPECT_EQ(ref.mode(), "REMOTE_MODE");
+  EXPECT_EQ(ref.state(), "WAITING_FOR_USER_INPUT");
+  EXPECT_EQ(other.mode(), "MANUAL_MODE");
+  EXPECT_EQ(other.state(), "MANUAL_IDLE");
 }
 
 // E-89: 'X' on a STOW or DEPLOY: MOVE_STOPPED (reference) or MODE_CHANGED
@@ -1431,6 +1520,24 @@ TEST(Readings, E89TheOtherSideStowsAxisByAxisAndExitsAStopAsAModeChange) {
   EXPECT_EQ(exit_after(ReadingSide::kOther, stop_key, 'S'), "STOW_MOVING_TO_AZIM_STOW_MOVE_STOPPED");
   EXPECT_EQ(exit_after(ReadingSide::kReference, x, 'D'), "DEPLOY_MOVING_ELEVATION_MOVE_STOPPED");
   EXPECT_EQ(exit_after(ReadingSide::kOther, x, 'D'), "DEPLOY_MOVING_ELEVATION_MODE_CHANGED");
+}
+
+// E-101: an azimuth and an elevation jammed, byte 39 showing the azimuth's
+// code (2): a drive reset of the azimuth sets it to 0 (reference) or shows
+// the elevation's, 4 (other); a reset of the elevation then 0 on both.
+TEST(Readings, E101TheOtherSideShowsTheCodeOfAnAlarmStillActive) {
+  Profile p = site_profile();
+  p.alarms.az = 0xB;
+  p.alarms.el = 0xB;
+  p.alarms.code = 2;
+  Rig ref(p), other(reading(p, "E-101"));
+  for (Rig* r : {&ref, &other}) ASSERT_FALSE(is_nak(r->send(Misc{'R', 'A'})));
+  EXPECT_EQ(ref.status().alarm_code, 0);
+  EXPECT_EQ(other.status().alarm_code, 4);
+  for (Rig* r : {&ref, &other}) {
+    ASSERT_FALSE(is_nak(r->send(Misc{'R', 'E'})));
+    EXPECT_EQ(r->status().alarm_code, 0);
+  }
 }
 
 TEST(Readings, E6TheReferenceSideIgnoresAControlCharacterInTheBody) {

@@ -392,6 +392,7 @@ struct OneReading {
   void (*adjust)(Profile&) = nullptr;  // where no shipped profile shows the point
 };
 void azimuth_ad_error(Profile& p) { p.az.ad_error = true; }
+void elevation_jammed_too(Profile& p) { p.alarms.el = 0xB; }
 void manual_search(Profile& p) {
   p.track.active = true;
   p.track.activity = TrackActivity::kManualSearch;
@@ -462,7 +463,12 @@ INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                                            OneReading{"E-64", "track-peaking.yaml", false},
                                            OneReading{"E-66", "rc3000-1.59.yaml", false},
                                            OneReading{"E-67", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-74", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-76", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-76", "southern-slow-mount.yaml", false, ReadingSide::kOther2},
                                            OneReading{"E-82", "rc3000-1.59.yaml", false},
+                                           OneReading{"E-87", "southern-slow-mount.yaml", false},
+                                           OneReading{"E-88", "rc3000-1.59.yaml", false},
                                            OneReading{"E-89", "rc3000-1.59.yaml", false},
                                            OneReading{"E-90", "rc3000-1.59.yaml", false},
                                            OneReading{"E-91", "circular-no-stow.yaml", false},
@@ -472,7 +478,8 @@ INSTANTIATE_TEST_SUITE_P(Readings, LiveFuzzOneReading,
                                            OneReading{"E-95", "rc3000-1.59.yaml", false},
                                            OneReading{"E-96", "rc3000-1.59.yaml", false},
                                            OneReading{"E-97", "remote-disabled.yaml", false},
-                                           OneReading{"E-98", "rc3000-1.59.yaml", true}),
+                                           OneReading{"E-98", "rc3000-1.59.yaml", true},
+                                           OneReading{"E-101", "az-jammed.yaml", false, ReadingSide::kOther, elevation_jammed_too}),
                          [](const auto& info) {
                            return std::string(info.param.id).replace(1, 1, "") +
                                   (info.param.side == ReadingSide::kOther2 ? "Other2" : "");

@@ -253,7 +253,7 @@ TEST(Runner, ShippedVectorsHoldOnAControllerThatTakesTheThirdSides) {
 // A profile that pins a side holds the shipped vectors that list the point
 // to it: on the default profile, the reference controller on the side
 // pinned passes them and on the side pinned away fails them (E-14, E-46,
-// E-82, E-89; E-46's other side names any axis, the azimuth too, so only
+// E-82, E-88, E-89; E-46's other side names any axis, the azimuth too, so only
 // the reference pin refuses a side). `run` is run in order, `judged` judged.
 TEST(Runner, APinnedSideHoldsTheVectorsThatListItToThatSide) {
   struct Case {
@@ -266,6 +266,8 @@ TEST(Runner, APinnedSideHoldsTheVectorsThatListItToThatSide) {
       {"E-46", {"3.24-jog-minimal-L", "3.24-x-reply"}, {"3.24-x-reply"}, false},
       {"E-82", {"3.18-remote-locate-x-stops", "3.18-remote-locate-range-error-stop-exit"},
        {"3.18-remote-locate-x-stops", "3.18-remote-locate-range-error-stop-exit"}},
+      {"E-88", {"3.25-keypress-stop-stops-auto-move", "3.7-misc-stop-key-stops-auto-move"},
+       {"3.25-keypress-stop-stops-auto-move", "3.7-misc-stop-key-stops-auto-move"}},
       {"E-89", {"3.7-misc-x-stops-stow", "3.7-misc-x-stops-deploy"}, {"3.7-misc-x-stops-stow", "3.7-misc-x-stops-deploy"}},
   };
   std::map<std::string, Vector> by_id;

@@ -147,6 +147,8 @@ class Controller {
   AxisState& axis(AxisId a);
   const AxisState& axis(AxisId a) const;
   enums::EnumReading enum_reading() const;
+  // A position in display units (per_degree 10 or 100), as ERRATA E-76's side taken reads it.
+  long in_units(double deg, int per_degree) const;
   // Whether this controller takes the other side of an open point of the
   // spec (readings.hpp; the profile's `readings:` pins, sabus sim --reading).
   bool reads_other(std::string_view errata_id) const;

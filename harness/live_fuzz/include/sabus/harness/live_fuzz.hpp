@@ -442,9 +442,10 @@ class Lockstep {
                                     const std::vector<Frame>& device, const Receiver& split_before, const Memory& before);
   // Points whose side the model took where the device did not show it: the
   // mode bytes, seen only in a 40h, after a LOCATE that completed (E-93),
-  // after any command the device took (E-52, which commands enter REMOTE)
-  // and after a LOCATE, STOW or DEPLOY was left before it ended (E-82,
-  // E-89: which exit status).
+  // after any command the device took (E-52, which commands enter REMOTE),
+  // after a Stop key sent remotely (E-88: whether it leaves REMOTE) and
+  // after a LOCATE, STOW or DEPLOY was left before it ended (E-82, E-89:
+  // which exit status).
   // The model before the first such write since the last 40h that showed
   // them, and the writes since with the sides each was judged on; a later
   // write that ends in a finding is judged again from there with each point
