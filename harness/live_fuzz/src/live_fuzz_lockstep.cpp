@@ -718,7 +718,11 @@ std::optional<Verdict> Lockstep::judge_step(const FuzzFrame& frame, TimePoint se
   if (const auto lost = jogs_on_lost_axes(split_before, frame, device); !lost.empty()) {
     recall(before);
     for (const auto& [axis, limit] : lost) {
-      by_axis(model().mutable_state(), axis).position = limit;
+      // At rest there: a jog into a limit finds the axis standing at it.
+      AxisState& at = by_axis(model().mutable_state(), axis);
+      at.position = limit;
+      at.motion = AxisState::Motion::kIdle;
+      at.velocity = 0;
       if (!device_led_) position_unknown_[axis] = false;  // in an episode the end decides (keep_in_step)
       drifted_[axis] = true;
     }
@@ -933,11 +937,16 @@ std::vector<std::pair<std::size_t, double>> Lockstep::jogs_on_lost_axes(const Re
     // and L toward the upper limit.
     const char d = jog->direction;
     const std::size_t axis = d == 'E' || d == 'W' ? 0 : d == 'D' || d == 'U' ? 1 : 2;
-    // Lost: out of a device-led episode without a reading, or in one (the
-    // device leads its motion) on an axis whose reading is '*' (E-42).
-    if (!position_unknown_[axis] && !(device_led_ && !reading_of(model(), axis))) continue;
     const AxisProfile& ap = axis_profile(axis);
-    lost.emplace_back(axis, d == 'W' || d == 'U' || d == 'L' ? ap.max_deg : ap.min_deg);
+    const double limit = d == 'W' || d == 'U' || d == 'L' ? ap.max_deg : ap.min_deg;
+    // Lost: out of a device-led episode without a reading, or in one (the
+    // device leads its motion) on an axis whose reading is '*' (E-42) or
+    // that the model has within a display unit and the axis's tolerance of
+    // the limit (a reading cut to its unit, E-76, says no more).
+    const bool near_limit =
+        device_led_ && std::abs(by_axis(model().state(), axis).position - limit) <= 0.1 + ap.tolerance_deg + 1e-9;
+    if (!position_unknown_[axis] && !(device_led_ && !reading_of(model(), axis)) && !near_limit) continue;
+    lost.emplace_back(axis, limit);
   }
   return lost;
 }

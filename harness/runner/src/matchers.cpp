@@ -52,6 +52,9 @@ struct Reading {
   int per = 1;
   bool negative = false;     // written with '-' ("-0.0" too)
   bool either_sign = false;  // read with a hundredths digit on a tenths field of 0.0: its sign unknown (E-30)
+  // A negative tenths field with its digit as ERRATA E-87's other side adds
+  // it (-0.2 and '8' is -0.12, where the reference's -0.2 and '8' is -0.28).
+  std::optional<std::int64_t> digit_added;
 };
 
 constexpr int kMostDecimals = 6;
@@ -117,6 +120,7 @@ Reading with_hundredths(Reading r, const FrameDescription& reply, const FieldDes
     if (!byte || byte->per != 1 || byte->units < '0' || byte->units > '9') return r;
     const std::int64_t digit = byte->units - '0';
     r.either_sign = r.units == 0 && !r.negative && digit != 0;
+    if (r.units < 0) r.digit_added = r.units * 10 + digit;
     r.units = r.units * 10 + (r.negative ? -digit : digit);
     r.per = motion::kHundredths;
     return r;
@@ -145,6 +149,12 @@ std::string window_text(const motion::Readings& w, int per) {
 // Whether a reading is in the window, a heading taken modulo 360 nearest it.
 bool reads_within(const Reading& r, const motion::Readings& w, bool angular) {
   const std::int64_t turn = std::int64_t{360} * r.per;
+  if (r.digit_added) {  // either reading of the digit (E-87)
+    Reading added = r;
+    added.units = *r.digit_added;
+    added.digit_added.reset();
+    if (reads_within(added, w, angular)) return true;
+  }
   for (const std::int64_t sign : {1, -1}) {
     if (sign < 0 && !r.either_sign) break;
     std::int64_t u = sign * r.units;

@@ -59,11 +59,12 @@ std::int64_t whole_up(double units) { return static_cast<std::int64_t>(std::ceil
 std::int64_t whole_down(double units) { return static_cast<std::int64_t>(std::floor(std::clamp(units, -kMostUnits, kMostUnits) + kWhole)); }
 double snapped(double units) { return std::abs(units - std::round(units)) < kWhole ? std::round(units) : units; }
 
-// The hundredths readings whose tenths field (truncated toward zero, E-30)
-// shows `tenths`.
+// The hundredths readings whose tenths field shows `tenths`: truncated
+// toward zero (E-30, E-87's reference side), or for a negative one rounded
+// down (E-87's other side: -0.2 stands for -0.20 to -0.11 too).
 Readings hundredths_shown_as(std::int64_t tenths) {
   if (tenths > 0) return {tenths * 10, tenths * 10 + 9};
-  if (tenths < 0) return {tenths * 10 - 9, tenths * 10};
+  if (tenths < 0) return {tenths * 10 - 9, tenths * 10 + 9};
   return {-9, 9};
 }
 
@@ -93,10 +94,13 @@ Readings readings_at(Interval x, Shown how) {
   return {whole_up(x.low - 1), whole_down(x.high + 1)};
 }
 
-// A window of readings in `per_degree` units, and in tenths.
+// A window of readings in `per_degree` units, and in tenths: the tenths
+// field of a hundredths reading truncated toward zero or (a negative one,
+// E-87's other side) rounded down.
 PositionReadings in_tenths_and_finer(Readings r, int per_degree) {
   if (per_degree != kHundredths) return {r, std::nullopt};
-  return {{tenths_of(r.low, per_degree), tenths_of(r.high, per_degree)}, r};
+  const std::int64_t low_down = r.low >= 0 ? r.low / 10 : -((-r.low + 9) / 10);
+  return {{std::min(tenths_of(r.low, per_degree), low_down), tenths_of(r.high, per_degree)}, r};
 }
 
 // Stays this far inside a limit beyond the arrival tolerance: limits stop

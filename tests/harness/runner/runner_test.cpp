@@ -866,8 +866,10 @@ FrameDescription extended_status_reply(std::int32_t az_tenths, std::int32_t az_d
 }
 
 // §3.17 bytes 49-50 (E-30): on a mount with 0.01 deg feedback a 40h
-// position is read with its hundredths digit, which extends the magnitude;
-// a tenths field of 0.0 leaves the digit's sign to either.
+// position is read with its hundredths digit, which extends the magnitude,
+// or for a negative position is added to tenths rounded down (E-87's other
+// side: -0.4 and '7' is -0.47 or -0.33); a tenths field of 0.0 leaves the
+// digit's sign to either.
 TEST(Matchers, APositionIsReadWithItsHundredthsDigitOnAMountThatHasThem) {
   Profile p;
   p.hundredths = true;
@@ -879,9 +881,11 @@ TEST(Matchers, APositionIsReadWithItsHundredthsDigitOnAMountThatHasThem) {
   const FrameDescription d = extended_status_reply(-4, 7);  // -0.47
   EXPECT_FALSE(near(d, "-0.47"));
   EXPECT_FALSE(near(d, "-0.57"));
-  const auto off = near(d, "-0.3");  // -0.40 to -0.20: the tenths alone (-0.4) would pass
+  EXPECT_FALSE(near(d, "-0.33")) << "the digit added (E-87's other side)";
+  const auto off = near(d, "-0.2");  // -0.30 to -0.10: neither -0.47 nor -0.33; the tenths alone (-0.4) not
   ASSERT_TRUE(off);
-  EXPECT_NE(off->find("-0.40 to -0.20, read with the hundredths digit as -0.47"), std::string::npos) << *off;
+  EXPECT_NE(off->find("-0.30 to -0.10, read with the hundredths digit as -0.47"), std::string::npos) << *off;
+  EXPECT_TRUE(near(d, "-0.6")) << "-0.70 to -0.50";
   EXPECT_FALSE(near(status_reply(), "-152.47")) << "31h has no digit: its tenths, -152.5, truncated from -152.37 to -152.57";
   EXPECT_FALSE(near(extended_status_reply(0, 4), "-0.04")) << "0.0 and 4: -0.04 or 0.04";
   EXPECT_FALSE(near(extended_status_reply(0, 4), "0.04"));

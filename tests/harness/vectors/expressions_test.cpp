@@ -479,7 +479,8 @@ TEST(Motion, AFluxgateHeadingOnAHundredthsDisplayIsTruncatedAsAHeading) {
   EXPECT_TRUE(heading.tenths.contains(-3)) << heading.tenths.low << " to " << heading.tenths.high;
   EXPECT_FALSE(heading.tenths.contains(1)) << "0.64 deg at least below 0.59";
   const auto position = motion::jog_readings(a, motion::kHundredths, 5, -1, 'F', 500);
-  EXPECT_FALSE(position.tenths.contains(-3)) << "a position's tenths are truncated toward zero (E-30)";
+  EXPECT_TRUE(position.tenths.contains(-3)) << "a negative position's tenths rounded down (E-87's other side)";
+  EXPECT_FALSE(position.tenths.contains(-4)) << "-0.28 at most: -0.2 truncated toward zero (E-30), -0.3 rounded down";
   // A heading of 359.7 read where the range says -0.3: 359.70 to 359.79, so
   // -0.30 to -0.21, not the -0.39 to -0.30 of a negative position.
   const auto from_negative = motion::jog_readings(a, motion::kHundredths, -3, +1, 'F', 0, true);
@@ -504,8 +505,10 @@ TEST(Motion, NearIsAReadingWithinTheToleranceInTheDisplaysUnits) {
   // Form 2C to 12.25 with a tolerance of 0.1: 12.15 to 12.35 as read.
   EXPECT_EQ(motion::near_readings(12.25, 0.1, motion::kHundredths),
             (motion::PositionReadings{{121, 123}, motion::Readings{1215, 1235}}));
+  // -12.35 has the tenths field -12.3 (toward zero, E-30) or -12.4 (rounded
+  // down, E-87's other side).
   EXPECT_EQ(motion::near_readings(-12.25, 0.1, motion::kHundredths),
-            (motion::PositionReadings{{-123, -121}, motion::Readings{-1235, -1215}}));
+            (motion::PositionReadings{{-124, -121}, motion::Readings{-1235, -1215}}));
   // In doubles -0.4 + 0.1 is -0.30000000000000004: still 3 tenths.
   EXPECT_EQ(motion::near_readings(-0.4, 0.1, motion::kTenths), (motion::PositionReadings{{-5, -3}, std::nullopt}));
   EXPECT_EQ(motion::readings_between(-0.4 + 0.1, 0.3, motion::kTenths), (motion::Readings{-3, 3}));
