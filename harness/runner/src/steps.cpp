@@ -399,10 +399,16 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
       shown += (shown.empty() ? "" : ", ") + alt.errata + " " + std::string(to_string(*by_device));
   }
   const Captures before = captures;
+  // Each side's failure, to say once what every side met alike (a reply
+  // that does not decode, silence: nothing the reading decides).
+  std::vector<std::string> reasons;
   auto attempt = [&](const Expectation& side, const std::string& name) {
     captures = before;
     auto failure = check_reply(side, got);
-    if (failure) failures += (failures.empty() ? "" : "; ") + name + ": " + *failure;
+    if (failure) {
+      failures += (failures.empty() ? "" : "; ") + name + ": " + *failure;
+      reasons.push_back(*failure);
+    }
     return !failure;
   };
   // One open point: the side that held alone is the device's from here on.
@@ -445,6 +451,9 @@ std::optional<std::string> Session::check_sides(const Expectation& e, const Repl
   }
   captures = before;
   if (failures.empty()) return "no side of " + ids + " is left by the profile's readings: pins";
+  if (reasons.size() > 1 &&
+      std::all_of(reasons.begin(), reasons.end(), [&](const std::string& r) { return r == reasons.front(); }))
+    return reasons.front();
   return "no legal reading holds (ERRATA " + ids + (shown.empty() ? "" : "; the device showed " + shown + " earlier") + "): " + failures;
 }
 

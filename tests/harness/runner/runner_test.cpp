@@ -335,6 +335,16 @@ TEST(Runner, AReadingsAlternativeAcceptsEitherSideUnlessThePofilePinsOne) {
   EXPECT_NE(neither.failures[0].find("no legal reading holds (ERRATA E-91): E-91 reference:"), std::string::npos)
       << neither.failures[0];
   EXPECT_NE(neither.failures[0].find("; E-91 other:"), std::string::npos) << neither.failures[0];
+  // Every side failing alike (here the same NAK expected of both) is said
+  // once: nothing the reading decides.
+  Step alike = send_raw("02 {addr} 31 03 {lrc}", Expectation::Kind::kNak);
+  alike.expect.readings.push_back(ReadingAlternative{"E-91", alike.expect});
+  auto p = load_profile_file(default_profile_path()).profile.value();
+  auto t = make_in_process_transport({p}, {});
+  const VectorResult same = Runner(*t, p, RunOptions{}).run({vector_with("alike", {alike})}).vectors.at(0);
+  ASSERT_EQ(same.verdict, Verdict::kFail);
+  EXPECT_EQ(same.failures[0].rfind("expected a NAK reply, got ACK", 0), 0u) << same.failures[0];
+  EXPECT_EQ(same.failures[0].find("E-91"), std::string::npos) << same.failures[0];
 }
 
 // A point with a third side: each of its sides is an alternative; a pin to
