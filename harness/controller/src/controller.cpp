@@ -279,6 +279,12 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
   }
 }
 
+void Controller::start_remote_jog(AxisId a, int direction, bool fast, Duration duration, std::uint32_t ms, bool key) {
+  const AxisState from = axis(a);
+  start_jog(a, direction, fast, duration);  // forgets the jog before, on this axis
+  remote_jog_ = {true, a, clock_.now(), from, ms, key};
+}
+
 void Controller::redo_remote_jog(Duration duration) {
   const RemoteJog j = remote_jog_;
   AxisState& s = axis(j.axis);

@@ -143,12 +143,9 @@ Outcome Handlers::keypress(C& c, char key, std::uint8_t code) {
     if (j.axis == AxisId::kPol && c.profile_.pol_type == PolType::kCircular) break;
     // At the speed the axis is configured for (the Speed key's or the last
     // jog's), not an auto move's: E-98, whichever side 'S' shows.
-    if (!c.limit(j.axis, j.dir)) {
-      const AxisState from = c.axis(j.axis);
-      c.start_jog(j.axis, j.dir, c.axis(j.axis).configured_fast,
-                  key_jog_hold(c.reads_other("E-56") ? ReadingSide::kOther : ReadingSide::kReference));
-      c.remote_jog_ = {true, j.axis, c.clock_.now(), from, 0, true};
-    }
+    if (!c.limit(j.axis, j.dir))
+      c.start_remote_jog(j.axis, j.dir, c.axis(j.axis).configured_fast,
+                         key_jog_hold(c.reads_other("E-56") ? ReadingSide::kOther : ReadingSide::kReference), 0, true);
     break;
   }
   if (key == '0')

@@ -165,9 +165,7 @@ Outcome Handlers::jog(C& c, std::uint8_t code, const JogFields& j) {
       for (AxisId other : {AxisId::kAz, AxisId::kEl, AxisId::kPol})
         if (other != a && c.axis(other).motion == AxisState::Motion::kJog)
           c.stop_axis(other);
-    const AxisState from = c.axis(a);
-    c.start_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms, c.reads_other("E-61")));  // moves from the next update on
-    c.remote_jog_ = {true, a, c.clock_.now(), from, j.duration_ms};
+    c.start_remote_jog(a, dir, j.speed == 'F', jog_duration(j.duration_ms, c.reads_other("E-61")), j.duration_ms, false);
     c.state_.last_jogged = a;
     if (code == 0x47) return jog_position(c, a);
     return status(c, code, "jog " + std::string(1, j.direction));
@@ -216,13 +214,16 @@ Outcome Handlers::pol_preset(C& c, const PolPreset& p) {
   // or not; the other side defers first and checks when it runs (ERRATA E-64).
   // With no auto move since power-on the reference takes the first STORE
   // entry; ERRATA E-57's other side has no "last target" and NAKs.
-  const bool defer_first = c.reads_other("E-64");
-  const bool no_target = c.reads_other("E-57") && !c.state_.last_target;
-  if (!defer_first && c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
-  if (!defer_first && no_target) return nak(c, 0x34, NakRule::kPolPresetNoSatellites, "no auto move since power-on (E-57)");
+  auto no_satellite = [&]() -> std::optional<Outcome> {
+    if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
+    if (c.reads_other("E-57") && !c.state_.last_target)
+      return nak(c, 0x34, NakRule::kPolPresetNoSatellites, "no auto move since power-on (E-57)");
+    return std::nullopt;
+  };
+  if (!c.reads_other("E-64"))
+    if (auto refused = no_satellite()) return *refused;
   if (track_busy(c)) return status(c, 0x34, "pol preset deferred until peaking ends");
-  if (c.state_.store.empty()) return nak(c, 0x34, NakRule::kPolPresetNoSatellites);
-  if (no_target) return nak(c, 0x34, NakRule::kPolPresetNoSatellites, "no auto move since power-on (E-57)");
+  if (auto refused = no_satellite()) return *refused;
   const StoredSatellite sat = c.state_.last_target.value_or(c.state_.store.front());
   const bool dual = c.profile_.pol_type == PolType::kDualPort;
   take_control_to_move(c);  // ERRATA E-52

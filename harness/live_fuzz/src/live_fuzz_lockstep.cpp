@@ -618,6 +618,16 @@ std::vector<std::string> Lockstep::open_readings() const {
   return ids;
 }
 
+std::vector<std::pair<std::string, ReadingSide>> Lockstep::unshown_flips(
+    const ReadingPins& taken, const std::function<bool(const std::string&, ReadingSide)>& keep) const {
+  std::vector<std::pair<std::string, ReadingSide>> flips;
+  for (const std::string& id : open_readings()) {
+    const ReadingSide side = sides_besides(id, side_taken(taken, id)).front();
+    if (side_taken(taken, id) == side_taken(profile_.readings, id) && keep(id, side)) flips.emplace_back(id, side);
+  }
+  return flips;
+}
+
 void Lockstep::note_reading(std::vector<std::string> ids, const Verdict& explained) {
   std::string errata;
   for (const auto& id : ids) errata += (errata.empty() ? "" : "+") + id;
@@ -696,17 +706,10 @@ std::optional<Verdict> Lockstep::judge_step(const FuzzFrame& frame, TimePoint se
       }
   // Together: the points whose side the device has not shown yet (a side
   // taken earlier stays), each to its first other side.
-  std::vector<std::pair<std::string, ReadingSide>> unshown;
-  std::vector<std::string> unshown_ids;
-  for (const auto& id : open) {
-    const ReadingSide side = besides(id).front();
-    if (side_taken(before.bus->controller(0).profile().readings, id) == side_taken(profile_.readings, id) &&
-        plausible(id, side)) {
-      unshown.emplace_back(id, side);
-      unshown_ids.push_back(id);
-    }
-  }
+  const auto unshown = unshown_flips(before.bus->controller(0).profile().readings, plausible);
   if (unshown.size() > 1 && try_sides(unshown)) {
+    std::vector<std::string> unshown_ids;
+    for (const auto& flip : unshown) unshown_ids.push_back(flip.first);
     note_reading(unshown_ids, *finding);
     return std::nullopt;
   }
@@ -870,16 +873,19 @@ bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Dur
     // This write on those sides, and with another open point flipped too
     // (its side shown in this write only).
     const Memory replayed = remember();
-    auto this_write = [&](const std::string& also, ReadingSide also_side) {
-      recall(replayed);
-      if (!also.empty()) model().set_reading(also, also_side);
-      *splitter_ = split_before;
-      cuts_ = frame_cuts(frame);
-      return !judge_write(frame, sent_at, uncertainty, device);
-    };
     std::vector<std::string> explained;
     for (const auto& f : flips) explained.push_back(f.first);
-    bool holds = this_write("", ReadingSide::kReference);
+    // This write with `also` flipped too; what explained it is named.
+    auto this_write = [&](const std::vector<std::pair<std::string, ReadingSide>>& also) {
+      recall(replayed);
+      for (const auto& [id, side] : also) model().set_reading(id, side);
+      *splitter_ = split_before;
+      cuts_ = frame_cuts(frame);
+      if (judge_write(frame, sent_at, uncertainty, device)) return false;
+      for (const auto& flip : also) explained.push_back(flip.first);
+      return true;
+    };
+    bool holds = this_write({});
     const ReadingPins& replayed_sides = replayed.bus->controller(0).profile().readings;
     // E-90 and E-94 explain only what step's own rules let them (a search
     // that has ended; never where a LOCATE ends).
@@ -888,26 +894,13 @@ bool Lockstep::undecided_explains(const FuzzFrame& frame, TimePoint sent_at, Dur
       if (holds) break;
       if (!may_flip(other)) continue;
       for (const ReadingSide s2 : sides_besides(other, side_taken(replayed_sides, other)))
-        if ((holds = this_write(other, s2))) {
-          explained.push_back(other);
-          break;
-        }
+        if ((holds = this_write({{other, s2}}))) break;
     }
     // Or with every open point the device has not shown a side of yet on
     // its first other side, as step tries them together (a 40h shows many).
     if (!holds) {
-      std::vector<std::pair<std::string, ReadingSide>> unshown;
-      for (const std::string& other : open_readings())
-        if (may_flip(other) && side_taken(replayed_sides, other) == side_taken(profile_.readings, other))
-          unshown.emplace_back(other, sides_besides(other, side_taken(replayed_sides, other)).front());
-      if (unshown.size() > 1) {
-        recall(replayed);
-        for (const auto& [id, side] : unshown) model().set_reading(id, side);
-        *splitter_ = split_before;
-        cuts_ = frame_cuts(frame);
-        if ((holds = !judge_write(frame, sent_at, uncertainty, device)))
-          for (const auto& u2 : unshown) explained.push_back(u2.first);
-      }
+      const auto unshown = unshown_flips(replayed_sides, [&](const std::string& id, ReadingSide) { return may_flip(id); });
+      holds = unshown.size() > 1 && this_write(unshown);
     }
     if (!holds) continue;
     undecided_.reset();  // `u` with it

@@ -265,6 +265,8 @@ class Controller {
     std::uint32_t ms = 0;  // the duration a jog asked for
     bool key = false;      // a jog key (36h 'K', 48h): held for E-56's time
   } remote_jog_;
+  // Starts a remote jog (`ms` asked for) or jog key (`key`) and records it.
+  void start_remote_jog(AxisId a, int direction, bool fast, Duration duration, std::uint32_t ms, bool key);
   // Redoes that jog from where and when it began, for `duration`.
   void redo_remote_jog(Duration duration);
   int signal_strength_ = 0;  // §3.9, when a profile implements 38h

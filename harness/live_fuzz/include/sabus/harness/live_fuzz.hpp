@@ -462,6 +462,11 @@ class Lockstep {
   // The reading points the model may still take the other side of: those
   // the profile leaves open.
   std::vector<std::string> open_readings() const;
+  // The open points the device has not shown a side of yet (the model, on
+  // `taken`, still on the profile's), each on its first other side, those
+  // `keep` keeps: flipped together where a reply shows many at once.
+  std::vector<std::pair<std::string, ReadingSide>> unshown_flips(
+      const ReadingPins& taken, const std::function<bool(const std::string&, ReadingSide)>& keep) const;
   void note_reading(std::vector<std::string> ids, const Verdict& explained);
   std::vector<ReadingNote> notes_;
   // One write's judgement, rule by rule (step).
