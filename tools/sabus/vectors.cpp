@@ -376,8 +376,9 @@ int run_summary(const VectorsOptions& o) {
 }
 
 // Errata entry -> the vectors that rest on it: through their flags (the
-// notes' `errata`), or by accepting the other side of a reading (an
-// expectation's `readings:`).
+// notes' `errata`), by accepting the other side of a reading (an
+// expectation's `readings:`), or by a precondition that side may leave
+// unmet (`precondition_reading`).
 std::map<std::string, std::vector<std::string>> errata_vectors(const LoadResult& r) {
   std::map<std::string, std::vector<std::string>> out;
   auto add = [&](const std::string& entry, const std::string& id) {
@@ -389,8 +390,10 @@ std::map<std::string, std::vector<std::string>> errata_vectors(const LoadResult&
       for (const auto& flag : v.flags)
         if (auto n = f.notes.find(flag); n != f.notes.end() && !n->second.errata.empty()) add(n->second.errata, v.id);
       for (const auto* steps : {&v.setup, &v.steps, &v.teardown})
-        for (const harness::Step& s : *steps)
+        for (const harness::Step& s : *steps) {
           for (const auto& alt : s.expect.readings) add(alt.errata, v.id);
+          if (!s.precondition_reading.empty()) add(s.precondition_reading, v.id);
+        }
     }
   return out;
 }

@@ -30,6 +30,11 @@ constexpr std::chrono::seconds kSearchTime{20};
 // E-90's other side: a search that gives up within a second.
 constexpr std::chrono::milliseconds kShortSearchTime{300};
 constexpr std::chrono::milliseconds kSearchTick{100};
+// ERRATA E-99's other side: how far short of its stow position a STOW leaves
+// the elevation (well outside any arrival tolerance and the display's 0.1).
+constexpr double kStowShortDeg = 1.0;
+// ERRATA E-100's other side: the step of TRACK's peaking pattern.
+constexpr double kTrackStepDeg = 0.2;
 
 double seconds(Duration d) { return std::chrono::duration<double>(d).count(); }
 int sign_of(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
@@ -181,6 +186,9 @@ Controller::Controller(const Profile& profile, const Clock& clock, FaultSet faul
   if (state_.track.active) {
     state_.mode.mode = mode_value("TRACK_MODE");
     set_state(track_submode(state_.track.activity).state);
+    track_pattern_ = {state_.az.position, state_.el.position, 0};
+    tick_origin_ = last_update_;
+    if (track_moves()) next_track_leg();
   } else {
     state_.mode.mode = mode_value("MANUAL_MODE");
     set_state("MANUAL_IDLE");
@@ -255,6 +263,11 @@ void Controller::set_reading(const std::string& errata_id, ReadingSide side) {
     last_update_ = locate_.began;
     start_locate_movements();
     update();  // to the clock's time again, the side's way
+  }
+  // E-100: a TRACK that peaks or searches begins its movements now.
+  if (errata_id == "E-100" && track_moves() && !moving()) {
+    tick_origin_ = last_update_;
+    next_track_leg();
   }
   // E-61: the last remote jog, nothing else on its axis since: again from
   // where and when it began, for the duration the side taken gives it.
@@ -352,6 +365,9 @@ void Controller::enter_mode(enums::Mode mode, std::string_view state, std::strin
       state_.mode.exit_status =
           exits ? enum_value(exits, locate_changed.empty() ? normal_exit_name(*exits) : std::string_view(locate_changed))
                 : enums::kFirstValue;
+    // E-100's other side: a TRACK that moved the antenna hands it over at
+    // rest, the new mode's movements starting from there.
+    if (track_moves()) stop_all();
     state_.mode.mode = mode.value;
     chain_pending_ = false;
     if (mode != enums::Mode("TRACK_MODE")) state_.track.active = false;
@@ -419,6 +435,19 @@ bool Controller::limit(AxisId a, int direction) const {
 double Controller::stow_elevation() const {
   return profile_.el.has_stow_limit ? profile_.el.stow_deg : profile_.el.min_deg;
 }
+
+// ERRATA E-99's other side: the STOW's elevation movement stops a degree
+// short of the stow position (an elevation already within that degree is
+// not moved), and the STOW ends STOW_FINISHED_WITH_ELEV_NOT_AT_STOW.
+double Controller::stow_elevation_target() const {
+  const double stow = stow_elevation();
+  if (!reads_other("E-99")) return stow;
+  const double from = axis(AxisId::kEl).position;
+  if (std::abs(from - stow) <= kStowShortDeg) return from;
+  return stow + (from > stow ? kStowShortDeg : -kStowShortDeg);
+}
+
+bool Controller::elevation_at_stow() const { return std::abs(axis(AxisId::kEl).position - stow_elevation()) < 0.05; }
 
 bool Controller::stow_limit(AxisId a) const {
   const AxisProfile& p = axis_profile(a);
@@ -568,7 +597,7 @@ void Controller::advance(TimePoint to, bool at_tick) {
 bool Controller::chains_movements() const {
   // E-94's other side: a LOCATE's movements follow each other too.
   return in_mode("SPIRAL_REMOTE_MODE") || in_mode("DEPLOY_MODE") || (in_mode("LOCATE_MODE") && reads_other("E-94")) ||
-         (in_mode("STOW_MODE") && reads_other("E-89"));
+         (in_mode("STOW_MODE") && reads_other("E-89")) || track_moves();
 }
 
 void Controller::update() {
@@ -585,6 +614,43 @@ void Controller::update() {
     advance(next);
   }
   if (now > last_update_) advance(now);
+}
+
+// ---- TRACK's own movements (ERRATA E-100) -------------------------------------
+
+// E-100: the reference controller's TRACK holds the antenna still (its model
+// measures no signal); on the other side a peaking or search operation moves
+// it, as a real TRACK may at any moment.
+bool Controller::track_moves() const {
+  return state_.track.active && in_mode("TRACK_MODE") && reads_other("E-100") &&
+         track_submode(state_.track.activity).peaking_or_search;
+}
+
+// The other side's pattern: azimuth out a step and back, elevation out a
+// step and back, about where TRACK began, over and over; a step is 0.2 deg,
+// or twice the axis's arrival tolerance where that is more, away from a limit
+// the axis stands at. A search finds its peak after one round and goes on
+// peaking (§3.2 byte 40 SSSS 0100 to 0011, track_states'
+// TRACK_STEP_PEAKING), so moves stay refused (§3.4) whichever it shows.
+void Controller::next_track_leg() {
+  struct Leg {
+    AxisId axis;
+    bool out;
+  };
+  static constexpr Leg kLegs[] = {{AxisId::kAz, true}, {AxisId::kAz, false}, {AxisId::kEl, true}, {AxisId::kEl, false}};
+  if (track_pattern_.legs == static_cast<int>(std::size(kLegs)) && state_.track.activity == TrackActivity::kSearching) {
+    state_.track.activity = TrackActivity::kPeaking;
+    set_state(track_submode(state_.track.activity).state);
+  }
+  for (std::size_t tries = 0; tries < std::size(kLegs); ++tries) {
+    const Leg& leg = kLegs[static_cast<std::size_t>(track_pattern_.legs++) % std::size(kLegs)];
+    const AxisProfile& p = axis_profile(leg.axis);
+    const double center = leg.axis == AxisId::kAz ? track_pattern_.az_center : track_pattern_.el_center;
+    const double step = std::max(kTrackStepDeg, 2 * p.tolerance_deg);
+    const double target = !leg.out ? center : center + step <= p.max_deg ? center + step : center - step;
+    start_move(leg.axis, target, false);
+    if (moving()) return;
+  }
 }
 
 // ---- §3.7 'A': the spiral search, 'D': the deploy (ERRATA E-90) --------------
@@ -653,9 +719,10 @@ void Controller::start_stow() {
   // and an elevation without one to its lower limit, all at once (E-89; the
   // other side moves the azimuth first and the others after it, in
   // on_motion_done). A circular feed has no polarization drive (§3.5).
+  // E-99's other side leaves the elevation short (stow_elevation_target).
   start_move(AxisId::kAz, profile_.az.has_stow_limit ? profile_.az.stow_deg : 0.0, false);
   if (!reads_other("E-89")) {
-    start_move(AxisId::kEl, stow_elevation(), false);
+    start_move(AxisId::kEl, stow_elevation_target(), false);
     if (profile_.pol.has_stow_limit && profile_.pol_type != PolType::kCircular)
       start_move(AxisId::kPol, profile_.pol.stow_deg, false);
   }
@@ -697,6 +764,8 @@ void Controller::on_motion_done() {
     const bool completed = state == "LOCATE_AZIM_MOVEMENT" || state == "LOCATE_SECOND_ELEV_MOVEMENT";
     if (completed && reads_other("E-93")) enter_mode("REMOTE_MODE", "WAITING_FOR_USER_INPUT", "LOCATE_FUNCTION_COMPLETED");
     else if (completed) enter_mode("MANUAL_MODE", "MANUAL_IDLE", "LOCATE_FUNCTION_COMPLETED");
+  } else if (track_moves()) {
+    next_track_leg();
   } else if (in_mode("STOW_MODE")) {
     // ERRATA E-89's other side: one axis after another, in the order of
     // stow_states (azimuth, polarization, elevation).
@@ -709,10 +778,11 @@ void Controller::on_motion_done() {
     }
     if (reads_other("E-89") && state == "STOW_MOVING_TO_POL_STOW") {
       set_state("STOW_MOVING_TO_ELEV_STOW");
-      start_move(AxisId::kEl, stow_elevation(), false);
+      start_move(AxisId::kEl, stow_elevation_target(), false);
       if (moving()) return;
     }
-    enter_mode("MANUAL_MODE", "MANUAL_IDLE", "STOW_FINISHED_NORMALLY");
+    enter_mode("MANUAL_MODE", "MANUAL_IDLE",
+               reads_other("E-99") && !elevation_at_stow() ? "STOW_FINISHED_WITH_ELEV_NOT_AT_STOW" : "STOW_FINISHED_NORMALLY");
   }
   else if (in_mode("DEPLOY_MODE")) {
     const auto* states = enums::state_list_for_mode(state_.mode.mode, enum_reading());

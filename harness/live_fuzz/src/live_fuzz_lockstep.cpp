@@ -1115,8 +1115,20 @@ bool Lockstep::left_completed_locate(std::uint8_t last_mode, std::uint8_t exit_s
          exit_named(last_mode, exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
 }
 
+// ERRATA E-100: while TRACK has control the device may peak, search or
+// follow the satellite on its own (the spec gives TRACK's submodes, not when
+// one follows another nor how far each moves): its positions, motion bits,
+// state and submode are the device's, as a STOW's are, unless the profile
+// pins the reference side (TRACK holds the antenna still). Moves are still
+// refused or taken as the model's submode says (§3.4).
+bool Lockstep::track_led(const ModeState& ms) const {
+  return side_pinned(profile_.readings, "E-100") != ReadingSide::kReference &&
+         meanings::mode_name(ms.mode) == "TRACK_MODE";
+}
+
 bool Lockstep::device_leads_mode(std::uint8_t mode) const {
-  return moves_by_itself(mode) || (locate_led() && meanings::mode_name(mode) == "LOCATE_MODE");
+  return moves_by_itself(mode) || (locate_led() && meanings::mode_name(mode) == "LOCATE_MODE") ||
+         track_led(ModeState{mode});
 }
 
 namespace {
@@ -1131,7 +1143,7 @@ bool locate_runs(const ModeState& ms) {
 }  // namespace
 
 bool Lockstep::device_leads(const ModeState& ms) const {
-  return moves_by_itself(ms.mode) || (locate_led() && locate_runs(ms));
+  return moves_by_itself(ms.mode) || (locate_led() && locate_runs(ms)) || track_led(ms);
 }
 
 // A LOCATE the model and the device have both run to LOCATE_FUNCTION_COMPLETED
@@ -1199,6 +1211,18 @@ bool Lockstep::y_outside_track(const AckJudging& r, const ReplyField& f,
   if (f.name != "pol equipment" || r.nominal().track.active) return false;
   return std::any_of(values.begin(), values.end(),
                      [&](const std::string* v) { return v && ((hex_byte(*v) ^ hex_byte(f.raw)) & ~0x08ul) == 0; });
+}
+
+// §3.2 byte 40 while TRACK leads (E-100): the band BBB is the model's, the
+// submode SSSS the device's, but one of the TRACK codes (0001-0110,
+// 1000-1110), never 0000 "track mode not active".
+bool Lockstep::track_submode_shown(const AckJudging& r, const ReplyField& f,
+                                   const std::vector<const std::string*>& values) const {
+  if (f.name != "track" || !track_led(r.nominal().mode)) return false;
+  const unsigned long dev = hex_byte(f.raw);
+  const unsigned long ssss = dev & 0x0F;
+  if (ssss == 0 || ssss == 0b0111 || ssss == 0b1111) return false;
+  return std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && ((hex_byte(*v) ^ dev) & 0x70) == 0; });
 }
 
 // §3.17 bytes 49-50 on a mount without 0.01 deg feedback (ERRATA E-30):
@@ -1406,7 +1430,9 @@ bool Lockstep::judge_field(Judging& j, AckJudging& r, const Field& f, std::size_
     return report(FindingKind::kEffect, *judged);
   }
   if (std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && *v == f.raw; })) return true;
-  if (y_outside_track(r, f, values) || lower_case_while_moving(r, f, values) || no_hundredths(f, values)) return true;
+  if (y_outside_track(r, f, values) || lower_case_while_moving(r, f, values) || no_hundredths(f, values) ||
+      track_submode_shown(r, f, values))
+    return true;
   // The axis of a motion field; kNoAxis for any other (a plain index: GCC 12
   // reports an optional's value as maybe unset through this loop). Without
   // 0.01 deg feedback the hundredths bytes follow no position (E-30: '0', or

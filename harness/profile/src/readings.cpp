@@ -132,6 +132,12 @@ constexpr std::array kPoints{
                  "an unimplemented command is NAKed, offline or not"},
     ReadingPoint{"E-98", "§3.2 bytes 36-38 S", "S during an auto move is the speed of the move (fast)",
                  "S is the speed the axis is configured for, whatever moves it"},
+    ReadingPoint{"E-99", "§3.7 'S'; §3.2 bytes 32-34; §3.17 stow_exit_conditions",
+                 "a STOW drives every axis with a stow limit to it and exits with STOW_FINISHED_NORMALLY",
+                 "a STOW leaves the elevation a degree short of its stow position and exits with STOW_FINISHED_WITH_ELEV_NOT_AT_STOW"},
+    ReadingPoint{"E-100", "§3.2 bytes 35-40; §3.17 track_states",
+                 "TRACK keeps its power-on submode and holds the antenna still",
+                 "TRACK's peaking or search moves the azimuth and elevation about where it began; a search goes on to peaking"},
     ReadingPoint{"E-101", "§3.2 byte 39; §3.7 'R'", "a drive reset of the axis whose code shows sets byte 39 to 0",
                  "after that reset byte 39 shows the code of an alarm still active"},
 };

@@ -13,6 +13,7 @@
 #include "backup.hpp"
 #include "sabus/harness/expressions.hpp"
 #include "sabus/harness/profile_records.hpp"
+#include "sabus/harness/readings.hpp"
 #include "sabus/harness/vector_loader.hpp"
 #include "session.hpp"
 
@@ -215,6 +216,11 @@ void record(Attempt& a, Session& s, const Step& step, const std::string& where, 
     a.rest_unseen = true;
   } else if (step.precondition.empty()) {
     a.failures.push_back(where + error);
+  } else if (!step.precondition_reading.empty() &&
+             side_pinned(s.profile.readings, step.precondition_reading) == ReadingSide::kReference) {
+    // The profile pins the reading whose other side alone lets it fail.
+    a.failures.push_back(where + "precondition (" + step.precondition + ") held strictly, " +
+                         step.precondition_reading + " pinned to its reference side: " + error);
   } else {
     a.inconclusive = where + "precondition not met (" + step.precondition + "): " + error;
   }

@@ -76,6 +76,9 @@ constexpr SchemaKey kStepKeys[] = {
     {"precondition", "",
      "on a send or poll outside a teardown: what must hold for the test purpose, in words; when it does not, the "
      "vector ends inconclusive"},
+    {"precondition_reading", "",
+     "with `precondition`: the ERRATA entry whose other side lets it fail (E-100); a profile pinning the "
+     "reference side makes the step an ordinary one"},
 };
 
 constexpr SchemaKey kWaitKeys[] = {

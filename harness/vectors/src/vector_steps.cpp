@@ -684,6 +684,20 @@ std::string read_precondition(const MapReader& r, const StepContext& cx) {
   return text;
 }
 
+// `precondition_reading`: the switchable ERRATA entry (readings.hpp) whose
+// other side lets the precondition fail; a pin of its reference side makes
+// the step strict (runner.cpp, record).
+std::string read_precondition_reading(const MapReader& r) {
+  std::string id;
+  r.with("precondition_reading", [&](const YAML::Node& n, const At& a) {
+    if (!r.has("precondition")) fail(a, "names the reading a precondition rests on: add the precondition");
+    id = scalar(n, a, "an ERRATA entry id with a readings: switch (E-100)");
+    if (!find_reading_point(id))
+      fail(a, quoted_clip(id) + " is no ERRATA entry with a readings: switch (harness/profile/include/sabus/harness/readings.hpp)");
+  });
+  return id;
+}
+
 Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
   cx.file.spend(at);
   MapReader r(v, at, schema_keys(SchemaNode::kStep));
@@ -709,6 +723,7 @@ Step read_step(const YAML::Node& v, const At& at, StepContext& cx) {
     });
   }
   step.precondition = read_precondition(r, cx);
+  step.precondition_reading = read_precondition_reading(r);
   step.where = cx.file.loc(at.mark);
   return step;
 }

@@ -1540,6 +1540,99 @@ TEST(Readings, E101TheOtherSideShowsTheCodeOfAnAlarmStillActive) {
   }
 }
 
+// E-99: a STOW from elevation 60 with the stow position at 10: at it and
+// STOW_FINISHED_NORMALLY (reference); a degree short, bit C clear, and
+// STOW_FINISHED_WITH_ELEV_NOT_AT_STOW (other), after movements in either
+// order (E-89). An elevation already within that degree stays and ends the
+// same way; one already at its stow position ends normally on both sides.
+TEST(Readings, E99TheOtherSideLeavesTheElevationShortOfItsStow) {
+  Profile p = site_profile();
+  p.stow = true;
+  p.el.has_stow_limit = true;
+  p.el.stow_deg = 10;
+  p.az.initial_deg = 40;
+  p.el.initial_deg = 60;
+  auto stow = [](Rig& r) {
+    EXPECT_FALSE(is_nak(r.send(Misc{'S', ' '})));
+    r.wait(600s);
+    const auto x = r.extended();
+    return std::string(meanings::exit_name(x.last_mode, x.exit_status));
+  };
+  Rig ref(p);
+  EXPECT_EQ(stow(ref), "STOW_FINISHED_NORMALLY");
+  EXPECT_NEAR(ref.c.state().el.position, 10.0, 0.05);
+  EXPECT_EQ(ref.status().el_limits & 0x01, 1);
+  for (const std::string_view also : {"", "E-89"}) {
+    Profile q = reading(p, "E-99");
+    if (!also.empty()) q = reading(q, also);
+    Rig other(q);
+    EXPECT_EQ(stow(other), "STOW_FINISHED_WITH_ELEV_NOT_AT_STOW") << also;
+    EXPECT_NEAR(other.c.state().el.position, 11.0, 0.1) << also;
+    EXPECT_EQ(other.status().el_limits & 0x01, 0) << also;
+    EXPECT_NEAR(other.c.state().az.position, 0.0, 0.1) << "the azimuth is stowed as on the reference side";
+  }
+  p.el.initial_deg = 10.5;
+  Rig near_stow(reading(p, "E-99"));
+  EXPECT_EQ(stow(near_stow), "STOW_FINISHED_WITH_ELEV_NOT_AT_STOW");
+  EXPECT_NEAR(near_stow.c.state().el.position, 10.5, 0.01) << "within the degree: not moved";
+  p.el.initial_deg = 10;
+  Rig stowed(reading(p, "E-99"));
+  EXPECT_EQ(stow(stowed), "STOW_FINISHED_NORMALLY");
+}
+
+// E-100: TRACK peaking at power-on. The reference holds the antenna still;
+// the other side moves the azimuth out 0.2 deg and back, then the
+// elevation, showing movement in progress, and goes on doing so; both keep
+// 'Y' 0 and NAK a jog (§3.4). A search moves the same way and after one
+// round shows step track peaking (SSSS 0100, then 0011). Out of TRACK
+// nothing moves by itself.
+TEST(Readings, E100TheOtherSideMovesTheAntennaWhileTrackPeaks) {
+  Profile p = site_profile();
+  p.track.active = true;
+  p.track.activity = TrackActivity::kPeaking;
+  p.az.initial_deg = 40;
+  p.el.initial_deg = 30;
+  Rig ref(p), other(reading(p, "E-100"));
+  double az_min = 360, az_max = 0, el_min = 90, el_max = 0;
+  bool az_up_shown = false, el_up_shown = false;
+  for (int i = 0; i < 400; ++i) {
+    ref.wait(50ms);
+    other.wait(50ms);
+    EXPECT_EQ(ref.c.state().az.position, 40.0) << "the reference holds still";
+    EXPECT_EQ(ref.status().az_status & 0x0F, 0);
+    const StatusBlock st = other.status();
+    az_up_shown = az_up_shown || (st.az_status & 0x0F) == 0x05;
+    el_up_shown = el_up_shown || (st.el_status & 0x0F) == 0x05;
+    az_min = std::min(az_min, other.c.state().az.position);
+    az_max = std::max(az_max, other.c.state().az.position);
+    el_min = std::min(el_min, other.c.state().el.position);
+    el_max = std::max(el_max, other.c.state().el.position);
+  }
+  EXPECT_TRUE(az_up_shown && el_up_shown) << "movement in progress, clockwise and up";
+  EXPECT_NEAR(az_min, 40.0, 1e-9);
+  EXPECT_NEAR(az_max, 40.2, 1e-9);
+  EXPECT_NEAR(el_min, 30.0, 1e-9);
+  EXPECT_NEAR(el_max, 30.2, 1e-9);
+  const double az_then = other.c.state().az.position, el_then = other.c.state().el.position;
+  other.wait(150ms);
+  EXPECT_TRUE(other.c.state().az.position != az_then || other.c.state().el.position != el_then) << "it goes on peaking";
+  for (Rig* r : {&ref, &other}) {
+    EXPECT_EQ(r->status().pol_equipment & 0x08, 0) << "'Y': no pol moves while peaking";
+    EXPECT_EQ(r->send(Jog{{'W', 'F', 1000}}).nak, NakRule::kTrackPeaking);
+    EXPECT_EQ(r->mode(), "TRACK_MODE");
+  }
+  p.track.activity = TrackActivity::kSearching;
+  Rig search(reading(p, "E-100"));
+  EXPECT_EQ(search.status().track & 0x0F, 0b0100);
+  search.wait(60s);
+  EXPECT_EQ(search.status().track & 0x0F, 0b0011);
+  EXPECT_EQ(search.state(), "TRACK_STEP_PEAKING");
+  p.track.activity = TrackActivity::kIdle;
+  Rig idle(reading(p, "E-100"));
+  idle.wait(10s);
+  EXPECT_EQ(idle.c.state().az.position, 40.0) << "step track idle: not a peaking or search operation";
+}
+
 TEST(Readings, E6TheReferenceSideIgnoresAControlCharacterInTheBody) {
   Line line{Profile{}};
   EXPECT_TRUE(line.send(0x05, {}).empty());

@@ -1240,6 +1240,34 @@ TEST(Runner, APreconditionThatHoldsGoesOnAndOneInSetupIsNamedSo) {
   EXPECT_EQ(commands_sent(s.vectors[0]), (std::vector<std::uint8_t>{0x40})) << "the steps did not run";
 }
 
+// precondition_reading: a precondition that only the other side of an
+// ERRATA reading leaves unmet. Unpinned or pinned to that other side, not
+// met is inconclusive as any precondition; pinned to the reference side, it
+// is a failure that names the pin.
+TEST(Runner, APreconditionOnAReadingIsStrictWhereTheProfilePinsTheReferenceSide) {
+  Step s = search_running();
+  s.precondition_reading = "E-100";
+  const Vector v = vector_with("3.4-peaking", {s});
+  Profile p = load_profile_file(default_profile_path()).profile.value();
+  auto run_pinned = [&](std::optional<ReadingSide> side) {
+    Profile model = p;
+    if (side) model.readings["E-100"] = *side;
+    auto t = make_in_process_transport({p}, {});
+    return Runner(*t, model, {}).run({v});
+  };
+  for (const auto side : {std::optional<ReadingSide>{}, std::optional<ReadingSide>{ReadingSide::kOther}}) {
+    const RunResult r = run_pinned(side);
+    EXPECT_EQ(r.vectors[0].verdict, Verdict::kInconclusive);
+    EXPECT_EQ(r.inconclusive, 1u);
+  }
+  const RunResult strict = run_pinned(ReadingSide::kReference);
+  ASSERT_EQ(strict.vectors[0].verdict, Verdict::kFail);
+  ASSERT_EQ(strict.vectors[0].failures.size(), 1u);
+  EXPECT_EQ(strict.vectors[0].failures[0].rfind("precondition (" + kSearchRuns + ") held strictly, E-100 pinned to its reference side: byte ", 0), 0u)
+      << strict.vectors[0].failures[0];
+  EXPECT_EQ(strict.exit_code(), 1);
+}
+
 // A verdict only gets worse: a step that fails before the precondition makes
 // the vector a failure (the precondition step never runs), and so does a
 // teardown that fails after a precondition not met.

@@ -688,6 +688,15 @@ TEST(vectors, PreconditionsAreForSendsAndPollsBeforeTheTeardown) {
                {"precondition", 1, "3.2-x", "steps[0].precondition", "a precondition belongs to a send or a poll step"});
   expect_error(one_vector(step + "        precondition: \"\"\n"),
                {"precondition", 1, "3.2-x", "steps[0].precondition", "say in words what must hold"});
+  // precondition_reading: the switchable entry it rests on, with a precondition.
+  expect_error(one_vector(step + "        precondition_reading: E-100\n"),
+               {"precondition_reading", 1, "3.2-x", "steps[0].precondition_reading", "add the precondition"});
+  expect_error(one_vector(step + "        precondition: TRACK peaks\n        precondition_reading: E-38\n"),
+               {"precondition_reading", 1, "3.2-x", "steps[0].precondition_reading",
+                "\"E-38\" is no ERRATA entry with a readings: switch"});
+  const VectorFile on_reading = load_ok(one_vector(step + "        precondition: TRACK peaks\n        precondition_reading: E-100\n"));
+  EXPECT_EQ(on_reading.vectors.at(0).steps.at(0).precondition_reading, "E-100");
+  EXPECT_EQ(v.steps[0].precondition_reading, "") << "none unless written";
 }
 
 // each_slot: the steps read $slot, the setup and teardown may not; the list

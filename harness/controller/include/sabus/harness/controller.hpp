@@ -132,6 +132,8 @@ class Controller {
   bool limit(AxisId axis, int direction) const;
   // Where a STOW drives the elevation: its stow limit, else its lower limit (E-99).
   double stow_elevation() const;
+  double stow_elevation_target() const;
+  bool elevation_at_stow() const;
 
   // The model's invariants (positions within limits, STORE <= 50, ...): empty
   // when they hold, else what is broken.
@@ -192,6 +194,8 @@ class Controller {
   // decides, also of a search already running).
   TimePoint search_end() const;
   void next_search_leg();
+  bool track_moves() const;
+  void next_track_leg();
   // §3.7 'D' (ERRATA E-90): the elevation, then the azimuth when the profile
   // states a deploy position for it.
   void start_deploy();
@@ -232,6 +236,12 @@ class Controller {
     AxisState az_from, el_from;  // as they were when it began: the nominal position it returns to
     ModeState mode;              // as it began (SPIRAL_REMOTE_MODE)
   } search_;
+  // ERRATA E-100's other side: TRACK's peaking or search pattern about
+  // where it began, and how many of its legs have begun.
+  struct TrackPattern {
+    double az_center = 0, el_center = 0;
+    int legs = 0;
+  } track_pattern_;
   // §3.18: the movements of the LOCATE in progress, from where and when
   // they began (E-94 decides their order; set_reading redoes them).
   struct LocatePlan {

@@ -484,9 +484,10 @@ class Lockstep {
   bool follow_device_led(const Controller& nominal, const ModeState& before, bool modes_entered,
                          const std::vector<Frame>& device);
   // Whether the device leads the model's current episode (`ms` a STOW,
-  // DEPLOY or search, or a LOCATE that runs while E-94 is open), or would
-  // lead one in `mode`.
+  // DEPLOY or search, a LOCATE that runs while E-94 is open, or TRACK while
+  // E-100 is not pinned to the reference side), or would lead one in `mode`.
   bool locate_led() const;
+  bool track_led(const ModeState& ms) const;
   // The enumeration lists the profile reads (E-28), for exit names.
   enums::EnumReading profile_reading() const;
   // Whether a last mode and its exit are a LOCATE that completed.
@@ -497,6 +498,7 @@ class Lockstep {
   std::optional<std::string> judge_locate_end(const AckJudging& r, const ReplyField& f) const;
   bool mode_outside_locate(const AckJudging& r, const ReplyField& f) const;
   bool y_outside_track(const AckJudging& r, const ReplyField& f, const std::vector<const std::string*>& values) const;
+  bool track_submode_shown(const AckJudging& r, const ReplyField& f, const std::vector<const std::string*>& values) const;
   bool no_hundredths(const ReplyField& f, const std::vector<const std::string*>& values) const;
   bool lower_case_while_moving(const AckJudging& r, const ReplyField& f,
                                const std::vector<const std::string*>& values) const;

@@ -176,6 +176,11 @@ struct Step {
   // into the state the purpose needs: the vector ends inconclusive (TTCN-3
   // `inconc`), not failed. "" for an ordinary step. Never in a teardown.
   std::string precondition;
+  // The ERRATA entry (class reading) whose other side lets the precondition
+  // fail on a legal device: a profile that pins its reference side holds
+  // the step as an ordinary one, its failure the vector's (ERRATA: a
+  // pinned reading is checked strictly). "" for none.
+  std::string precondition_reading;
   SourceLocation where;
 };
 
