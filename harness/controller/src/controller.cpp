@@ -622,8 +622,7 @@ void Controller::update() {
 // measures no signal); on the other side a peaking or search operation moves
 // it, as a real TRACK may at any moment.
 bool Controller::track_moves() const {
-  return state_.track.active && in_mode("TRACK_MODE") && reads_other("E-100") &&
-         track_submode(state_.track.activity).peaking_or_search;
+  return in_mode("TRACK_MODE") && reads_other("E-100") && track_peaks_or_searches();
 }
 
 // The other side's pattern: azimuth out a step and back, elevation out a
@@ -901,11 +900,12 @@ std::uint8_t Controller::axis_status_bits(AxisId a) const {
   return static_cast<std::uint8_t>((fast ? 0x10 : 0) | code);
 }
 
-bool Controller::pol_moves_allowed() const {
-  // §3.2 byte 35 'Y': no polarization movement while TRACK peaks or searches
-  // (which submodes those are: ERRATA E-69).
-  return !(state_.track.active && track_submode(state_.track.activity).peaking_or_search);
+bool Controller::track_peaks_or_searches() const {
+  return state_.track.active && track_submode(state_.track.activity).peaking_or_search;
 }
+
+// §3.2 byte 35 'Y': no polarization movement while TRACK peaks or searches.
+bool Controller::pol_moves_allowed() const { return !track_peaks_or_searches(); }
 
 std::uint8_t Controller::track_byte() const {
   // §3.2 byte 40: BBB<<4 | SSSS; BBB is never 000 (TrackBand's values are the codes).

@@ -1115,15 +1115,17 @@ bool Lockstep::left_completed_locate(std::uint8_t last_mode, std::uint8_t exit_s
          exit_named(last_mode, exit_status, profile_reading()) == "LOCATE_FUNCTION_COMPLETED";
 }
 
-// ERRATA E-100: while TRACK has control the device may peak, search or
-// follow the satellite on its own (the spec gives TRACK's submodes, not when
-// one follows another nor how far each moves): its positions, motion bits,
-// state and submode are the device's, as a STOW's are, unless the profile
-// pins the reference side (TRACK holds the antenna still). Moves are still
-// refused or taken as the model's submode says (§3.4).
+// ERRATA E-100: while TRACK peaks or searches the device moves the antenna
+// on its own (the spec gives TRACK's submodes, not how far or how often a
+// peaking or search operation moves it, nor when one submode follows
+// another): its positions, motion bits, state and submode are the device's,
+// as a STOW's are, unless the profile pins the reference side (TRACK holds
+// the antenna still). Moves are still refused as the model's submode says
+// (§3.4). A TRACK the model has idle (not peaking or searching) takes
+// moves and stops, and is judged as any mode at rest.
 bool Lockstep::track_led(const ModeState& ms) const {
   return side_pinned(profile_.readings, "E-100") != ReadingSide::kReference &&
-         meanings::mode_name(ms.mode) == "TRACK_MODE";
+         meanings::mode_name(ms.mode) == "TRACK_MODE" && model().track_peaks_or_searches();
 }
 
 bool Lockstep::device_leads_mode(std::uint8_t mode) const {

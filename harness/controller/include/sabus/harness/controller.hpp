@@ -107,6 +107,9 @@ class Controller {
   void update();
 
   const ControllerState& state() const { return state_; }
+  // TRACK is active and peaking or searching (§3.2 byte 35 'Y', §3.4; which
+  // submodes those are: ERRATA E-69).
+  bool track_peaks_or_searches() const;
   // How many times a mode was entered since power-on (§3.17 byte 45): a
   // mode entered and left again within one write shows only here when it
   // was left as the one before it was.
