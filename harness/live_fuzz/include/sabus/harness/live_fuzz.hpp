@@ -484,8 +484,9 @@ class Lockstep {
   bool follow_device_led(const Controller& nominal, const ModeState& before, bool modes_entered,
                          const std::vector<Frame>& device);
   // Whether the device leads the model's current episode (`ms` a STOW,
-  // DEPLOY or search, a LOCATE that runs while E-94 is open, or TRACK while
-  // E-100 is not pinned to the reference side), or would lead one in `mode`.
+  // DEPLOY or search, a LOCATE that runs while E-94 is open, or a TRACK
+  // that peaks or searches while E-100 is not pinned to the reference side),
+  // or would lead one in `mode`.
   bool locate_led() const;
   bool track_led(const ModeState& ms) const;
   // The enumeration lists the profile reads (E-28), for exit names.
