@@ -120,10 +120,9 @@ FieldStatus TrackByte::decode(ByteView in, value_type& v) const {
   v = in[0];
   return std::nullopt;
 }
-std::string TrackByte::meaning(const value_type& v) const {
-  static constexpr std::string_view kBands[] = {"(000 not used)", "X band", "Ka band", "S band",
-                                                "C band",         "Ku band", "band not defined", "L band"};
-  static constexpr std::string_view kSub[] = {"track mode not active",
+namespace {
+// §3.2 byte 40 SSSS, by code; "(… not defined)" where the list has a gap.
+constexpr std::string_view kTrackSubmodes[] = {"track mode not active",
                                               "track setup submode active",
                                               "track auto mode entry",
                                               "step track submode active",
@@ -139,7 +138,14 @@ std::string TrackByte::meaning(const value_type& v) const {
                                               "track system error",
                                               "track checksum error",
                                               "(1111 not defined)"};
-  return std::string(kBands[(v >> 4) & 7]) + ", " + std::string(kSub[v & 0xF]);
+}  // namespace
+std::string TrackByte::meaning(const value_type& v) const {
+  static constexpr std::string_view kBands[] = {"(000 not used)", "X band", "Ka band", "S band",
+                                                "C band",         "Ku band", "band not defined", "L band"};
+  return std::string(kBands[(v >> 4) & 7]) + ", " + std::string(kTrackSubmodes[v & 0xF]);
+}
+bool TrackByte::names_active_submode(value_type v) {
+  return (v & 0xF) != 0 && !kTrackSubmodes[v & 0xF].ends_with("not defined)");
 }
 
 // ---- Choice ---------------------------------------------------------------

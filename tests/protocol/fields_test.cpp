@@ -150,6 +150,17 @@ TEST(Fields, TrackByteNeverHasBbbZero) {
   decode_err(t, "\x83");
 }
 
+// §3.2 byte 40 SSSS: 0001-0110 and 1000-1110 name a submode of an active
+// TRACK; 0000 is "track mode not active", 0111 and 1111 are not listed. The
+// band BBB does not matter.
+TEST(Fields, TrackByteNamesAnActiveSubmodeForTheListedCodesButZero) {
+  for (std::uint8_t ssss = 0; ssss < 16; ++ssss) {
+    const bool listed = ssss != 0 && ssss != 0b0111 && ssss != 0b1111;
+    EXPECT_EQ(TrackByte::names_active_submode(static_cast<std::uint8_t>(0x40 | ssss)), listed) << int(ssss);
+    EXPECT_EQ(TrackByte::names_active_submode(static_cast<std::uint8_t>(0x10 | ssss)), listed) << int(ssss);
+  }
+}
+
 TEST(Fields, LeftDecimalAcceptsAMissingDecimalDigit) {
   LeftDecimal lon{6, 1};
   EXPECT_EQ(decode_ok(lon, "-179.9"), -1799);

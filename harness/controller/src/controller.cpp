@@ -30,6 +30,8 @@ constexpr std::chrono::seconds kSearchTime{20};
 // E-90's other side: a search that gives up within a second.
 constexpr std::chrono::milliseconds kShortSearchTime{300};
 constexpr std::chrono::milliseconds kSearchTick{100};
+// How near its stow position an axis is at it (§3.2 bytes 32-34 bit C).
+constexpr double kAtStowDeg = 0.05;
 // ERRATA E-99's other side: how far short of its stow position a STOW leaves
 // the elevation (well outside any arrival tolerance and the display's 0.1).
 constexpr double kStowShortDeg = 1.0;
@@ -447,11 +449,13 @@ double Controller::stow_elevation_target() const {
   return stow + (from > stow ? kStowShortDeg : -kStowShortDeg);
 }
 
-bool Controller::elevation_at_stow() const { return std::abs(axis(AxisId::kEl).position - stow_elevation()) < 0.05; }
+bool Controller::elevation_at_stow() const {
+  return std::abs(axis(AxisId::kEl).position - stow_elevation()) < kAtStowDeg;
+}
 
 bool Controller::stow_limit(AxisId a) const {
   const AxisProfile& p = axis_profile(a);
-  return p.has_stow_limit && std::abs(axis(a).position - p.stow_deg) < 0.05;
+  return p.has_stow_limit && std::abs(axis(a).position - p.stow_deg) < kAtStowDeg;
 }
 
 bool Controller::moving() const {

@@ -1222,8 +1222,7 @@ bool Lockstep::track_submode_shown(const AckJudging& r, const ReplyField& f,
                                    const std::vector<const std::string*>& values) const {
   if (f.name != "track" || !track_led(r.nominal().mode)) return false;
   const unsigned long dev = hex_byte(f.raw);
-  const unsigned long ssss = dev & 0x0F;
-  if (ssss == 0 || ssss == 0b0111 || ssss == 0b1111) return false;
+  if (!fields::TrackByte::names_active_submode(static_cast<std::uint8_t>(dev))) return false;
   return std::any_of(values.begin(), values.end(), [&](const std::string* v) { return v && ((hex_byte(*v) ^ dev) & 0x70) == 0; });
 }
 

@@ -182,6 +182,9 @@ struct TrackByte {
   void encode(const value_type& v, Out out) const;
   FieldStatus decode(ByteView in, value_type& v) const;
   std::string meaning(const value_type& v) const;
+  // Whether SSSS (the low four bits) names a submode of an active TRACK:
+  // one of §3.2's listed codes but 0000 "track mode not active".
+  static bool names_active_submode(value_type v);
 };
 
 // One character out of a documented set, each with its meaning.
